@@ -1,0 +1,65 @@
+//! `semsim`: from 3D laser scans of a building to a judged semantic simulation.
+//! A thin binary over the library crates; it maps errors to exit codes
+//! (0 success, 1 the job failed, 2 bad input or usage).
+
+mod building_cmd;
+mod config;
+mod convert;
+mod demo;
+mod exit;
+mod info;
+mod scan;
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// semsim: semantic simulation from 3D laser scans.
+#[derive(Parser)]
+#[command(name = "semsim", version, about, long_about = None)]
+struct Cli {
+    /// Optional configuration file (TOML); every run writes the configuration it used beside its outputs.
+    #[arg(long, global = true, value_name = "FILE")]
+    config: Option<PathBuf>,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run the whole chain on the built-in default building and write everything to a folder.
+    Demo(demo::DemoArgs),
+    /// Convert a point cloud between formats (picked by extension: .pcd .ply .xyz .txt .3d).
+    Convert(convert::ConvertArgs),
+    /// Print what a point cloud file holds.
+    Info(info::InfoArgs),
+    /// Scan a building with the virtual 3D laser from one or more poses.
+    Scan(scan::ScanArgs),
+    /// Generate or check building descriptions.
+    #[command(subcommand)]
+    Building(building_cmd::BuildingCommand),
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let _ = e.print();
+            return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
+        }
+    };
+    let result = config::SemsimConfig::load(cli.config.as_deref()).and_then(|cfg| match cli.command {
+        Command::Demo(a) => demo::run(a, &cfg),
+        Command::Convert(a) => convert::run(a),
+        Command::Info(a) => info::run(a),
+        Command::Scan(a) => scan::run(a, &cfg),
+        Command::Building(c) => building_cmd::run(c, &cfg),
+    });
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(exit::code_for(&e))
+        }
+    }
+}

@@ -1,0 +1,110 @@
+//! Runs the real `semsim` binary in a temporary folder (as ripgrep's tests/util.rs).
+
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// A temporary working folder for one test.
+pub struct Dir {
+    tmp: tempfile::TempDir,
+}
+
+impl Dir {
+    /// A new empty folder.
+    pub fn new() -> Dir {
+        Dir { tmp: tempfile::tempdir().expect("temporary folder") }
+    }
+
+    /// The folder.
+    pub fn path(&self) -> &Path {
+        self.tmp.path()
+    }
+
+    /// A path inside the folder.
+    pub fn join(&self, p: &str) -> PathBuf {
+        self.tmp.path().join(p)
+    }
+
+    /// Writes a file inside the folder.
+    pub fn write(&self, name: &str, bytes: impl AsRef<[u8]>) -> PathBuf {
+        let p = self.join(name);
+        std::fs::write(&p, bytes).expect("write test file");
+        p
+    }
+
+    /// Runs `semsim ARGS...` in the folder.
+    pub fn run(&self, args: &[&str]) -> Run {
+        let out = Command::new(env!("CARGO_BIN_EXE_semsim"))
+            .args(args)
+            .current_dir(self.path())
+            .output()
+            .expect("semsim runs");
+        Run(out)
+    }
+
+    /// A small, fast laser configuration file for tests.
+    pub fn small_config(&self) -> PathBuf {
+        self.write(
+            "small.toml",
+            "[laser]\nbeams = 121\nrotation_steps = 61\n[odometry]\nseed = 5\n",
+        )
+    }
+
+    /// Names of the files in the folder (sorted).
+    pub fn listing(&self, sub: &str) -> Vec<String> {
+        let mut v: Vec<String> = std::fs::read_dir(self.join(sub))
+            .expect("listable")
+            .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    }
+}
+
+/// The outcome of one run.
+pub struct Run(pub Output);
+
+impl Run {
+    /// Exit code (-1 if killed by a signal).
+    pub fn code(&self) -> i32 {
+        self.0.status.code().unwrap_or(-1)
+    }
+
+    /// Standard output.
+    pub fn stdout(&self) -> String {
+        String::from_utf8_lossy(&self.0.stdout).into_owned()
+    }
+
+    /// Standard error.
+    pub fn stderr(&self) -> String {
+        String::from_utf8_lossy(&self.0.stderr).into_owned()
+    }
+
+    /// Asserts success and returns stdout.
+    pub fn ok(&self) -> String {
+        assert_eq!(self.code(), 0, "failed:\nstdout: {}\nstderr: {}", self.stdout(), self.stderr());
+        self.stdout()
+    }
+
+    /// Asserts exit code 2 (bad input), no panic, and a message containing every `needle`.
+    pub fn bad_input(&self, needles: &[&str]) {
+        let err = self.stderr();
+        assert_eq!(self.code(), 2, "expected exit 2:\nstdout: {}\nstderr: {err}", self.stdout());
+        assert!(!err.contains("panicked"), "panic: {err}");
+        for n in needles {
+            assert!(err.contains(n), "stderr lacks '{n}': {err}");
+        }
+    }
+}
+
+/// The shared real-data folder, or `None` (with a message) where it is absent.
+pub fn real_data() -> Option<PathBuf> {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/real");
+    if p.is_dir() {
+        Some(p)
+    } else {
+        eprintln!("skipping: real data folder {} not found", p.display());
+        None
+    }
+}

@@ -1,0 +1,181 @@
+//! The PLY header: parsing (every error names its line) and writing.
+
+use super::PlyEncoding;
+use crate::error::{CloudError, Result};
+use crate::io::scalar::Scalar;
+use crate::PointCloud;
+use std::path::Path;
+
+/// A property's type.
+pub(super) enum Kind {
+    /// One value.
+    Scalar(Scalar),
+    /// A count, then that many items.
+    List { count: Scalar, item: Scalar },
+}
+
+impl Kind {
+    /// The fewest bytes the property can take in a binary file.
+    pub fn min_size(&self) -> usize {
+        match self {
+            Kind::Scalar(t) => t.size(),
+            Kind::List { count, .. } => count.size(),
+        }
+    }
+}
+
+/// A property of an element.
+pub(super) struct Prop {
+    pub name: String,
+    pub kind: Kind,
+    /// Its 1-based header line.
+    pub line: usize,
+}
+
+/// An element: `count` items, each with the properties in order.
+pub(super) struct Element {
+    pub name: String,
+    pub count: usize,
+    pub props: Vec<Prop>,
+    /// Its 1-based header line.
+    pub line: usize,
+}
+
+/// A parsed header.
+pub(super) struct Header {
+    pub encoding: PlyEncoding,
+    pub elements: Vec<Element>,
+    /// Byte offset of the data (just after `end_header`).
+    pub data_offset: usize,
+    /// The line of `end_header`.
+    pub end_line: usize,
+}
+
+/// Parses the header at the start of `bytes`.
+pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Header> {
+    let err = |line: usize, msg: String| CloudError::parse(path, line, msg);
+    let mut encoding = None;
+    let mut elements: Vec<Element> = Vec::new();
+    let mut pos = 0usize;
+    let mut line_no = 0usize;
+    loop {
+        line_no += 1;
+        let rest = bytes.get(pos..).unwrap_or_default();
+        if rest.is_empty() {
+            let msg = if line_no == 1 {
+                "empty file, not a PLY file"
+            } else {
+                "the header ends without end_header"
+            };
+            return Err(err(line_no, msg.into()));
+        }
+        let len = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
+        pos += (len + 1).min(rest.len());
+        let line = std::str::from_utf8(rest.get(..len).unwrap_or_default())
+            .map_err(|_| err(line_no, "header line is not text".into()))?
+            .trim();
+        if line_no == 1 {
+            if line != "ply" {
+                return Err(err(
+                    1,
+                    "not a PLY file: the first line must be 'ply'".into(),
+                ));
+            }
+            continue;
+        }
+        let toks: Vec<&str> = line.split_whitespace().collect();
+        match toks.as_slice() {
+            [] | ["comment", ..] | ["obj_info", ..] => {}
+            ["format", enc, version] if version.starts_with('1') => {
+                encoding = Some(match *enc {
+                    "ascii" => PlyEncoding::Ascii,
+                    "binary_little_endian" => PlyEncoding::BinaryLittleEndian,
+                    "binary_big_endian" => PlyEncoding::BinaryBigEndian,
+                    _ => return Err(err(line_no, format!("unknown format '{enc}'"))),
+                });
+            }
+            ["format", ..] => {
+                let msg = "expected 'format <ascii|binary_little_endian|binary_big_endian> 1.0'";
+                return Err(err(line_no, msg.into()));
+            }
+            ["element", name, count] => {
+                let count = count.parse().map_err(|_| {
+                    err(line_no, format!("element count '{count}' is not a number"))
+                })?;
+                elements.push(Element {
+                    name: (*name).into(),
+                    count,
+                    props: Vec::new(),
+                    line: line_no,
+                });
+            }
+            ["property", rest @ ..] => {
+                let (kind, name) = match rest {
+                    ["list", c, i, name] => (
+                        Kind::List {
+                            count: scalar(path, line_no, c)?,
+                            item: scalar(path, line_no, i)?,
+                        },
+                        name,
+                    ),
+                    [t, name] => (Kind::Scalar(scalar(path, line_no, t)?), name),
+                    _ => return Err(err(line_no, format!("malformed property line '{line}'"))),
+                };
+                let e = elements
+                    .last_mut()
+                    .ok_or_else(|| err(line_no, "property before any element".into()))?;
+                e.props.push(Prop {
+                    name: (*name).into(),
+                    kind,
+                    line: line_no,
+                });
+            }
+            ["end_header"] => break,
+            _ => return Err(err(line_no, format!("unexpected header line '{line}'"))),
+        }
+    }
+    let encoding = encoding.ok_or_else(|| err(line_no, "the header has no format line".into()))?;
+    Ok(Header {
+        encoding,
+        elements,
+        data_offset: pos,
+        end_line: line_no,
+    })
+}
+
+fn scalar(path: &Path, line: usize, name: &str) -> Result<Scalar> {
+    Ok(match name {
+        "char" | "int8" => Scalar::I8,
+        "uchar" | "uint8" => Scalar::U8,
+        "short" | "int16" => Scalar::I16,
+        "ushort" | "uint16" => Scalar::U16,
+        "int" | "int32" => Scalar::I32,
+        "uint" | "uint32" => Scalar::U32,
+        "float" | "float32" => Scalar::F32,
+        "double" | "float64" => Scalar::F64,
+        _ => {
+            return Err(CloudError::parse(
+                path,
+                line,
+                format!("unknown property type '{name}'"),
+            ))
+        }
+    })
+}
+
+/// The header text for a cloud (all of whose points are written).
+pub(super) fn text(cloud: &PointCloud, encoding: PlyEncoding) -> String {
+    let mut s = format!(
+        "ply\nformat {} 1.0\ncomment written by semsim\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\n",
+        encoding.keyword(),
+        cloud.len()
+    );
+    if cloud.intensity.is_some() {
+        s.push_str("property float intensity\n");
+    }
+    if cloud.labels.is_some() {
+        s.push_str("property uint label\nproperty uchar class\n");
+    }
+    s.push_str("end_header\n");
+    s
+}

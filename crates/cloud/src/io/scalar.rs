@@ -1,0 +1,117 @@
+//! Numeric field types shared by the PCD and PLY readers: decoded from bytes (either byte
+//! order) or from text, always to `f64` (exact for every type except 64-bit integers above 2^53).
+
+/// A numeric type a file field can have.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Scalar {
+    F32,
+    F64,
+    U8,
+    U16,
+    U32,
+    U64,
+    I8,
+    I16,
+    I32,
+    I64,
+}
+
+macro_rules! decode_as {
+    ($t:ty, $b:expr, $big:expr) => {{
+        let a = *$b.first_chunk::<{ std::mem::size_of::<$t>() }>()?;
+        (if $big {
+            <$t>::from_be_bytes(a)
+        } else {
+            <$t>::from_le_bytes(a)
+        }) as f64
+    }};
+}
+
+impl Scalar {
+    /// Size in bytes.
+    pub(crate) fn size(self) -> usize {
+        match self {
+            Scalar::U8 | Scalar::I8 => 1,
+            Scalar::U16 | Scalar::I16 => 2,
+            Scalar::F32 | Scalar::U32 | Scalar::I32 => 4,
+            Scalar::F64 | Scalar::U64 | Scalar::I64 => 8,
+        }
+    }
+
+    /// True for `F32` and `F64`.
+    pub(crate) fn is_float(self) -> bool {
+        matches!(self, Scalar::F32 | Scalar::F64)
+    }
+
+    /// True for the unsigned integer types.
+    pub(crate) fn is_unsigned(self) -> bool {
+        matches!(self, Scalar::U8 | Scalar::U16 | Scalar::U32 | Scalar::U64)
+    }
+
+    /// Decodes the value at the start of `b`; `None` if `b` is too short.
+    #[inline]
+    pub(crate) fn decode(self, b: &[u8], big_endian: bool) -> Option<f64> {
+        Some(match self {
+            Scalar::F32 => decode_as!(f32, b, big_endian),
+            Scalar::F64 => decode_as!(f64, b, big_endian),
+            Scalar::U8 => f64::from(*b.first()?),
+            Scalar::U16 => decode_as!(u16, b, big_endian),
+            Scalar::U32 => decode_as!(u32, b, big_endian),
+            Scalar::U64 => decode_as!(u64, b, big_endian),
+            Scalar::I8 => f64::from(*b.first()? as i8),
+            Scalar::I16 => decode_as!(i16, b, big_endian),
+            Scalar::I32 => decode_as!(i32, b, big_endian),
+            Scalar::I64 => decode_as!(i64, b, big_endian),
+        })
+    }
+
+    /// Parses a text token of this type (`nan`/`inf` are accepted for floats); `None` if it is not one.
+    pub(crate) fn parse(self, s: &str) -> Option<f64> {
+        match self {
+            Scalar::F32 => s.parse::<f32>().ok().map(f64::from),
+            Scalar::F64 => s.parse::<f64>().ok(),
+            Scalar::U8 => s.parse::<u8>().ok().map(f64::from),
+            Scalar::U16 => s.parse::<u16>().ok().map(f64::from),
+            Scalar::U32 => s.parse::<u32>().ok().map(f64::from),
+            Scalar::U64 => s.parse::<u64>().ok().map(|v| v as f64),
+            Scalar::I8 => s.parse::<i8>().ok().map(f64::from),
+            Scalar::I16 => s.parse::<i16>().ok().map(f64::from),
+            Scalar::I32 => s.parse::<i32>().ok().map(f64::from),
+            Scalar::I64 => s.parse::<i64>().ok().map(|v| v as f64),
+        }
+    }
+}
+
+/// A stored surface-class value as a class: `Err` with a message for a code no class has.
+pub(crate) fn class_from_value(v: f64) -> Result<crate::SurfaceClass, String> {
+    let code = (v.fract() == 0.0 && (0.0..=255.0).contains(&v)).then_some(v as u8);
+    code.and_then(crate::SurfaceClass::from_code)
+        .ok_or_else(|| format!("unknown surface class code {v}"))
+}
+
+/// A stored label value as an entity id: `Err` with a message unless it is an integer that fits a `u32`.
+pub(crate) fn entity_from_value(v: f64) -> Result<u32, String> {
+    (v.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&v))
+        .then_some(v as u32)
+        .ok_or_else(|| format!("label {v} is not an entity id (an integer 0..=4294967295)"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decodes_both_byte_orders_and_text() {
+        assert_eq!(Scalar::F32.decode(&1.5f32.to_le_bytes(), false), Some(1.5));
+        assert_eq!(Scalar::F32.decode(&1.5f32.to_be_bytes(), true), Some(1.5));
+        assert_eq!(Scalar::I16.decode(&(-3i16).to_be_bytes(), true), Some(-3.0));
+        assert_eq!(Scalar::U32.decode(&[1, 2], false), None);
+        assert_eq!(Scalar::I8.decode(&[0xff], false), Some(-1.0));
+        assert_eq!(Scalar::U8.parse("255"), Some(255.0));
+        assert_eq!(Scalar::U8.parse("256"), None);
+        assert!(Scalar::F32.parse("nan").is_some_and(f64::is_nan));
+        assert!(class_from_value(8.0).is_err());
+        assert!(entity_from_value(-1.0).is_err());
+        assert_eq!(entity_from_value(7.0), Ok(7));
+    }
+}

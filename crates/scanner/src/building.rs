@@ -1,0 +1,230 @@
+//! The building description: floor, ceiling, walls with door openings and leaves,
+//! staircases and furniture boxes. Human-editable TOML (or JSON), documented in the README.
+//! All lengths in metres, angles in degrees, the floor's top at z = 0.
+
+use crate::error::{Result, ScannerError};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// A building: the ground truth that virtual scans are taken in.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Building {
+    /// A name for people.
+    #[serde(default)]
+    pub name: String,
+    /// The floor slab (its top is at z = 0).
+    pub floor: Floor,
+    /// The ceiling slab.
+    pub ceiling: Ceiling,
+    /// Walls, each a vertical box along a segment.
+    #[serde(default)]
+    pub walls: Vec<Wall>,
+    /// Staircases.
+    #[serde(default)]
+    pub stairs: Vec<Staircase>,
+    /// Furniture and clutter.
+    #[serde(default)]
+    pub boxes: Vec<Furniture>,
+}
+
+/// The floor slab: a rectangle in the XY plane, top at z = 0.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Floor {
+    /// Minimum XY corner.
+    pub min_m: [f64; 2],
+    /// Maximum XY corner.
+    pub max_m: [f64; 2],
+    /// Slab thickness (below z = 0).
+    #[serde(default = "default_slab_m")]
+    pub thickness_m: f64,
+}
+
+/// The ceiling slab over the whole floor rectangle.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Ceiling {
+    /// Height of the ceiling's underside above the floor.
+    pub height_m: f64,
+    /// Slab thickness (above `height_m`).
+    #[serde(default = "default_slab_m")]
+    pub thickness_m: f64,
+}
+
+fn default_slab_m() -> f64 {
+    0.2
+}
+
+/// A straight wall from `start_m` to `end_m` (its centre line), standing on the floor.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Wall {
+    /// Optional name for people.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub name: String,
+    /// Start of the centre line (XY).
+    pub start_m: [f64; 2],
+    /// End of the centre line (XY).
+    pub end_m: [f64; 2],
+    /// Thickness across the centre line.
+    pub thickness_m: f64,
+    /// Height; absent means up to the ceiling.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height_m: Option<f64>,
+    /// Door openings in this wall.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub doors: Vec<Door>,
+}
+
+/// A door opening in a wall, optionally with a leaf.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Door {
+    /// Distance along the wall from its start to the near edge of the opening.
+    pub offset_m: f64,
+    /// Width of the opening.
+    pub width_m: f64,
+    /// Height of the opening (the lintel's underside).
+    pub height_m: f64,
+    /// The door leaf; absent means an empty opening.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub leaf: Option<Leaf>,
+}
+
+/// Which edge of the opening carries the hinge.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Hinge {
+    /// The edge nearer the wall's start.
+    Start,
+    /// The edge nearer the wall's end.
+    End,
+}
+
+/// To which side of the wall the leaf swings, looking from the wall's start to its end.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Swing {
+    /// Towards the left-hand side.
+    Left,
+    /// Towards the right-hand side.
+    Right,
+}
+
+/// A door leaf hinged at one edge of its opening.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Leaf {
+    /// Hinge edge.
+    pub hinge: Hinge,
+    /// Swing side.
+    pub swing: Swing,
+    /// Opening angle: 0 closed, 90 wide open.
+    pub open_deg: f64,
+    /// Leaf thickness.
+    #[serde(default = "default_leaf_m")]
+    pub thickness_m: f64,
+}
+
+fn default_leaf_m() -> f64 {
+    0.04
+}
+
+/// A straight staircase of block steps rising from the floor, with an optional top landing.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Staircase {
+    /// Optional name for people.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub name: String,
+    /// Centre of the first step's front edge, on the floor (XY).
+    pub start_m: [f64; 2],
+    /// Direction of ascent (0 = +x, 90 = +y).
+    pub direction_deg: f64,
+    /// Number of steps.
+    pub steps: u32,
+    /// Height of each step.
+    pub rise_m: f64,
+    /// Depth of each step's tread.
+    pub run_m: f64,
+    /// Width across the direction of ascent.
+    pub width_m: f64,
+    /// Depth of the landing at the top (0 = none).
+    #[serde(default)]
+    pub landing_m: f64,
+}
+
+/// A furniture or clutter box standing anywhere (usually on the floor).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Furniture {
+    /// Optional name for people.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub name: String,
+    /// Box centre.
+    pub center_m: [f64; 3],
+    /// Full box size along its own axes.
+    pub size_m: [f64; 3],
+    /// Rotation about z.
+    #[serde(default)]
+    pub yaw_deg: f64,
+}
+
+const BUILTIN: &str = include_str!("../data/default_building.toml");
+
+impl Building {
+    /// The embedded default building (`crates/scanner/data/default_building.toml`).
+    pub fn default_building() -> Result<Building> {
+        Building::from_toml_str(BUILTIN, Path::new("<built-in default building>"))
+    }
+
+    /// Parses and validates a TOML description; `path` only names the source in errors.
+    pub fn from_toml_str(text: &str, path: &Path) -> Result<Building> {
+        let b: Building = toml::from_str(text).map_err(|e| ScannerError::Syntax {
+            path: path.to_path_buf(),
+            msg: e.to_string().trim_end().to_string(),
+        })?;
+        b.validate(path)?;
+        Ok(b)
+    }
+
+    /// Loads and validates a building file (`.toml`, or `.json`).
+    pub fn load(path: &Path) -> Result<Building> {
+        let text = std::fs::read_to_string(path).map_err(|e| cloud::CloudError::io(path, e))?;
+        let is_json = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"));
+        if !is_json {
+            return Building::from_toml_str(&text, path);
+        }
+        let b: Building = serde_json::from_str(&text).map_err(|e| ScannerError::Syntax {
+            path: path.to_path_buf(),
+            msg: e.to_string(),
+        })?;
+        b.validate(path)?;
+        Ok(b)
+    }
+
+    /// Writes the building as TOML (or JSON for a `.json` path), atomically.
+    pub fn save(&self, path: &Path) -> Result<()> {
+        let is_json = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"));
+        let text = if is_json {
+            serde_json::to_string_pretty(self).map_err(|e| syntax(path, e))?
+        } else {
+            toml::to_string(self).map_err(|e| syntax(path, e))?
+        };
+        cloud::write_bytes_atomically(path, text.as_bytes())?;
+        Ok(())
+    }
+
+    /// The height of wall `w` (its own, or the ceiling's).
+    pub fn wall_height_m(&self, w: &Wall) -> f64 {
+        w.height_m.unwrap_or(self.ceiling.height_m)
+    }
+}
+
+fn syntax(path: &Path, e: impl std::fmt::Display) -> ScannerError {
+    ScannerError::Syntax {
+        path: path.to_path_buf(),
+        msg: e.to_string(),
+    }
+}

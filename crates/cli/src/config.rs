@@ -26,8 +26,9 @@ impl SemsimConfig {
         let text = std::fs::read_to_string(path)
             .map_err(|e| cloud::CloudError::io(path, e))
             .context("reading the configuration file")?;
-        toml::from_str(&text)
-            .map_err(|e| crate::exit::bad_input(format!("{}: {}", path.display(), e.to_string().trim_end())))
+        toml::from_str(&text).map_err(|e| {
+            crate::exit::bad_input(format!("{}: {}", path.display(), e.to_string().trim_end()))
+        })
     }
 
     /// Writes the configuration in use to `dir/config.toml`.

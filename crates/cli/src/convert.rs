@@ -42,8 +42,14 @@ pub fn run(a: ConvertArgs) -> anyhow::Result<()> {
             );
         }
     }
-    cloud::write_cloud_as(&a.output, &cloud, format).with_context(|| format!("writing {}", a.output.display()))?;
-    println!("{} -> {}: {} points", a.input.display(), a.output.display(), cloud.len());
+    cloud::write_cloud_as(&a.output, &cloud, format)
+        .with_context(|| format!("writing {}", a.output.display()))?;
+    println!(
+        "{} -> {}: {} points",
+        a.input.display(),
+        a.output.display(),
+        cloud.len()
+    );
     Ok(())
 }
 

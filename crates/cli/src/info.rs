@@ -19,10 +19,16 @@ pub fn run(a: InfoArgs) -> anyhow::Result<()> {
         Some(o) => println!("organised: {} rows x {} cols", o.rows, o.cols),
         None => println!("organised: no"),
     }
-    println!("intensity: {}", if c.intensity.is_some() { "yes" } else { "no" });
+    println!(
+        "intensity: {}",
+        if c.intensity.is_some() { "yes" } else { "no" }
+    );
     if let Some(b) = c.bounding_box() {
         let (lo, hi) = (b.min, b.max);
-        println!("bounds m:  x {:.3}..{:.3}  y {:.3}..{:.3}  z {:.3}..{:.3}", lo.x, hi.x, lo.y, hi.y, lo.z, hi.z);
+        println!(
+            "bounds m:  x {:.3}..{:.3}  y {:.3}..{:.3}  z {:.3}..{:.3}",
+            lo.x, hi.x, lo.y, hi.y, lo.z, hi.z
+        );
     }
     if let Some(labels) = &c.labels {
         let mut counts = std::collections::BTreeMap::new();

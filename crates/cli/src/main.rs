@@ -48,13 +48,14 @@ fn main() -> ExitCode {
             return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
         }
     };
-    let result = config::SemsimConfig::load(cli.config.as_deref()).and_then(|cfg| match cli.command {
-        Command::Demo(a) => demo::run(a, &cfg),
-        Command::Convert(a) => convert::run(a),
-        Command::Info(a) => info::run(a),
-        Command::Scan(a) => scan::run(a, &cfg),
-        Command::Building(c) => building_cmd::run(c, &cfg),
-    });
+    let result =
+        config::SemsimConfig::load(cli.config.as_deref()).and_then(|cfg| match cli.command {
+            Command::Demo(a) => demo::run(a, &cfg),
+            Command::Convert(a) => convert::run(a),
+            Command::Info(a) => info::run(a),
+            Command::Scan(a) => scan::run(a, &cfg),
+            Command::Building(c) => building_cmd::run(c, &cfg),
+        });
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

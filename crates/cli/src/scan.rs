@@ -31,11 +31,21 @@ pub struct ScanArgs {
 pub fn parse_pose(s: &str) -> Result<ScanPose, String> {
     let v: Vec<f64> = s
         .split(',')
-        .map(|f| f.trim().parse::<f64>().map_err(|_| format!("'{f}' is not a number")))
+        .map(|f| {
+            f.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("'{f}' is not a number"))
+        })
         .collect::<Result<_, _>>()?;
     match v.as_slice() {
-        [x_m, y_m, yaw_deg] if v.iter().all(|x| x.is_finite()) => Ok(ScanPose { x_m: *x_m, y_m: *y_m, yaw_deg: *yaw_deg }),
-        _ => Err(format!("expected three finite numbers x,y,yaw_deg, got '{s}'")),
+        [x_m, y_m, yaw_deg] if v.iter().all(|x| x.is_finite()) => Ok(ScanPose {
+            x_m: *x_m,
+            y_m: *y_m,
+            yaw_deg: *yaw_deg,
+        }),
+        _ => Err(format!(
+            "expected three finite numbers x,y,yaw_deg, got '{s}'"
+        )),
     }
 }
 
@@ -83,15 +93,22 @@ impl ScanSummary {
 
 /// Scans `building` from every pose and writes `scanNNN.pcd`, `poses.txt` (ground truth),
 /// `odometry.txt`, `entities.json` and `config.toml` into `out`.
-pub fn write_scans(building: &Building, poses: &[ScanPose], cfg: &SemsimConfig, out: &Path) -> anyhow::Result<ScanSummary> {
+pub fn write_scans(
+    building: &Building,
+    poses: &[ScanPose],
+    cfg: &SemsimConfig,
+    out: &Path,
+) -> anyhow::Result<ScanSummary> {
     let geometry = BuildingGeometry::new(building);
     check_poses(building, &geometry, poses, cfg.laser.mount_height_m)?;
     let laser = VirtualLaser::new(cfg.laser.clone())?;
     let odometry = scanner::odometry_from_truth(poses, &cfg.odometry)?;
     let bar = ProgressBar::new(poses.len() as u64).with_style(
-        ProgressStyle::with_template("{msg:>10} [{bar:30}] {pos}/{len} scans, {elapsed} (eta {eta})")
-            .unwrap_or_else(|_| ProgressStyle::default_bar())
-            .progress_chars("=> "),
+        ProgressStyle::with_template(
+            "{msg:>10} [{bar:30}] {pos}/{len} scans, {elapsed} (eta {eta})",
+        )
+        .unwrap_or_else(|_| ProgressStyle::default_bar())
+        .progress_chars("=> "),
     );
     bar.set_message("scanning");
     let mut files = Vec::new();
@@ -108,8 +125,14 @@ pub fn write_scans(building: &Building, poses: &[ScanPose], cfg: &SemsimConfig, 
         let path = out.join(format!("{name}.pcd"));
         cloud::write_cloud(&path, &scan).with_context(|| format!("writing scan {k}"))?;
         valid_points.push(scan.valid_count());
-        truth.push(NamedPose { name: name.clone(), world_from_scan: pose.world_from_scan(h) });
-        odo.push(NamedPose { name, world_from_scan: odometry[k].world_from_scan(h) });
+        truth.push(NamedPose {
+            name: name.clone(),
+            world_from_scan: pose.world_from_scan(h),
+        });
+        odo.push(NamedPose {
+            name,
+            world_from_scan: odometry[k].world_from_scan(h),
+        });
         files.push(path);
         bar.inc(1);
     }
@@ -123,11 +146,21 @@ pub fn write_scans(building: &Building, poses: &[ScanPose], cfg: &SemsimConfig, 
     cloud::write_bytes_atomically(&entities_path, json.as_bytes())?;
     cfg.write_beside(out)?;
     files.extend([poses_path, odo_path, entities_path, out.join("config.toml")]);
-    Ok(ScanSummary { files, valid_points, scan_secs, rays_per_scan: cfg.laser.beams * cfg.laser.rotation_steps })
+    Ok(ScanSummary {
+        files,
+        valid_points,
+        scan_secs,
+        rays_per_scan: cfg.laser.beams * cfg.laser.rotation_steps,
+    })
 }
 
 /// Every pose must stand on the floor and outside every solid.
-fn check_poses(b: &Building, g: &BuildingGeometry, poses: &[ScanPose], mount_height_m: f64) -> anyhow::Result<()> {
+fn check_poses(
+    b: &Building,
+    g: &BuildingGeometry,
+    poses: &[ScanPose],
+    mount_height_m: f64,
+) -> anyhow::Result<()> {
     for (k, p) in poses.iter().enumerate() {
         let (lo, hi) = (b.floor.min_m, b.floor.max_m);
         if p.x_m < lo[0] || p.x_m > hi[0] || p.y_m < lo[1] || p.y_m > hi[1] {
@@ -138,7 +171,13 @@ fn check_poses(b: &Building, g: &BuildingGeometry, poses: &[ScanPose], mount_hei
         }
         let sensor = glam::Vec3::new(p.x_m as f32, p.y_m as f32, mount_height_m as f32);
         if let Some(e) = g.entity_containing(sensor) {
-            return Err(bad_input(format!("pose {k} ({},{}) puts the laser inside {} ({})", p.x_m, p.y_m, e.name, e.class.name())));
+            return Err(bad_input(format!(
+                "pose {k} ({},{}) puts the laser inside {} ({})",
+                p.x_m,
+                p.y_m,
+                e.name,
+                e.class.name()
+            )));
         }
     }
     Ok(())

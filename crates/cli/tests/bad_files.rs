@@ -8,13 +8,24 @@ use util::Dir;
 fn convert_fails(d: &Dir, input: &str, needles: &[&str]) {
     d.run(&["convert", input, "out.ply"]).bad_input(needles);
     assert!(!d.join("out.ply").exists(), "partial output left behind");
-    let stray: Vec<String> = d.listing(".").into_iter().filter(|f| f.ends_with(".tmp")).collect();
+    let stray: Vec<String> = d
+        .listing(".")
+        .into_iter()
+        .filter(|f| f.ends_with(".tmp"))
+        .collect();
     assert!(stray.is_empty(), "temporary files left: {stray:?}");
 }
 
 fn small_pcd(d: &Dir, name: &str) -> Vec<u8> {
     let xyz = d.write("src.xyz", "0 0 0\n1 2 3\n4 5 6\n7 8 9\n");
-    d.run(&["convert", xyz.to_str().expect("utf8"), name, "--encoding", "binary"]).ok();
+    d.run(&[
+        "convert",
+        xyz.to_str().expect("utf8"),
+        name,
+        "--encoding",
+        "binary",
+    ])
+    .ok();
     std::fs::read(d.join(name)).expect("written")
 }
 
@@ -29,10 +40,18 @@ fn truncated_pcd() {
 #[test]
 fn ply_with_a_wrong_header() {
     let d = Dir::new();
-    d.write("bad.ply", "ply\nformat binary_middle_endian 1.0\nelement vertex 1\nproperty float x\nend_header\n");
-    d.run(&["convert", "bad.ply", "out.pcd"]).bad_input(&["bad.ply"]);
-    d.write("nomagic.ply", "format ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n0\n");
-    d.run(&["convert", "nomagic.ply", "out.pcd"]).bad_input(&["nomagic.ply"]);
+    d.write(
+        "bad.ply",
+        "ply\nformat binary_middle_endian 1.0\nelement vertex 1\nproperty float x\nend_header\n",
+    );
+    d.run(&["convert", "bad.ply", "out.pcd"])
+        .bad_input(&["bad.ply"]);
+    d.write(
+        "nomagic.ply",
+        "format ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n0\n",
+    );
+    d.run(&["convert", "nomagic.ply", "out.pcd"])
+        .bad_input(&["nomagic.ply"]);
     assert!(!d.join("out.pcd").exists());
 }
 
@@ -56,11 +75,15 @@ fn nan_points() {
 fn unknown_extension_and_missing_file() {
     let d = Dir::new();
     d.write("a.las2", "x");
-    d.run(&["convert", "a.las2", "out.pcd"]).bad_input(&["a.las2", "unknown point cloud format"]);
-    d.run(&["convert", "nothere.pcd", "out.pcd"]).bad_input(&["nothere.pcd"]);
+    d.run(&["convert", "a.las2", "out.pcd"])
+        .bad_input(&["a.las2", "unknown point cloud format"]);
+    d.run(&["convert", "nothere.pcd", "out.pcd"])
+        .bad_input(&["nothere.pcd"]);
     d.write("ok.xyz", "1 2 3\n");
-    d.run(&["convert", "ok.xyz", "out.foo"]).bad_input(&["out.foo"]);
-    d.run(&["convert", "ok.xyz", "out.xyz", "--encoding", "binary"]).bad_input(&["--encoding"]);
+    d.run(&["convert", "ok.xyz", "out.foo"])
+        .bad_input(&["out.foo"]);
+    d.run(&["convert", "ok.xyz", "out.xyz", "--encoding", "binary"])
+        .bad_input(&["--encoding"]);
 }
 
 #[test]
@@ -96,12 +119,28 @@ fn conversions_round_trip_through_every_format() {
 
 #[test]
 fn real_scans_convert_with_their_point_counts() {
-    let Some(real) = util::real_data() else { return };
+    let Some(real) = util::real_data() else {
+        return;
+    };
     let d = Dir::new();
-    for (file, n) in [("pcl-room/room_scan1.pcd", 112_586), ("small-gicp/source.ply", 69_792)] {
+    for (file, n) in [
+        ("pcl-room/room_scan1.pcd", 112_586),
+        ("small-gicp/source.ply", 69_792),
+    ] {
         let input = real.join(file);
-        let out = d.run(&["convert", input.to_str().expect("utf8"), "x.pcd", "--encoding", "binary-compressed"]).ok();
+        let out = d
+            .run(&[
+                "convert",
+                input.to_str().expect("utf8"),
+                "x.pcd",
+                "--encoding",
+                "binary-compressed",
+            ])
+            .ok();
         assert!(out.contains(&format!("{n} points")), "{file}: {out}");
-        assert_eq!(cloud::read_cloud(&d.join("x.pcd")).expect("re-read").len(), n);
+        assert_eq!(
+            cloud::read_cloud(&d.join("x.pcd")).expect("re-read").len(),
+            n
+        );
     }
 }

@@ -28,10 +28,26 @@ fn help_works_on_every_command() {
 fn demo_writes_scans_ground_truth_odometry_and_config() {
     let d = Dir::new();
     let cfg = d.small_config();
-    let out = d.run(&["demo", "--out", "demo", "--config", cfg.to_str().expect("utf8")]).ok();
+    let out = d
+        .run(&[
+            "demo",
+            "--out",
+            "demo",
+            "--config",
+            cfg.to_str().expect("utf8"),
+        ])
+        .ok();
     assert!(out.contains("8 scans"), "{out}");
     let files = d.listing("demo");
-    for f in ["building.toml", "config.toml", "entities.json", "odometry.txt", "poses.txt", "scan000.pcd", "scan007.pcd"] {
+    for f in [
+        "building.toml",
+        "config.toml",
+        "entities.json",
+        "odometry.txt",
+        "poses.txt",
+        "scan000.pcd",
+        "scan007.pcd",
+    ] {
         assert!(files.contains(&f.to_string()), "{f} missing: {files:?}");
     }
     let scan = cloud::read_cloud(&d.join("demo/scan003.pcd")).expect("readable scan");
@@ -41,12 +57,18 @@ fn demo_writes_scans_ground_truth_odometry_and_config() {
     let truth = cloud::read_poses(&d.join("demo/poses.txt")).expect("poses");
     let odo = cloud::read_poses(&d.join("demo/odometry.txt")).expect("odometry");
     assert_eq!(truth.len(), 8);
-    assert!(truth[0].world_from_scan.abs_diff_eq(odo[0].world_from_scan, 1e-9));
-    let drift = (truth[7].world_from_scan.translation - odo[7].world_from_scan.translation).length();
+    assert!(truth[0]
+        .world_from_scan
+        .abs_diff_eq(odo[0].world_from_scan, 1e-9));
+    let drift =
+        (truth[7].world_from_scan.translation - odo[7].world_from_scan.translation).length();
     assert!(drift > 0.02 && drift < 3.0, "odometry drift {drift}");
     // The written configuration is the one used, and can be passed back.
     let used = std::fs::read_to_string(d.join("demo/config.toml")).expect("config");
-    assert!(used.contains("beams = 121") && used.contains("seed = 5"), "{used}");
+    assert!(
+        used.contains("beams = 121") && used.contains("seed = 5"),
+        "{used}"
+    );
     let b = Building::load(&d.join("demo/building.toml")).expect("building reloads");
     assert_eq!(b, Building::default_building().expect("default"));
 }
@@ -54,14 +76,26 @@ fn demo_writes_scans_ground_truth_odometry_and_config() {
 #[test]
 fn noiseless_scan_of_a_generated_building_lies_on_the_labelled_surfaces() {
     let d = Dir::new();
-    d.run(&["building", "generate", "--seed", "17", "--out", "b.toml"]).ok();
+    d.run(&["building", "generate", "--seed", "17", "--out", "b.toml"])
+        .ok();
     let b = Building::load(&d.join("b.toml")).expect("generated building loads");
     let y = 0.0;
     let x = 0.3 * (b.floor.max_m[0] - b.floor.min_m[0]);
     let cfg = d.small_config();
     d.run(&[
-        "scan", "--building", "b.toml", "--pose", &format!("{x},{y},15"), "--pose", "2.0,0.0,-30",
-        "--out", "scans", "--noise", "0", "--config", cfg.to_str().expect("utf8"),
+        "scan",
+        "--building",
+        "b.toml",
+        "--pose",
+        &format!("{x},{y},15"),
+        "--pose",
+        "2.0,0.0,-30",
+        "--out",
+        "scans",
+        "--noise",
+        "0",
+        "--config",
+        cfg.to_str().expect("utf8"),
     ])
     .ok();
     let geometry = BuildingGeometry::new(&b);
@@ -75,7 +109,12 @@ fn noiseless_scan_of_a_generated_building_lies_on_the_labelled_surfaces() {
         for (q, l) in scan.points.iter().zip(labels) {
             if q.is_finite() {
                 let dist = geometry.distance_to_entity(*q, l.entity);
-                assert!(dist < 1e-3, "{}: {q} is {dist} m off entity {}", p.name, l.entity);
+                assert!(
+                    dist < 1e-3,
+                    "{}: {q} is {dist} m off entity {}",
+                    p.name,
+                    l.entity
+                );
                 n += 1;
             }
         }
@@ -86,14 +125,20 @@ fn noiseless_scan_of_a_generated_building_lies_on_the_labelled_surfaces() {
 #[test]
 fn same_seed_generates_the_same_file() {
     let d = Dir::new();
-    d.run(&["building", "generate", "--seed", "4", "--out", "a.toml"]).ok();
-    d.run(&["building", "generate", "--seed", "4", "--out", "b.json"]).ok();
-    d.run(&["building", "generate", "--seed", "5", "--out", "c.toml"]).ok();
+    d.run(&["building", "generate", "--seed", "4", "--out", "a.toml"])
+        .ok();
+    d.run(&["building", "generate", "--seed", "4", "--out", "b.json"])
+        .ok();
+    d.run(&["building", "generate", "--seed", "5", "--out", "c.toml"])
+        .ok();
     let a = Building::load(&d.join("a.toml")).expect("a");
     assert_eq!(a, Building::load(&d.join("b.json")).expect("b"));
     assert_ne!(a, Building::load(&d.join("c.toml")).expect("c"));
     let check = d.run(&["building", "check", "a.toml"]).ok();
-    assert!(check.contains("valid") && check.contains("staircases"), "{check}");
+    assert!(
+        check.contains("valid") && check.contains("staircases"),
+        "{check}"
+    );
 }
 
 #[test]
@@ -104,24 +149,90 @@ fn door_wider_than_its_wall_is_bad_input_and_writes_nothing() {
     b.walls[4].doors[0].width_m = 30.0;
     let toml = toml::to_string(&b).expect("serialise");
     d.write("wide.toml", toml);
-    d.run(&["scan", "--building", "wide.toml", "--pose", "1,0,0", "--out", "out"])
-        .bad_input(&["wide.toml", "walls[4]", "doors[0]", "wider than its wall"]);
+    d.run(&[
+        "scan",
+        "--building",
+        "wide.toml",
+        "--pose",
+        "1,0,0",
+        "--out",
+        "out",
+    ])
+    .bad_input(&["wide.toml", "walls[4]", "doors[0]", "wider than its wall"]);
     assert!(!d.join("out").exists() || d.listing("out").is_empty());
-    d.run(&["building", "check", "wide.toml"]).bad_input(&["wider than its wall"]);
+    d.run(&["building", "check", "wide.toml"])
+        .bad_input(&["wider than its wall"]);
 }
 
 #[test]
 fn scan_poses_must_be_sane() {
     let d = Dir::new();
-    d.run(&["building", "generate", "--seed", "2", "--out", "b.toml"]).ok();
-    d.run(&["scan", "--building", "b.toml", "--pose", "0,0,0", "--out", "o"]).bad_input(&["pose 0", "inside walls["]);
-    d.run(&["scan", "--building", "b.toml", "--pose", "500,0,0", "--out", "o"]).bad_input(&["outside the building"]);
-    d.run(&["scan", "--building", "b.toml", "--pose", "1,nan,0", "--out", "o"]).bad_input(&["x,y,yaw"]);
-    d.run(&["scan", "--building", "b.toml", "--pose", "1,0", "--out", "o"]).bad_input(&["three finite numbers"]);
-    d.run(&["scan", "--building", "missing.toml", "--pose", "1,0,0", "--out", "o"]).bad_input(&["missing.toml"]);
+    d.run(&["building", "generate", "--seed", "2", "--out", "b.toml"])
+        .ok();
+    d.run(&[
+        "scan",
+        "--building",
+        "b.toml",
+        "--pose",
+        "0,0,0",
+        "--out",
+        "o",
+    ])
+    .bad_input(&["pose 0", "inside walls["]);
+    d.run(&[
+        "scan",
+        "--building",
+        "b.toml",
+        "--pose",
+        "500,0,0",
+        "--out",
+        "o",
+    ])
+    .bad_input(&["outside the building"]);
+    d.run(&[
+        "scan",
+        "--building",
+        "b.toml",
+        "--pose",
+        "1,nan,0",
+        "--out",
+        "o",
+    ])
+    .bad_input(&["x,y,yaw"]);
+    d.run(&[
+        "scan",
+        "--building",
+        "b.toml",
+        "--pose",
+        "1,0",
+        "--out",
+        "o",
+    ])
+    .bad_input(&["three finite numbers"]);
+    d.run(&[
+        "scan",
+        "--building",
+        "missing.toml",
+        "--pose",
+        "1,0,0",
+        "--out",
+        "o",
+    ])
+    .bad_input(&["missing.toml"]);
     let cfg = d.write("bad.toml", "[laser]\nbeams = 0\n");
-    d.run(&["scan", "--building", "b.toml", "--pose", "1,0,0", "--out", "o", "--config", cfg.to_str().expect("utf8")])
-        .bad_input(&["beams"]);
+    d.run(&[
+        "scan",
+        "--building",
+        "b.toml",
+        "--pose",
+        "1,0,0",
+        "--out",
+        "o",
+        "--config",
+        cfg.to_str().expect("utf8"),
+    ])
+    .bad_input(&["beams"]);
     let cfg = d.write("typo.toml", "[lasr]\nbeams = 10\n");
-    d.run(&["demo", "--config", cfg.to_str().expect("utf8")]).bad_input(&["typo.toml", "lasr"]);
+    d.run(&["demo", "--config", cfg.to_str().expect("utf8")])
+        .bad_input(&["typo.toml", "lasr"]);
 }

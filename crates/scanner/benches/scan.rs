@@ -1,1 +1,40 @@
-fn main() {}
+//! Virtual laser benchmark: one full 541 x 301 scan (162,841 rays) of the default building.
+//! Run: `cargo bench -p scanner --bench scan`.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use scanner::{Building, BuildingGeometry, LaserConfig, ScanPose, VirtualLaser};
+
+fn scan(c: &mut Criterion) {
+    let building = Building::default_building().expect("default building");
+    let geometry = BuildingGeometry::new(&building);
+    let laser = VirtualLaser::new(LaserConfig::default()).expect("default laser");
+    let mut group = c.benchmark_group("virtual_laser");
+    group.sample_size(20);
+    for (name, pose) in [
+        (
+            "corridor_541x301",
+            ScanPose {
+                x_m: 6.5,
+                y_m: 0.0,
+                yaw_deg: 0.0,
+            },
+        ),
+        (
+            "stair_room_541x301",
+            ScanPose {
+                x_m: 17.5,
+                y_m: 2.5,
+                yaw_deg: 0.0,
+            },
+        ),
+    ] {
+        group.bench_function(name, |b| b.iter(|| laser.scan(&geometry, &pose, 0)));
+    }
+    group.bench_function("build_geometry", |b| {
+        b.iter(|| BuildingGeometry::new(&building))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, scan);
+criterion_main!(benches);

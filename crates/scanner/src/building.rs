@@ -192,7 +192,9 @@ impl Building {
     /// Loads and validates a building file (`.toml`, or `.json`).
     pub fn load(path: &Path) -> Result<Building> {
         let text = std::fs::read_to_string(path).map_err(|e| cloud::CloudError::io(path, e))?;
-        let is_json = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"));
+        let is_json = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("json"));
         if !is_json {
             return Building::from_toml_str(&text, path);
         }
@@ -206,7 +208,9 @@ impl Building {
 
     /// Writes the building as TOML (or JSON for a `.json` path), atomically.
     pub fn save(&self, path: &Path) -> Result<()> {
-        let is_json = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"));
+        let is_json = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("json"));
         let text = if is_json {
             serde_json::to_string_pretty(self).map_err(|e| syntax(path, e))?
         } else {

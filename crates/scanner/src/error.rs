@@ -42,7 +42,13 @@ pub enum ScannerError {
 pub type Result<T, E = ScannerError> = std::result::Result<T, E>;
 
 /// Checks `lo <= value <= hi` (and finiteness) for a named parameter.
-pub(crate) fn check_range(name: &'static str, value: f64, lo: f64, hi: f64, msg: &'static str) -> Result<()> {
+pub(crate) fn check_range(
+    name: &'static str,
+    value: f64,
+    lo: f64,
+    hi: f64,
+    msg: &'static str,
+) -> Result<()> {
     if value.is_finite() && value >= lo && value <= hi {
         Ok(())
     } else {

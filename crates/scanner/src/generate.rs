@@ -2,7 +2,9 @@
 //! half-open, open, no leaf), a staircase with a landing in the largest room, and clutter.
 //! The same seed always gives the same building.
 
-use crate::building::{Building, Ceiling, Door, Floor, Furniture, Hinge, Leaf, Staircase, Swing, Wall};
+use crate::building::{
+    Building, Ceiling, Door, Floor, Furniture, Hinge, Leaf, Staircase, Swing, Wall,
+};
 use crate::error::Result;
 use crate::rng::Rng;
 use serde::{Deserialize, Serialize};
@@ -53,7 +55,9 @@ struct Room {
 pub fn generate_building(seed: u64, config: &GeneratorConfig) -> Result<Building> {
     let mut r = Rng::new(seed);
     let c = config;
-    let len = r.range(c.corridor_length_m[0], c.corridor_length_m[1]).max(6.0);
+    let len = r
+        .range(c.corridor_length_m[0], c.corridor_length_m[1])
+        .max(6.0);
     let half_w = r.range(c.corridor_width_m[0], c.corridor_width_m[1]) / 2.0;
     let height = r.range(c.ceiling_height_m[0], c.ceiling_height_m[1]);
     let t = r.range(0.12, 0.25);
@@ -62,8 +66,18 @@ pub fn generate_building(seed: u64, config: &GeneratorConfig) -> Result<Building
     let (yn, ys) = (half_w + t / 2.0, -half_w - t / 2.0);
     let (yn_out, ys_out) = (yn + depth_n, ys - depth_s);
     let mut walls = vec![
-        wall("south outer", [-t / 2.0, ys_out], [len + t / 2.0, ys_out], t),
-        wall("north outer", [-t / 2.0, yn_out], [len + t / 2.0, yn_out], t),
+        wall(
+            "south outer",
+            [-t / 2.0, ys_out],
+            [len + t / 2.0, ys_out],
+            t,
+        ),
+        wall(
+            "north outer",
+            [-t / 2.0, yn_out],
+            [len + t / 2.0, yn_out],
+            t,
+        ),
         wall("west outer", [0.0, ys_out], [0.0, yn_out], t),
         wall("east outer", [len, ys_out], [len, yn_out], t),
     ];
@@ -73,12 +87,27 @@ pub fn generate_building(seed: u64, config: &GeneratorConfig) -> Result<Building
         let mut x0 = 0.0;
         while len - x0 > c.room_width_m[0] {
             let w = r.range(c.room_width_m[0], c.room_width_m[1]);
-            let x1 = if len - (x0 + w) < c.room_width_m[0] { len } else { x0 + w };
+            let x1 = if len - (x0 + w) < c.room_width_m[0] {
+                len
+            } else {
+                x0 + w
+            };
             if x1 < len {
-                let (a, b) = if north { (y_near + t / 2.0, y_far - t / 2.0) } else { (y_far + t / 2.0, y_near - t / 2.0) };
+                let (a, b) = if north {
+                    (y_near + t / 2.0, y_far - t / 2.0)
+                } else {
+                    (y_far + t / 2.0, y_near - t / 2.0)
+                };
                 walls.push(wall("partition", [x1, a], [x1, b], t * 0.8));
             }
-            rooms.push(Room { x0, x1, y_near, y_far, north, door: None });
+            rooms.push(Room {
+                x0,
+                x1,
+                y_near,
+                y_far,
+                north,
+                door: None,
+            });
             x0 = x1;
         }
     }
@@ -90,19 +119,40 @@ pub fn generate_building(seed: u64, config: &GeneratorConfig) -> Result<Building
     for (room, state) in rooms.iter_mut().zip(&states) {
         let width = r.range(0.8, 1.2);
         let offset = r.range(room.x0 + 0.35, room.x1 - 0.35 - width) - t / 2.0;
-        let swing = if room.north { Swing::Left } else { Swing::Right };
-        let hinge = if r.chance(0.5) { Hinge::Start } else { Hinge::End };
+        let swing = if room.north {
+            Swing::Left
+        } else {
+            Swing::Right
+        };
+        let hinge = if r.chance(0.5) {
+            Hinge::Start
+        } else {
+            Hinge::End
+        };
         let open_deg = match state {
             0 => Some(0.0),
             1 => Some(r.range(30.0, 60.0)),
             2 => Some(r.range(80.0, 100.0)),
             _ => None,
         };
-        let leaf = open_deg.map(|open_deg| Leaf { hinge, swing, open_deg, thickness_m: 0.04 });
+        let leaf = open_deg.map(|open_deg| Leaf {
+            hinge,
+            swing,
+            open_deg,
+            thickness_m: 0.04,
+        });
         room.door = Some((offset + t / 2.0, offset + t / 2.0 + width));
-        corridor[usize::from(!room.north)].push(Door { offset_m: offset, width_m: width, height_m: r.range(1.95, 2.2).min(height - 0.2), leaf });
+        corridor[usize::from(!room.north)].push(Door {
+            offset_m: offset,
+            width_m: width,
+            height_m: r.range(1.95, 2.2).min(height - 0.2),
+            leaf,
+        });
     }
-    for (k, (name, y)) in [("corridor north", yn), ("corridor south", ys)].into_iter().enumerate() {
+    for (k, (name, y)) in [("corridor north", yn), ("corridor south", ys)]
+        .into_iter()
+        .enumerate()
+    {
         let mut w = wall(name, [t / 2.0, y], [len - t / 2.0, y], t);
         w.doors = std::mem::take(&mut corridor[k]);
         walls.push(w);
@@ -119,8 +169,15 @@ pub fn generate_building(seed: u64, config: &GeneratorConfig) -> Result<Building
     }
     let b = Building {
         name: format!("generated, seed {seed}"),
-        floor: Floor { min_m: [-t - 0.1, ys_out - t - 0.1], max_m: [len + t + 0.1, yn_out + t + 0.1], thickness_m: 0.2 },
-        ceiling: Ceiling { height_m: height, thickness_m: 0.2 },
+        floor: Floor {
+            min_m: [-t - 0.1, ys_out - t - 0.1],
+            max_m: [len + t + 0.1, yn_out + t + 0.1],
+            thickness_m: 0.2,
+        },
+        ceiling: Ceiling {
+            height_m: height,
+            thickness_m: 0.2,
+        },
         walls,
         stairs: stairs.into_iter().collect(),
         boxes,
@@ -130,14 +187,29 @@ pub fn generate_building(seed: u64, config: &GeneratorConfig) -> Result<Building
 }
 
 fn wall(name: &str, start_m: [f64; 2], end_m: [f64; 2], thickness_m: f64) -> Wall {
-    Wall { name: name.into(), start_m, end_m, thickness_m, height_m: None, doors: Vec::new() }
+    Wall {
+        name: name.into(),
+        start_m,
+        end_m,
+        thickness_m,
+        height_m: None,
+        doors: Vec::new(),
+    }
 }
 
 /// An axis-aligned keep-out rectangle [x0, y0, x1, y1].
 type Zone = [f64; 4];
 
-fn place_stairs(r: &mut Rng, rooms: &[Room], t: f64, height: f64) -> (Option<Staircase>, Option<Zone>) {
-    let Some(room) = rooms.iter().max_by(|a, b| (a.x1 - a.x0).total_cmp(&(b.x1 - b.x0))) else {
+fn place_stairs(
+    r: &mut Rng,
+    rooms: &[Room],
+    t: f64,
+    height: f64,
+) -> (Option<Staircase>, Option<Zone>) {
+    let Some(room) = rooms
+        .iter()
+        .max_by(|a, b| (a.x1 - a.x0).total_cmp(&(b.x1 - b.x0)))
+    else {
         return (None, None);
     };
     let inner = room.x1 - room.x0 - t - 0.6;
@@ -154,9 +226,22 @@ fn place_stairs(r: &mut Rng, rooms: &[Room], t: f64, height: f64) -> (Option<Sta
     let y = room.y_far - sign * (t / 2.0 + 0.2 + width / 2.0);
     let ascend_east = r.chance(0.5);
     let total = steps as f64 * run + landing;
-    let (x_start, dir) = if ascend_east { (room.x0 + t / 2.0 + 0.3, 0.0) } else { (room.x1 - t / 2.0 - 0.3, 180.0) };
-    let x_end = if ascend_east { x_start + total } else { x_start - total };
-    let zone = [x_start.min(x_end) - 0.3, y - width / 2.0 - 0.3, x_start.max(x_end) + 0.3, y + width / 2.0 + 0.3];
+    let (x_start, dir) = if ascend_east {
+        (room.x0 + t / 2.0 + 0.3, 0.0)
+    } else {
+        (room.x1 - t / 2.0 - 0.3, 180.0)
+    };
+    let x_end = if ascend_east {
+        x_start + total
+    } else {
+        x_start - total
+    };
+    let zone = [
+        x_start.min(x_end) - 0.3,
+        y - width / 2.0 - 0.3,
+        x_start.max(x_end) + 0.3,
+        y + width / 2.0 + 0.3,
+    ];
     let s = Staircase {
         name: "generated stairs".into(),
         start_m: [x_start, y],
@@ -171,7 +256,11 @@ fn place_stairs(r: &mut Rng, rooms: &[Room], t: f64, height: f64) -> (Option<Sta
 }
 
 fn place_box(r: &mut Rng, room: &Room, t: f64, stairs: &Option<Zone>) -> Option<Furniture> {
-    let (ylo, yhi) = if room.north { (room.y_near, room.y_far) } else { (room.y_far, room.y_near) };
+    let (ylo, yhi) = if room.north {
+        (room.y_near, room.y_far)
+    } else {
+        (room.y_far, room.y_near)
+    };
     for _ in 0..20 {
         let size = [r.range(0.3, 1.4), r.range(0.3, 1.0), r.range(0.4, 1.6)];
         let half = size[0].max(size[1]) * 0.75;
@@ -179,12 +268,23 @@ fn place_box(r: &mut Rng, room: &Room, t: f64, stairs: &Option<Zone>) -> Option<
         let y = r.range(ylo + t + half, yhi - t - half);
         let zone = [x - half, y - half, x + half, y + half];
         let door_swing = room.door.map(|(a, b)| {
-            let (y0, y1) = if room.north { (room.y_near, room.y_near + 1.4) } else { (room.y_near - 1.4, room.y_near) };
+            let (y0, y1) = if room.north {
+                (room.y_near, room.y_near + 1.4)
+            } else {
+                (room.y_near - 1.4, room.y_near)
+            };
             [a - 0.3, y0, b + 0.3, y1]
         });
-        let overlaps = |z: &Option<Zone>| z.is_some_and(|z| zone[0] < z[2] && z[0] < zone[2] && zone[1] < z[3] && z[1] < zone[3]);
+        let overlaps = |z: &Option<Zone>| {
+            z.is_some_and(|z| zone[0] < z[2] && z[0] < zone[2] && zone[1] < z[3] && z[1] < zone[3])
+        };
         if x.is_finite() && y.is_finite() && !overlaps(stairs) && !overlaps(&door_swing) {
-            return Some(Furniture { name: "clutter".into(), center_m: [x, y, size[2] / 2.0], size_m: size, yaw_deg: r.range(-45.0, 45.0) });
+            return Some(Furniture {
+                name: "clutter".into(),
+                center_m: [x, y, size[2] / 2.0],
+                size_m: size,
+                yaw_deg: r.range(-45.0, 45.0),
+            });
         }
     }
     None
@@ -197,15 +297,27 @@ mod tests {
     #[test]
     fn same_seed_same_building_and_every_seed_is_valid_and_varied() {
         let cfg = GeneratorConfig::default();
-        assert_eq!(generate_building(5, &cfg).expect("valid"), generate_building(5, &cfg).expect("valid"));
+        assert_eq!(
+            generate_building(5, &cfg).expect("valid"),
+            generate_building(5, &cfg).expect("valid")
+        );
         let mut lengths = Vec::new();
         for seed in 0..40 {
             let b = generate_building(seed, &cfg).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
             assert!(!b.stairs.is_empty(), "seed {seed}: no staircase");
             let doors: Vec<&Door> = b.walls.iter().flat_map(|w| &w.doors).collect();
             assert!(doors.len() >= 4, "seed {seed}: {} doors", doors.len());
-            let open = |lo: f64, hi: f64| doors.iter().any(|d| d.leaf.as_ref().is_some_and(|l| l.open_deg >= lo && l.open_deg <= hi));
-            assert!(open(0.0, 0.0) && open(30.0, 60.0) && open(80.0, 100.0), "seed {seed}: door states missing");
+            let open = |lo: f64, hi: f64| {
+                doors.iter().any(|d| {
+                    d.leaf
+                        .as_ref()
+                        .is_some_and(|l| l.open_deg >= lo && l.open_deg <= hi)
+                })
+            };
+            assert!(
+                open(0.0, 0.0) && open(30.0, 60.0) && open(80.0, 100.0),
+                "seed {seed}: door states missing"
+            );
             lengths.push(b.floor.max_m[0].to_bits());
         }
         lengths.sort_unstable();

@@ -48,10 +48,18 @@ impl BuildingGeometry {
         let f = &b.floor;
         let (min, max) = (f.min_m, f.max_m);
         let floor = g.entity(SurfaceClass::Floor, "floor".into());
-        g.aabb(floor, [min[0], min[1], -f.thickness_m], [max[0], max[1], 0.0]);
+        g.aabb(
+            floor,
+            [min[0], min[1], -f.thickness_m],
+            [max[0], max[1], 0.0],
+        );
         let c = &b.ceiling;
         let ceiling = g.entity(SurfaceClass::Ceiling, "ceiling".into());
-        g.aabb(ceiling, [min[0], min[1], c.height_m], [max[0], max[1], c.height_m + c.thickness_m]);
+        g.aabb(
+            ceiling,
+            [min[0], min[1], c.height_m],
+            [max[0], max[1], c.height_m + c.thickness_m],
+        );
         for (i, w) in b.walls.iter().enumerate() {
             add_wall(&mut g, w, b.wall_height_m(w), i);
         }
@@ -62,13 +70,21 @@ impl BuildingGeometry {
             for k in 0..s.steps {
                 let top = (k + 1) as f64 * s.rise_m;
                 let along = (k as f64 + 0.5) * s.run_m;
-                let c = [s.start_m[0] + dir[0] * along, s.start_m[1] + dir[1] * along, top / 2.0];
+                let c = [
+                    s.start_m[0] + dir[0] * along,
+                    s.start_m[1] + dir[1] * along,
+                    top / 2.0,
+                ];
                 g.oriented(id, c, [s.run_m / 2.0, s.width_m / 2.0, top / 2.0], yaw);
             }
             if s.landing_m > 0.0 {
                 let top = s.steps as f64 * s.rise_m;
                 let along = s.steps as f64 * s.run_m + s.landing_m / 2.0;
-                let c = [s.start_m[0] + dir[0] * along, s.start_m[1] + dir[1] * along, top / 2.0];
+                let c = [
+                    s.start_m[0] + dir[0] * along,
+                    s.start_m[1] + dir[1] * along,
+                    top / 2.0,
+                ];
                 g.oriented(id, c, [s.landing_m / 2.0, s.width_m / 2.0, top / 2.0], yaw);
             }
         }
@@ -121,7 +137,10 @@ impl BuildingGeometry {
 
 fn add_wall(g: &mut Builder, w: &Wall, height: f64, i: usize) {
     let len = wall_length_m(w);
-    let u = [(w.end_m[0] - w.start_m[0]) / len, (w.end_m[1] - w.start_m[1]) / len];
+    let u = [
+        (w.end_m[0] - w.start_m[0]) / len,
+        (w.end_m[1] - w.start_m[1]) / len,
+    ];
     let yaw = u[1].atan2(u[0]);
     let at = |s: f64| [w.start_m[0] + u[0] * s, w.start_m[1] + u[1] * s];
     let half_t = w.thickness_m / 2.0;
@@ -131,7 +150,12 @@ fn add_wall(g: &mut Builder, w: &Wall, height: f64, i: usize) {
     let piece = |g: &mut Builder, id: u32, s0: f64, s1: f64, z0: f64, z1: f64| {
         if s1 - s0 > 1e-4 && z1 - z0 > 1e-4 {
             let m = at((s0 + s1) / 2.0);
-            g.oriented(id, [m[0], m[1], (z0 + z1) / 2.0], [(s1 - s0) / 2.0, half_t, (z1 - z0) / 2.0], yaw);
+            g.oriented(
+                id,
+                [m[0], m[1], (z0 + z1) / 2.0],
+                [(s1 - s0) / 2.0, half_t, (z1 - z0) / 2.0],
+                yaw,
+            );
         }
     };
     let mut s = 0.0;
@@ -142,8 +166,18 @@ fn add_wall(g: &mut Builder, w: &Wall, height: f64, i: usize) {
     piece(g, wall, s, len, 0.0, height);
     for (j, d) in doors {
         if d.height_m < height - 1e-4 {
-            let lintel = g.entity(SurfaceClass::WallAboveDoor, format!("walls[{i}].doors[{j}].lintel"));
-            piece(g, lintel, d.offset_m, d.offset_m + d.width_m, d.height_m, height);
+            let lintel = g.entity(
+                SurfaceClass::WallAboveDoor,
+                format!("walls[{i}].doors[{j}].lintel"),
+            );
+            piece(
+                g,
+                lintel,
+                d.offset_m,
+                d.offset_m + d.width_m,
+                d.height_m,
+                height,
+            );
         }
         let Some(leaf) = &d.leaf else { continue };
         let id = g.entity(SurfaceClass::Door, format!("walls[{i}].doors[{j}].leaf"));
@@ -156,9 +190,17 @@ fn add_wall(g: &mut Builder, w: &Wall, height: f64, i: usize) {
         let leaf_yaw = closed_yaw + sign * leaf.open_deg.to_radians();
         let leaf_len = (d.width_m - 0.01).max(0.01);
         let h = at(hinge_s);
-        let mid = [h[0] + leaf_yaw.cos() * leaf_len / 2.0, h[1] + leaf_yaw.sin() * leaf_len / 2.0];
+        let mid = [
+            h[0] + leaf_yaw.cos() * leaf_len / 2.0,
+            h[1] + leaf_yaw.sin() * leaf_len / 2.0,
+        ];
         let leaf_h = (d.height_m - 0.01).max(0.01);
-        g.oriented(id, [mid[0], mid[1], 0.005 + leaf_h / 2.0], [leaf_len / 2.0, leaf.thickness_m / 2.0, leaf_h / 2.0], leaf_yaw);
+        g.oriented(
+            id,
+            [mid[0], mid[1], 0.005 + leaf_h / 2.0],
+            [leaf_len / 2.0, leaf.thickness_m / 2.0, leaf_h / 2.0],
+            leaf_yaw,
+        );
     }
 }
 
@@ -176,13 +218,25 @@ impl Builder {
     }
 
     fn label(&self, id: u32) -> Label {
-        let class = self.entities.get(id as usize - 1).map(|e| e.class).unwrap_or_default();
+        let class = self
+            .entities
+            .get(id as usize - 1)
+            .map(|e| e.class)
+            .unwrap_or_default();
         Label { entity: id, class }
     }
 
     fn aabb(&mut self, id: u32, lo: [f64; 3], hi: [f64; 3]) {
-        let c = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0, (lo[2] + hi[2]) / 2.0];
-        let h = [(hi[0] - lo[0]) / 2.0, (hi[1] - lo[1]) / 2.0, (hi[2] - lo[2]) / 2.0];
+        let c = [
+            (lo[0] + hi[0]) / 2.0,
+            (lo[1] + hi[1]) / 2.0,
+            (lo[2] + hi[2]) / 2.0,
+        ];
+        let h = [
+            (hi[0] - lo[0]) / 2.0,
+            (hi[1] - lo[1]) / 2.0,
+            (hi[2] - lo[2]) / 2.0,
+        ];
         self.oriented(id, c, h, 0.0);
     }
 
@@ -202,7 +256,10 @@ impl Builder {
             .iter()
             .map(|p| {
                 let pose = Pose::from_parts(p.center_m, Quat::from_rotation_z(p.yaw_rad));
-                (pose, SharedShape::cuboid(p.half_extents_m.x, p.half_extents_m.y, p.half_extents_m.z))
+                (
+                    pose,
+                    SharedShape::cuboid(p.half_extents_m.x, p.half_extents_m.y, p.half_extents_m.z),
+                )
             })
             .collect();
         BuildingGeometry {

@@ -90,17 +90,77 @@ impl VirtualLaser {
     /// Checks the configuration and precomputes the beam directions.
     pub fn new(config: LaserConfig) -> Result<VirtualLaser> {
         let c = &config;
-        check_range("beams", c.beams as f64, 2.0, 20_000.0, "2..20000 beams per line")?;
-        check_range("rotation_steps", c.rotation_steps as f64, 1.0, 20_000.0, "1..20000 steps")?;
+        check_range(
+            "beams",
+            c.beams as f64,
+            2.0,
+            20_000.0,
+            "2..20000 beams per line",
+        )?;
+        check_range(
+            "rotation_steps",
+            c.rotation_steps as f64,
+            1.0,
+            20_000.0,
+            "1..20000 steps",
+        )?;
         let rays = (c.beams * c.rotation_steps) as f64;
-        check_range("beams*rotation_steps", rays, 2.0, 50e6, "at most 50 million rays per scan")?;
-        check_range("line_fov_deg", c.line_fov_deg, 1e-3, 360.0, "within (0, 360]")?;
-        check_range("rotation_fov_deg", c.rotation_fov_deg, 0.0, 360.0, "within [0, 360]")?;
-        check_range("line_center_elevation_deg", c.line_center_elevation_deg, -180.0, 180.0, "within -180..180")?;
-        check_range("max_range_m", c.max_range_m, 0.1, 10_000.0, "within 0.1..10000 m")?;
-        check_range("min_range_m", c.min_range_m, 0.0, c.max_range_m, "within 0..max_range_m")?;
-        check_range("range_noise_sigma_m", c.range_noise_sigma_m, 0.0, 1.0, "within 0..1 m")?;
-        check_range("mount_height_m", c.mount_height_m, 0.0, 50.0, "within 0..50 m")?;
+        check_range(
+            "beams*rotation_steps",
+            rays,
+            2.0,
+            50e6,
+            "at most 50 million rays per scan",
+        )?;
+        check_range(
+            "line_fov_deg",
+            c.line_fov_deg,
+            1e-3,
+            360.0,
+            "within (0, 360]",
+        )?;
+        check_range(
+            "rotation_fov_deg",
+            c.rotation_fov_deg,
+            0.0,
+            360.0,
+            "within [0, 360]",
+        )?;
+        check_range(
+            "line_center_elevation_deg",
+            c.line_center_elevation_deg,
+            -180.0,
+            180.0,
+            "within -180..180",
+        )?;
+        check_range(
+            "max_range_m",
+            c.max_range_m,
+            0.1,
+            10_000.0,
+            "within 0.1..10000 m",
+        )?;
+        check_range(
+            "min_range_m",
+            c.min_range_m,
+            0.0,
+            c.max_range_m,
+            "within 0..max_range_m",
+        )?;
+        check_range(
+            "range_noise_sigma_m",
+            c.range_noise_sigma_m,
+            0.0,
+            1.0,
+            "within 0..1 m",
+        )?;
+        check_range(
+            "mount_height_m",
+            c.mount_height_m,
+            0.0,
+            50.0,
+            "within 0..50 m",
+        )?;
         let beam_step = c.line_fov_deg / (c.beams - 1) as f64;
         let rot_step = c.rotation_fov_deg / c.rotation_steps as f64;
         let first = c.line_center_elevation_deg - c.line_fov_deg / 2.0;
@@ -112,7 +172,10 @@ impl VirtualLaser {
                 dirs_in_scan.push(DVec3::new(ct * cp, ct * sp, st).as_vec3());
             }
         }
-        Ok(VirtualLaser { config, dirs_in_scan })
+        Ok(VirtualLaser {
+            config,
+            dirs_in_scan,
+        })
     }
 
     /// The configuration in use.
@@ -123,24 +186,42 @@ impl VirtualLaser {
     /// Scans `geometry` from `pose`. Points are in the scan frame, organised
     /// `rotation_steps x beams`, missing returns NaN, every point labelled with the surface it hit.
     /// `pose_index` varies the noise between poses deterministically.
-    pub fn scan(&self, geometry: &BuildingGeometry, pose: &ScanPose, pose_index: u64) -> PointCloud {
+    pub fn scan(
+        &self,
+        geometry: &BuildingGeometry,
+        pose: &ScanPose,
+        pose_index: u64,
+    ) -> PointCloud {
         let c = &self.config;
         let world_from_scan = pose.world_from_scan(c.mount_height_m);
         let origin = world_from_scan.translation.as_vec3();
         let rot = Quat::from_rotation_z(pose.yaw_deg.to_radians() as f32);
         let seed = c.noise_seed ^ pose_index.wrapping_mul(0x2545_F491_4F6C_DD1D);
-        let (min_r, max_r, sigma) = (c.min_range_m as f32, c.max_range_m as f32, c.range_noise_sigma_m);
+        let (min_r, max_r, sigma) = (
+            c.min_range_m as f32,
+            c.max_range_m as f32,
+            c.range_noise_sigma_m,
+        );
         let cast = |(i, d): (usize, &Vec3)| -> (Vec3, Label) {
             match geometry.cast_ray(origin, rot * *d, max_r) {
                 Some((toi, label)) if toi >= min_r => {
-                    let noise = if sigma > 0.0 { sigma * Rng::stream(seed, i as u64).gaussian() } else { 0.0 };
+                    let noise = if sigma > 0.0 {
+                        sigma * Rng::stream(seed, i as u64).gaussian()
+                    } else {
+                        0.0
+                    };
                     (*d * (toi + noise as f32), label)
                 }
                 _ => (Vec3::NAN, Label::default()),
             }
         };
-        let (points, labels): (Vec<Vec3>, Vec<Label>) =
-            self.dirs_in_scan.par_iter().enumerate().with_min_len(1024).map(cast).unzip();
+        let (points, labels): (Vec<Vec3>, Vec<Label>) = self
+            .dirs_in_scan
+            .par_iter()
+            .enumerate()
+            .with_min_len(1024)
+            .map(cast)
+            .unzip();
         PointCloud {
             points,
             intensity: None,

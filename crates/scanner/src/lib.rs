@@ -25,7 +25,9 @@ mod odometry;
 mod rng;
 mod validate;
 
-pub use building::{Building, Ceiling, Door, Floor, Furniture, Hinge, Leaf, Staircase, Swing, Wall};
+pub use building::{
+    Building, Ceiling, Door, Floor, Furniture, Hinge, Leaf, Staircase, Swing, Wall,
+};
 pub use error::{Result, ScannerError};
 pub use generate::{generate_building, GeneratorConfig};
 pub use geometry::{BoxPart, BuildingGeometry, Entity};

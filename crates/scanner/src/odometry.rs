@@ -37,10 +37,34 @@ impl Default for OdometryConfig {
 /// Odometry poses for a sequence of true poses: the first is exact, each later one adds the
 /// true relative motion from the previous pose, distorted by drift and noise.
 pub fn odometry_from_truth(truth: &[ScanPose], config: &OdometryConfig) -> Result<Vec<ScanPose>> {
-    check_range("distance_scale_error", config.distance_scale_error, -0.5, 0.5, "within -0.5..0.5")?;
-    check_range("yaw_drift_deg_per_m", config.yaw_drift_deg_per_m, -90.0, 90.0, "within -90..90")?;
-    check_range("translation_noise_sigma_m", config.translation_noise_sigma_m, 0.0, 10.0, "within 0..10 m")?;
-    check_range("yaw_noise_sigma_deg", config.yaw_noise_sigma_deg, 0.0, 90.0, "within 0..90")?;
+    check_range(
+        "distance_scale_error",
+        config.distance_scale_error,
+        -0.5,
+        0.5,
+        "within -0.5..0.5",
+    )?;
+    check_range(
+        "yaw_drift_deg_per_m",
+        config.yaw_drift_deg_per_m,
+        -90.0,
+        90.0,
+        "within -90..90",
+    )?;
+    check_range(
+        "translation_noise_sigma_m",
+        config.translation_noise_sigma_m,
+        0.0,
+        10.0,
+        "within 0..10 m",
+    )?;
+    check_range(
+        "yaw_noise_sigma_deg",
+        config.yaw_noise_sigma_deg,
+        0.0,
+        90.0,
+        "within 0..90",
+    )?;
     let mut rng = Rng::new(config.seed);
     let mut out: Vec<ScanPose> = Vec::with_capacity(truth.len());
     for (k, t) in truth.iter().enumerate() {
@@ -76,7 +100,11 @@ mod tests {
 
     fn line(n: usize) -> Vec<ScanPose> {
         (0..n)
-            .map(|i| ScanPose { x_m: i as f64, y_m: 0.0, yaw_deg: 10.0 * i as f64 })
+            .map(|i| ScanPose {
+                x_m: i as f64,
+                y_m: 0.0,
+                yaw_deg: 10.0 * i as f64,
+            })
             .collect()
     }
 
@@ -90,8 +118,16 @@ mod tests {
             seed: 3,
         };
         let truth = line(5);
-        for (o, t) in odometry_from_truth(&truth, &cfg).expect("valid").iter().zip(&truth) {
-            assert!((o.x_m - t.x_m).abs() < 1e-9 && (o.y_m - t.y_m).abs() < 1e-9 && (o.yaw_deg - t.yaw_deg).abs() < 1e-9);
+        for (o, t) in odometry_from_truth(&truth, &cfg)
+            .expect("valid")
+            .iter()
+            .zip(&truth)
+        {
+            assert!(
+                (o.x_m - t.x_m).abs() < 1e-9
+                    && (o.y_m - t.y_m).abs() < 1e-9
+                    && (o.yaw_deg - t.yaw_deg).abs() < 1e-9
+            );
         }
     }
 
@@ -102,6 +138,13 @@ mod tests {
         let err = |k: usize| (odo[k].x_m - truth[k].x_m).hypot(odo[k].y_m - truth[k].y_m);
         assert_eq!(err(0), 0.0);
         assert!(err(9) > 0.05, "final error {}", err(9));
-        assert!(odometry_from_truth(&truth, &OdometryConfig { yaw_noise_sigma_deg: -1.0, ..Default::default() }).is_err());
+        assert!(odometry_from_truth(
+            &truth,
+            &OdometryConfig {
+                yaw_noise_sigma_deg: -1.0,
+                ..Default::default()
+            }
+        )
+        .is_err());
     }
 }

@@ -17,24 +17,41 @@ impl Building {
             msg,
         };
         let f = &self.floor;
-        all_finite(&[f.min_m[0], f.min_m[1], f.max_m[0], f.max_m[1], f.thickness_m])
-            .map_err(|m| bad("floor".into(), m))?;
+        all_finite(&[
+            f.min_m[0],
+            f.min_m[1],
+            f.max_m[0],
+            f.max_m[1],
+            f.thickness_m,
+        ])
+        .map_err(|m| bad("floor".into(), m))?;
         if f.max_m[0] - f.min_m[0] < 0.1 || f.max_m[1] - f.min_m[1] < 0.1 {
-            return Err(bad("floor".into(), "max_m must exceed min_m by at least 0.1 m in x and y".into()));
+            return Err(bad(
+                "floor".into(),
+                "max_m must exceed min_m by at least 0.1 m in x and y".into(),
+            ));
         }
         if (f.max_m[0] - f.min_m[0]).max(f.max_m[1] - f.min_m[1]) > 10_000.0 {
-            return Err(bad("floor".into(), "a building over 10 km wide is not supported".into()));
+            return Err(bad(
+                "floor".into(),
+                "a building over 10 km wide is not supported".into(),
+            ));
         }
         positive("floor.thickness_m", f.thickness_m).map_err(|m| bad("floor".into(), m))?;
         let c = &self.ceiling;
         all_finite(&[c.height_m, c.thickness_m]).map_err(|m| bad("ceiling".into(), m))?;
         if !(0.5..=100.0).contains(&c.height_m) {
-            return Err(bad("ceiling".into(), format!("height_m = {} must be between 0.5 and 100", c.height_m)));
+            return Err(bad(
+                "ceiling".into(),
+                format!("height_m = {} must be between 0.5 and 100", c.height_m),
+            ));
         }
         positive("ceiling.thickness_m", c.thickness_m).map_err(|m| bad("ceiling".into(), m))?;
         let mut parts = 2usize;
         for (i, w) in self.walls.iter().enumerate() {
-            parts += self.check_wall(w).map_err(|m| bad(format!("walls[{i}]{}", named(&w.name)), m))?;
+            parts += self
+                .check_wall(w)
+                .map_err(|m| bad(format!("walls[{i}]{}", named(&w.name)), m))?;
             for (j, d) in w.doors.iter().enumerate() {
                 check_door(w, d, self.wall_height_m(w), &w.doors[..j])
                     .map_err(|m| bad(format!("walls[{i}]{}.doors[{j}]", named(&w.name)), m))?;
@@ -42,13 +59,27 @@ impl Building {
         }
         for (i, s) in self.stairs.iter().enumerate() {
             let el = || format!("stairs[{i}]{}", named(&s.name));
-            all_finite(&[s.start_m[0], s.start_m[1], s.direction_deg, s.rise_m, s.run_m, s.width_m, s.landing_m])
-                .map_err(|m| bad(el(), m))?;
+            all_finite(&[
+                s.start_m[0],
+                s.start_m[1],
+                s.direction_deg,
+                s.rise_m,
+                s.run_m,
+                s.width_m,
+                s.landing_m,
+            ])
+            .map_err(|m| bad(el(), m))?;
             if s.steps == 0 || s.steps > 1000 {
-                return Err(bad(el(), format!("steps = {} must be between 1 and 1000", s.steps)));
+                return Err(bad(
+                    el(),
+                    format!("steps = {} must be between 1 and 1000", s.steps),
+                ));
             }
             if !(0.01..=0.5).contains(&s.rise_m) || !(0.05..=2.0).contains(&s.run_m) {
-                return Err(bad(el(), "rise_m must be within 0.01..0.5 and run_m within 0.05..2".into()));
+                return Err(bad(
+                    el(),
+                    "rise_m must be within 0.01..0.5 and run_m within 0.05..2".into(),
+                ));
             }
             positive("width_m", s.width_m).map_err(|m| bad(el(), m))?;
             if s.landing_m < 0.0 {
@@ -61,26 +92,39 @@ impl Building {
         }
         for (i, b) in self.boxes.iter().enumerate() {
             let el = || format!("boxes[{i}]{}", named(&b.name));
-            all_finite(&[b.center_m[0], b.center_m[1], b.center_m[2], b.yaw_deg]).map_err(|m| bad(el(), m))?;
+            all_finite(&[b.center_m[0], b.center_m[1], b.center_m[2], b.yaw_deg])
+                .map_err(|m| bad(el(), m))?;
             for s in b.size_m {
                 positive("size_m", s).map_err(|m| bad(el(), m))?;
             }
             parts += 1;
         }
         if parts > MAX_PARTS {
-            return Err(bad("building".into(), format!("{parts} parts is more than the {MAX_PARTS} supported")));
+            return Err(bad(
+                "building".into(),
+                format!("{parts} parts is more than the {MAX_PARTS} supported"),
+            ));
         }
         Ok(())
     }
 
     fn check_wall(&self, w: &Wall) -> Result<usize, String> {
-        all_finite(&[w.start_m[0], w.start_m[1], w.end_m[0], w.end_m[1], w.thickness_m])?;
+        all_finite(&[
+            w.start_m[0],
+            w.start_m[1],
+            w.end_m[0],
+            w.end_m[1],
+            w.thickness_m,
+        ])?;
         let len = wall_length_m(w);
         if len < 0.01 {
             return Err("start_m and end_m must be at least 1 cm apart".into());
         }
         if !(w.thickness_m > 0.0 && w.thickness_m <= 5.0) {
-            return Err(format!("thickness_m = {} must be within (0, 5]", w.thickness_m));
+            return Err(format!(
+                "thickness_m = {} must be within (0, 5]",
+                w.thickness_m
+            ));
         }
         let h = self.wall_height_m(w);
         if !(h.is_finite() && h > 0.0 && h <= 100.0) {
@@ -101,7 +145,10 @@ fn check_door(w: &Wall, d: &Door, wall_h: f64, earlier: &[Door]) -> Result<(), S
     positive("width_m", d.width_m)?;
     positive("height_m", d.height_m)?;
     if d.width_m > len {
-        return Err(format!("the door ({} m) is wider than its wall ({len:.3} m)", d.width_m));
+        return Err(format!(
+            "the door ({} m) is wider than its wall ({len:.3} m)",
+            d.width_m
+        ));
     }
     if d.offset_m < 0.0 || d.offset_m + d.width_m > len + 1e-9 {
         return Err(format!(
@@ -111,18 +158,27 @@ fn check_door(w: &Wall, d: &Door, wall_h: f64, earlier: &[Door]) -> Result<(), S
         ));
     }
     if d.height_m > wall_h + 1e-9 {
-        return Err(format!("the door ({} m) is taller than its wall ({wall_h} m)", d.height_m));
+        return Err(format!(
+            "the door ({} m) is taller than its wall ({wall_h} m)",
+            d.height_m
+        ));
     }
     if let Some(o) = earlier
         .iter()
         .find(|o| d.offset_m < o.offset_m + o.width_m && o.offset_m < d.offset_m + d.width_m)
     {
-        return Err(format!("the opening overlaps the door at offset_m = {}", o.offset_m));
+        return Err(format!(
+            "the opening overlaps the door at offset_m = {}",
+            o.offset_m
+        ));
     }
     if let Some(l) = &d.leaf {
         all_finite(&[l.open_deg, l.thickness_m])?;
         if !(0.0..=180.0).contains(&l.open_deg) {
-            return Err(format!("leaf.open_deg = {} must be within 0..180", l.open_deg));
+            return Err(format!(
+                "leaf.open_deg = {} must be within 0..180",
+                l.open_deg
+            ));
         }
         if !(l.thickness_m > 0.0 && l.thickness_m <= w.thickness_m) {
             return Err(format!(
@@ -191,10 +247,16 @@ mod tests {
 
     #[test]
     fn door_wider_than_its_wall_is_rejected_with_file_and_element() {
-        let e = Building::from_toml_str(&with("width_m = 0.9", "width_m = 5.0"), Path::new("b.toml"))
-            .expect_err("must fail")
-            .to_string();
-        assert!(e.contains("b.toml") && e.contains("walls[0].doors[0]") && e.contains("wider than its wall"), "{e}");
+        let e =
+            Building::from_toml_str(&with("width_m = 0.9", "width_m = 5.0"), Path::new("b.toml"))
+                .expect_err("must fail")
+                .to_string();
+        assert!(
+            e.contains("b.toml")
+                && e.contains("walls[0].doors[0]")
+                && e.contains("wider than its wall"),
+            "{e}"
+        );
     }
 
     #[test]
@@ -214,9 +276,12 @@ mod tests {
 
     #[test]
     fn unknown_keys_and_syntax_errors_name_the_file() {
-        let e = Building::from_toml_str(&with("[ceiling]", "[ceiling]\ncolour = 3"), Path::new("b.toml"))
-            .expect_err("unknown key")
-            .to_string();
+        let e = Building::from_toml_str(
+            &with("[ceiling]", "[ceiling]\ncolour = 3"),
+            Path::new("b.toml"),
+        )
+        .expect_err("unknown key")
+        .to_string();
         assert!(e.contains("b.toml") && e.contains("colour"), "{e}");
     }
 }

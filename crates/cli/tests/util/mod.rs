@@ -1,6 +1,6 @@
 //! Runs the real `semsim` binary in a temporary folder (as ripgrep's tests/util.rs).
 
-#![allow(dead_code)]
+#![allow(dead_code, clippy::new_without_default)]
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -13,7 +13,9 @@ pub struct Dir {
 impl Dir {
     /// A new empty folder.
     pub fn new() -> Dir {
-        Dir { tmp: tempfile::tempdir().expect("temporary folder") }
+        Dir {
+            tmp: tempfile::tempdir().expect("temporary folder"),
+        }
     }
 
     /// The folder.
@@ -83,14 +85,25 @@ impl Run {
 
     /// Asserts success and returns stdout.
     pub fn ok(&self) -> String {
-        assert_eq!(self.code(), 0, "failed:\nstdout: {}\nstderr: {}", self.stdout(), self.stderr());
+        assert_eq!(
+            self.code(),
+            0,
+            "failed:\nstdout: {}\nstderr: {}",
+            self.stdout(),
+            self.stderr()
+        );
         self.stdout()
     }
 
     /// Asserts exit code 2 (bad input), no panic, and a message containing every `needle`.
     pub fn bad_input(&self, needles: &[&str]) {
         let err = self.stderr();
-        assert_eq!(self.code(), 2, "expected exit 2:\nstdout: {}\nstderr: {err}", self.stdout());
+        assert_eq!(
+            self.code(),
+            2,
+            "expected exit 2:\nstdout: {}\nstderr: {err}",
+            self.stdout()
+        );
         assert!(!err.contains("panicked"), "panic: {err}");
         for n in needles {
             assert!(err.contains(n), "stderr lacks '{n}': {err}");

@@ -70,12 +70,13 @@ pub(crate) fn decompress(input: &[u8], expected_len: usize) -> Result<Vec<u8>, S
 /// Appends `len` bytes copied from `back` bytes before the end (`1 <= back <= out.len()`);
 /// the source may overlap what is being written (a repeating pattern).
 fn copy_back(out: &mut Vec<u8>, back: usize, len: usize) {
-    let mut src = out.len() - back;
+    // The copied bytes repeat with period `back`, so copying from the fixed start doubles
+    // the run each time (a long run of one byte takes a few copies, not one per byte).
+    let src = out.len() - back;
     let mut left = len;
     while left > 0 {
         let n = left.min(out.len() - src);
         out.extend_from_within(src..src + n);
-        src += n;
         left -= n;
     }
 }

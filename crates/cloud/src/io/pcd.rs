@@ -2,7 +2,7 @@
 //!
 //! Reading accepts any field layout PCL writes (padding fields `_`, `COUNT > 1`, rgb, normals...)
 //! and takes `x y z` (F4 or F8), an optional `intensity` (any numeric type), an optional `label`
-//! (unsigned, the entity id) and an optional `class` (U1, a [`SurfaceClass`] code; class
+//! (unsigned, the entity id) and an optional `class` (U1, a [`crate::SurfaceClass`] code; class
 //! `Unknown` where only `label` is present, entity 0 where only `class` is). `HEIGHT > 1` makes
 //! the cloud organised (`HEIGHT` rows of `WIDTH` columns; `HEIGHT 1` means unorganised), and
 //! `VIEWPOINT tx ty tz qw qx qy qz` is the sensor pose. Missing returns are NaN points, allowed
@@ -19,7 +19,7 @@
 use super::lzf;
 use super::scalar::{class_from_value, entity_from_value, Scalar};
 use crate::atomic::write_atomically;
-use crate::cloud::{Label, Organized, PointCloud};
+use crate::cloud::{Label, Organized, PointCloud, SurfaceClass};
 use crate::error::{CloudError, Result};
 use glam::{Quat, Vec3};
 use std::io::Write;
@@ -133,8 +133,9 @@ impl Wanted {
             }
         }
         let label = find("label");
-        if label.is_some_and(|i| !h.fields.get(i).is_some_and(|f| f.ty.is_unsigned())) {
-            return Err(type_err("label", "TYPE U"));
+        let entity_type = |f: &Field| f.ty.is_unsigned() && f.ty.size() <= 4;
+        if label.is_some_and(|i| !h.fields.get(i).is_some_and(entity_type)) {
+            return Err(type_err("label", "TYPE U and SIZE 1, 2 or 4"));
         }
         let class = find("class");
         if class.is_some_and(|i| !h.fields.get(i).is_some_and(|f| f.ty == Scalar::U8)) {
@@ -227,49 +228,51 @@ fn decode_binary(
     layout: impl Fn(&Field) -> (usize, usize),
 ) -> Result<Channels> {
     let n = h.points;
-    let column = |index: usize| -> Result<Vec<f64>> {
-        let short = || truncated(path, format!("field {index} does not fit the data"));
-        let f = h.fields.get(index).ok_or_else(short)?;
+    let field = |index: usize| {
+        let f = h.fields.get(index)?;
         let (start, stride) = layout(f);
-        let values: Vec<f64> = data
-            .get(start..)
-            .unwrap_or_default()
-            .chunks(stride.max(1))
-            .take(n)
-            .map_while(|c| f.ty.decode(c, false))
-            .collect();
-        if values.len() == n {
-            Ok(values)
-        } else {
-            Err(short())
+        Some((f.ty, data.get(start..).unwrap_or_default(), stride))
+    };
+    let short = |index: usize| truncated(path, format!("field {index} does not fit the data"));
+    let mut points = vec![Vec3::ZERO; n];
+    for (axis, &index) in w.xyz.iter().enumerate() {
+        field(index)
+            .and_then(|(ty, src, stride)| {
+                ty.decode_into(src, stride, &mut points, |p, v| p[axis] = v as f32)
+            })
+            .ok_or_else(|| short(index))?;
+    }
+    let column = |index: usize| {
+        let (ty, src, stride) = field(index).ok_or_else(|| short(index))?;
+        ty.decode_column(src, stride, n, |v| v as f32)
+            .ok_or_else(|| short(index))
+    };
+    let intensity = w.intensity.map(column).transpose()?;
+    if w.label.is_none() && w.class.is_none() {
+        return Ok((points, intensity, None));
+    }
+    let mut labels = vec![Label::default(); n];
+    // `label` is U of at most 4 bytes and `class` is U1 (checked with the header): exact casts.
+    if let Some(index) = w.label {
+        field(index)
+            .and_then(|(ty, src, stride)| {
+                ty.decode_into(src, stride, &mut labels, |l, v| l.entity = v as u32)
+            })
+            .ok_or_else(|| short(index))?;
+    }
+    if let Some(index) = w.class {
+        let (ty, src, stride) = field(index).ok_or_else(|| short(index))?;
+        let codes = ty
+            .decode_column(src, stride, n, |v| v as u8)
+            .ok_or_else(|| short(index))?;
+        for (i, (l, &c)) in labels.iter_mut().zip(&codes).enumerate() {
+            l.class = SurfaceClass::from_code(c).ok_or_else(|| {
+                let msg = format!("point {i}: unknown surface class code {c}");
+                CloudError::parse(path, 0, msg)
+            })?;
         }
-    };
-    let [x, y, z] = [column(w.xyz[0])?, column(w.xyz[1])?, column(w.xyz[2])?];
-    let points = x
-        .iter()
-        .zip(&y)
-        .zip(&z)
-        .map(|((&x, &y), &z)| Vec3::new(x as f32, y as f32, z as f32))
-        .collect();
-    let intensity = w
-        .intensity
-        .map(column)
-        .transpose()?
-        .map(|v| v.into_iter().map(|i| i as f32).collect());
-    let entity = w.label.map(column).transpose()?;
-    let class = w.class.map(column).transpose()?;
-    let labels = if entity.is_some() || class.is_some() {
-        let labels = (0..n).map(|i| {
-            let value =
-                |c: &Option<Vec<f64>>| c.as_ref().and_then(|c| c.get(i)).copied().unwrap_or(0.0);
-            make_label(value(&entity), value(&class))
-                .map_err(|msg| CloudError::parse(path, 0, format!("point {i}: {msg}")))
-        });
-        Some(labels.collect::<Result<Vec<Label>>>()?)
-    } else {
-        None
-    };
-    Ok((points, intensity, labels))
+    }
+    Ok((points, intensity, Some(labels)))
 }
 
 fn make_label(entity: f64, class: f64) -> std::result::Result<Label, String> {
@@ -328,11 +331,9 @@ fn read_ascii(path: &Path, h: &Header, w: &Wanted, body: &[u8]) -> Result<Channe
                 .get(field)
                 .and_then(|f| f.ty.parse(t))
                 .ok_or_else(|| {
-                    CloudError::parse(
-                        path,
-                        line_no,
-                        format!("'{t}' is not a valid value of field {field}"),
-                    )
+                    let name = h.fields.get(field).map_or("?", |f| f.name.as_str());
+                    let msg = format!("'{t}' is not a valid value of field {name}");
+                    CloudError::parse(path, line_no, msg)
                 })
         };
         let [x, y, z] = [value(w.xyz[0])?, value(w.xyz[1])?, value(w.xyz[2])?];

@@ -201,8 +201,24 @@ fn read_binary(
 ) -> Result<()> {
     let mut pos = 0usize;
     for e in skipped {
-        for _ in 0..e.count {
-            pos = walk(path, e, body, pos, big, &mut |_, _| {})?;
+        if e.props.iter().all(|p| matches!(p.kind, Kind::Scalar(_))) {
+            // Fixed size: skip all items at once (also bounds a huge count of empty items).
+            let size: usize = e.props.iter().map(|p| p.kind.min_size()).sum();
+            pos = pos.saturating_add(e.count.saturating_mul(size));
+            if pos > body.len() {
+                let msg = format!(
+                    "element {} ({} items) runs past the end of the file",
+                    e.name, e.count
+                );
+                return Err(CloudError::Truncated {
+                    path: path.to_path_buf(),
+                    msg,
+                });
+            }
+        } else {
+            for _ in 0..e.count {
+                pos = walk(path, e, body, pos, big, &mut |_, _| {})?;
+            }
         }
     }
     let min = vertex

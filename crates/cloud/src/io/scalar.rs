@@ -65,6 +65,58 @@ impl Scalar {
         })
     }
 
+    /// Decodes `n` little-endian values spaced `stride` bytes apart from the start of `src`,
+    /// converting each with `conv`; `None` if `src` is too short.
+    pub(crate) fn decode_column<T: Default + Clone>(
+        self,
+        src: &[u8],
+        stride: usize,
+        n: usize,
+        conv: impl Fn(f64) -> T,
+    ) -> Option<Vec<T>> {
+        let mut out = vec![T::default(); n];
+        self.decode_into(src, stride, &mut out, |o, v| *o = conv(v))?;
+        Some(out)
+    }
+
+    /// Decodes `out.len()` little-endian values spaced `stride` bytes apart from the start of
+    /// `src`, handing each to `set` with its slot; `None` (and nothing written) if `src` is too
+    /// short. One tight loop per type, no allocation.
+    pub(crate) fn decode_into<T>(
+        self,
+        src: &[u8],
+        stride: usize,
+        out: &mut [T],
+        mut set: impl FnMut(&mut T, f64),
+    ) -> Option<()> {
+        let stride = stride.max(self.size());
+        let n = out.len();
+        if n > 0 && (n - 1).checked_mul(stride)?.checked_add(self.size())? > src.len() {
+            return None;
+        }
+        macro_rules! run {
+            ($t:ty) => {
+                for (c, o) in src.chunks(stride).zip(out.iter_mut()) {
+                    let a = *c.first_chunk::<{ std::mem::size_of::<$t>() }>()?;
+                    set(o, <$t>::from_le_bytes(a) as f64);
+                }
+            };
+        }
+        match self {
+            Scalar::F32 => run!(f32),
+            Scalar::F64 => run!(f64),
+            Scalar::U8 => run!(u8),
+            Scalar::U16 => run!(u16),
+            Scalar::U32 => run!(u32),
+            Scalar::U64 => run!(u64),
+            Scalar::I8 => run!(i8),
+            Scalar::I16 => run!(i16),
+            Scalar::I32 => run!(i32),
+            Scalar::I64 => run!(i64),
+        }
+        Some(())
+    }
+
     /// Parses a text token of this type (`nan`/`inf` are accepted for floats); `None` if it is not one.
     pub(crate) fn parse(self, s: &str) -> Option<f64> {
         match self {
@@ -107,6 +159,20 @@ mod tests {
         assert_eq!(Scalar::I16.decode(&(-3i16).to_be_bytes(), true), Some(-3.0));
         assert_eq!(Scalar::U32.decode(&[1, 2], false), None);
         assert_eq!(Scalar::I8.decode(&[0xff], false), Some(-1.0));
+        let data: Vec<u8> = [1.0f32, 2.0, 3.0]
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
+        assert_eq!(
+            Scalar::F32.decode_column(&data, 4, 3, |v| v as f32),
+            Some(vec![1.0, 2.0, 3.0])
+        );
+        assert_eq!(
+            Scalar::U16.decode_column(&data, 8, 2, |v| v),
+            Some(vec![0.0, 0.0])
+        );
+        assert_eq!(Scalar::F32.decode_column(&data, 4, 4, |v| v), None);
+        assert_eq!(Scalar::F32.decode_column(&data, 4, 0, |v| v), Some(vec![]));
         assert_eq!(Scalar::U8.parse("255"), Some(255.0));
         assert_eq!(Scalar::U8.parse("256"), None);
         assert!(Scalar::F32.parse("nan").is_some_and(f64::is_nan));

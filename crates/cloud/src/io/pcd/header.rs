@@ -257,3 +257,84 @@ fn viewpoint(path: &Path, entry: Entry<'_>) -> Result<[f32; 7]> {
     }
     Ok(v)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = "# comment\nVERSION .7\nFIELDS x y z _ rgb\nSIZE 4 4 8 1 4\nTYPE F F F U U\nCOUNT 1 1 1 3 1\nWIDTH 2\nHEIGHT 3\nVIEWPOINT 1 2 3 0 0 0 2\nPOINTS 6\nDATA binary\n";
+
+    fn parse_str(s: &str) -> Result<Header> {
+        parse(Path::new("h.pcd"), s.as_bytes())
+    }
+
+    fn err_line(s: &str) -> (usize, String) {
+        match parse_str(s) {
+            Err(CloudError::Parse { line, msg, .. }) => (line, msg),
+            other => panic!("expected a parse error, got {:?}", other.map(|h| h.points)),
+        }
+    }
+
+    #[test]
+    fn parses_a_pcl_style_layout() {
+        let h = parse_str(GOOD).expect("valid");
+        let offsets: Vec<usize> = h.fields.iter().map(|f| f.offset).collect();
+        assert_eq!(offsets, [0, 4, 8, 16, 19]);
+        assert_eq!(h.point_size, 23);
+        assert_eq!((h.width, h.height, h.points), (2, 3, 6));
+        assert_eq!(h.fields[2].ty, Scalar::F64);
+        assert_eq!(h.data_offset, GOOD.len());
+        assert_eq!(h.data_line, 11);
+        // A non-unit quaternion is normalised.
+        assert_eq!(h.viewpoint, [1.0, 2.0, 3.0, 0.0, 0.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn bad_headers_name_their_line() {
+        let (line, msg) = err_line(&GOOD.replace("POINTS 6", "POINTS 7"));
+        assert_eq!(line, 10);
+        assert!(msg.contains("POINTS 7") && msg.contains("2 x 3"), "{msg}");
+        assert_eq!(
+            err_line(&GOOD.replace("TYPE F F F U U", "TYPE F F F U X")).0,
+            5
+        );
+        assert_eq!(
+            err_line(&GOOD.replace("SIZE 4 4 8 1 4", "SIZE 4 4 8 1")).0,
+            4
+        );
+        assert_eq!(
+            err_line(&GOOD.replace("COUNT 1 1 1 3 1", "COUNT 1 1 1 0 1")).0,
+            6
+        );
+        assert_eq!(err_line(&GOOD.replace("WIDTH 2", "WIDTH two")).0, 7);
+        assert_eq!(err_line(&GOOD.replace("VERSION .7", "FOO 1")).0, 2);
+        assert_eq!(err_line(&GOOD.replace("DATA binary", "DATA zip")).0, 11);
+        assert_eq!(
+            err_line(&GOOD.replace("VIEWPOINT 1 2 3 0 0 0 2", "VIEWPOINT 1 2")).0,
+            9
+        );
+        assert_eq!(err_line(&GOOD.replace("DATA binary\n", "")).0, 11);
+        assert!(err_line(&GOOD.replace("WIDTH 2\n", ""))
+            .1
+            .contains("no WIDTH"));
+        assert!(err_line("\u{0}\u{1}\u{2}")
+            .1
+            .contains("unknown header keyword"));
+    }
+
+    #[test]
+    fn absurd_sizes_are_refused_before_any_allocation() {
+        let huge = GOOD
+            .replace("WIDTH 2", "WIDTH 18446744073709551615")
+            .replace("POINTS 6", "POINTS 18446744073709551615")
+            .replace("HEIGHT 3", "HEIGHT 1");
+        assert!(err_line(&huge).1.contains("overflow"));
+        let h = parse_str(
+            &GOOD
+                .replace("WIDTH 2", "WIDTH 1000000000000")
+                .replace("POINTS 6\n", ""),
+        )
+        .expect("fits the address space");
+        assert_eq!(h.points, 3_000_000_000_000);
+    }
+}

@@ -179,3 +179,63 @@ pub(super) fn text(cloud: &PointCloud, encoding: PlyEncoding) -> String {
     s.push_str("end_header\n");
     s
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = "ply\nformat binary_big_endian 1.0\ncomment hi\nelement camera 1\nproperty float32 view_px\nelement vertex 3\nproperty double x\nproperty float64 y\nproperty float z\nproperty list uchar int idx\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n";
+
+    fn err_line(s: &str) -> (usize, String) {
+        match parse(Path::new("h.ply"), s.as_bytes()) {
+            Err(CloudError::Parse { line, msg, .. }) => (line, msg),
+            Err(e) => panic!("expected a parse error, got {e}"),
+            Ok(_) => panic!("expected a parse error"),
+        }
+    }
+
+    #[test]
+    fn parses_elements_properties_and_aliases() {
+        let h = parse(Path::new("h.ply"), GOOD.as_bytes()).expect("valid");
+        assert_eq!(h.encoding, PlyEncoding::BinaryBigEndian);
+        assert_eq!(h.end_line, 13);
+        assert_eq!(h.data_offset, GOOD.len());
+        let names: Vec<&str> = h.elements.iter().map(|e| e.name.as_str()).collect();
+        assert_eq!(names, ["camera", "vertex", "face"]);
+        let v = &h.elements[1];
+        assert_eq!((v.count, v.props.len(), v.line), (3, 4, 6));
+        assert!(matches!(v.props[0].kind, Kind::Scalar(Scalar::F64)));
+        assert!(matches!(
+            v.props[3].kind,
+            Kind::List {
+                count: Scalar::U8,
+                item: Scalar::I32
+            }
+        ));
+        assert_eq!(v.props[3].kind.min_size(), 1);
+    }
+
+    #[test]
+    fn bad_headers_name_their_line() {
+        assert_eq!(err_line(&GOOD.replacen("ply", "plx", 1)).0, 1);
+        assert_eq!(err_line("").0, 1);
+        assert_eq!(
+            err_line(&GOOD.replace("binary_big_endian", "binary_middle_endian")).0,
+            2
+        );
+        assert_eq!(err_line(&GOOD.replace(" 1.0", "")).0, 2);
+        let (line, msg) = err_line(&GOOD.replace("format binary_big_endian 1.0\n", ""));
+        assert!(line == 12 && msg.contains("no format"), "{line} {msg}");
+        assert_eq!(err_line(&GOOD.replace("end_header\n", "")).0, 13);
+        assert_eq!(
+            err_line(&GOOD.replace("property float z", "property quad z")).0,
+            9
+        );
+        assert_eq!(
+            err_line(&GOOD.replace("element vertex 3", "element vertex -3")).0,
+            6
+        );
+        assert_eq!(err_line(&GOOD.replace("element camera 1\n", "")).0, 4);
+        assert_eq!(err_line(&GOOD.replace("comment hi", "hello")).0, 3);
+    }
+}

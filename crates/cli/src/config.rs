@@ -1,6 +1,7 @@
 //! The optional configuration file: one section per stage, each the stage's own `Default + serde` struct.
 
 use anyhow::Context;
+use registration::SequenceConfig;
 use scanner::{GeneratorConfig, LaserConfig, OdometryConfig};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -15,6 +16,8 @@ pub struct SemsimConfig {
     pub odometry: OdometryConfig,
     /// The procedural building generator.
     pub generator: GeneratorConfig,
+    /// Registration: ICP (`[registration.icp]`) and the sequence's voxel sizes.
+    pub registration: SequenceConfig,
 }
 
 impl SemsimConfig {

@@ -15,6 +15,9 @@ pub struct ConvertArgs {
     /// Encoding of the output (PCD: ascii, binary, binary-compressed; PLY: ascii, binary-le, binary-be).
     #[arg(long, value_enum)]
     encoding: Option<Encoding>,
+    /// Voxel-downsample to this edge length in metres (centroid per voxel) before writing.
+    #[arg(long, value_name = "M")]
+    voxel: Option<f64>,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -30,6 +33,9 @@ enum Encoding {
 pub fn run(a: ConvertArgs) -> anyhow::Result<()> {
     let format = output_format(&a)?;
     let mut cloud = cloud::read_cloud(&a.input)?;
+    if let Some(v) = a.voxel {
+        cloud = cloud::voxel_downsample(&cloud, v)?;
+    }
     let organised_only = !matches!(format, CloudFormat::Pcd(_));
     if organised_only && cloud.organized.is_some() {
         let before = cloud.len();

@@ -1,5 +1,6 @@
 //! `semsim demo`: the whole chain on the built-in default building.
-//! Today: building -> virtual scans with ground truth and noisy odometry.
+//! Today: building -> virtual scans with ground truth and noisy odometry -> registration
+//! from the odometry, with pose errors against ground truth.
 
 use crate::config::SemsimConfig;
 use clap::Args;
@@ -44,6 +45,46 @@ pub fn run(a: DemoArgs, cfg: &SemsimConfig) -> anyhow::Result<()> {
     let summary = crate::scan::write_scans(&building, &demo_poses(), cfg, &a.out)?;
     summary.print();
     println!("  wrote {}", building_path.display());
+    register_scans(&a.out, cfg)?;
     println!("done in {:.1} s", t0.elapsed().as_secs_f64());
+    Ok(())
+}
+
+/// Registers the demo's scans from their noisy odometry into `out/registration/` and reports
+/// the pose errors of odometry and registration against ground truth.
+fn register_scans(out: &std::path::Path, cfg: &SemsimConfig) -> anyhow::Result<()> {
+    let input = crate::register::collect_sequence(&[out.to_path_buf()], None, None)?;
+    let scans = input
+        .files
+        .iter()
+        .map(|f| cloud::read_cloud(f))
+        .collect::<Result<Vec<_>, _>>()?;
+    let reg_dir = out.join("registration");
+    std::fs::create_dir_all(&reg_dir).map_err(|e| cloud::CloudError::io(&reg_dir, e))?;
+    println!(
+        "registration ({}) of {} scans from noisy odometry:",
+        cfg.registration.icp.method.short_name(),
+        scans.len()
+    );
+    crate::register::register_and_write(&input, &scans, &cfg.registration, &reg_dir)?;
+    let registered = cloud::read_poses(&reg_dir.join("poses.txt"))?;
+    let worst = |poses: &[glam::DAffine3]| {
+        poses
+            .iter()
+            .zip(&input.truth)
+            .fold((0.0f64, 0.0f64), |(m, d), (p, t)| {
+                let (em, ed) = crate::register::pose_error(
+                    &(input.truth[0].inverse() * *t),
+                    &(poses[0].inverse() * *p),
+                );
+                (m.max(em), d.max(ed))
+            })
+    };
+    let (om, od) = worst(&input.odometry);
+    let reg: Vec<glam::DAffine3> = registered.iter().map(|p| p.world_from_scan).collect();
+    let (rm, rd) = worst(&reg);
+    println!(
+        "worst pose error: odometry {om:.3} m / {od:.2} deg -> registered {rm:.4} m / {rd:.3} deg"
+    );
     Ok(())
 }

@@ -28,6 +28,12 @@ pub fn code_for(e: &anyhow::Error) -> u8 {
         if let Some(c) = cause.downcast_ref::<cloud::CloudError>() {
             return if c.is_bad_input() { 2 } else { 1 };
         }
+        if let Some(r) = cause.downcast_ref::<registration::RegistrationError>() {
+            return match r {
+                registration::RegistrationError::NotConverged { .. } => 1,
+                _ => 2,
+            };
+        }
         if let Some(s) = cause.downcast_ref::<scanner::ScannerError>() {
             return match s {
                 scanner::ScannerError::Cloud(c) if !c.is_bad_input() => 1,

@@ -8,6 +8,8 @@ mod convert;
 mod demo;
 mod exit;
 mod info;
+mod plot;
+mod register;
 mod scan;
 
 use clap::{Parser, Subcommand};
@@ -33,6 +35,8 @@ enum Command {
     Convert(convert::ConvertArgs),
     /// Print what a point cloud file holds.
     Info(info::InfoArgs),
+    /// Register scans with ICP: a pair (SOURCE TARGET) or, with --sequence, a whole sequence.
+    Register(register::RegisterArgs),
     /// Scan a building with the virtual 3D laser from one or more poses.
     Scan(scan::ScanArgs),
     /// Generate or check building descriptions.
@@ -53,6 +57,7 @@ fn main() -> ExitCode {
             Command::Demo(a) => demo::run(a, &cfg),
             Command::Convert(a) => convert::run(a),
             Command::Info(a) => info::run(a),
+            Command::Register(a) => register::run(a, &cfg),
             Command::Scan(a) => scan::run(a, &cfg),
             Command::Building(c) => building_cmd::run(c, &cfg),
         });

@@ -1,0 +1,515 @@
+//! Dispatch of the WGSL kernels: the model cloud's grid and the data cloud stay on the GPU across
+//! iterations (and across scans for the model), buffers are reused, and per iteration only the
+//! 4x4 transform goes up and a few dozen floats come back.
+
+use crate::context::GpuContext;
+use crate::error::{GpuError, Result};
+use crate::grid::{HostGrid, NONE};
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, Vec3};
+use std::time::Instant;
+use wgpu::util::DeviceExt;
+
+const WG: u32 = 128;
+const K: usize = 29;
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct Params {
+    transform: [f32; 16],
+    origin: [f32; 4],
+    reference: [f32; 4],
+    dims: [u32; 4],
+    counts: [u32; 4],
+    kernel: [f32; 4],
+}
+
+/// Robust kernel for point-to-plane (IRLS weight computed on the GPU).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum GpuKernel {
+    /// Plain least squares.
+    None,
+    /// Huber with width `k` metres.
+    Huber(f32),
+    /// Cauchy with width `k` metres.
+    Cauchy(f32),
+}
+
+/// Wall-clock split of one GPU iteration, in milliseconds.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct StageTimes {
+    /// Writing the parameters (and, on the first iteration, the data points).
+    pub upload_ms: f64,
+    /// The nearest-neighbour search with the per-workgroup reduction.
+    pub search_ms: f64,
+    /// The final reduction of the workgroup partials.
+    pub reduce_ms: f64,
+    /// Copying the sums back and mapping them.
+    pub download_ms: f64,
+}
+
+/// Point-to-point sums over the accepted pairs (transformed data point p, model point q),
+/// both centred on the `reference` point given: count, sum p, sum q, sum p q^T, sum |p - q|^2.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct P2pSums {
+    /// Pairs.
+    pub count: f64,
+    /// Sum of p - reference.
+    pub sum_p: [f64; 3],
+    /// Sum of q - reference.
+    pub sum_q: [f64; 3],
+    /// Sum of (p - reference)(q - reference)^T, row-major.
+    pub sum_pq: [f64; 9],
+    /// Sum of squared distances.
+    pub sum_d2: f64,
+}
+
+/// Point-to-plane normal equations over the accepted pairs, linearised about `reference`:
+/// upper triangle of J^T W J (21, row-major), J^T W r (6), sum of w r^2, pair count.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlaneSystem {
+    /// Pairs.
+    pub count: f64,
+    /// Upper triangle of J^T W J, row by row.
+    pub jtj_upper: [f64; 21],
+    /// J^T W r.
+    pub jtr: [f64; 6],
+    /// Sum of w r^2.
+    pub sum_wr2: f64,
+}
+
+struct TargetBuffers {
+    grid: HostGrid,
+    target: wgpu::Buffer,
+    normals: wgpu::Buffer,
+    keys: wgpu::Buffer,
+    vals: wgpu::Buffer,
+    starts: wgpu::Buffer,
+    has_normals: bool,
+}
+
+struct SourceBuffers {
+    len: u32,
+    capacity: u32,
+    source: wgpu::Buffer,
+    corr: wgpu::Buffer,
+    dist2: wgpu::Buffer,
+    partials: wgpu::Buffer,
+}
+
+/// GPU ICP: holds the device, the pipelines and the clouds' buffers.
+pub struct GpuIcp {
+    ctx: GpuContext,
+    layout: wgpu::BindGroupLayout,
+    search: wgpu::ComputePipeline,
+    sum: wgpu::ComputePipeline,
+    params: wgpu::Buffer,
+    totals: wgpu::Buffer,
+    readback: wgpu::Buffer,
+    target: Option<TargetBuffers>,
+    source: Option<SourceBuffers>,
+    bind: Option<wgpu::BindGroup>,
+}
+
+impl GpuIcp {
+    /// Compiles the kernels on `ctx`.
+    pub fn new(ctx: GpuContext) -> Result<GpuIcp> {
+        let d = &ctx.device;
+        let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("icp.wgsl"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("icp.wgsl").into()),
+        });
+        let entry = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let ro = wgpu::BufferBindingType::Storage { read_only: true };
+        let rw = wgpu::BufferBindingType::Storage { read_only: false };
+        let mut entries = vec![entry(0, wgpu::BufferBindingType::Uniform)];
+        entries.extend((1..=6).map(|b| entry(b, ro)));
+        entries.extend((7..=10).map(|b| entry(b, rw)));
+        let layout = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("icp"),
+            entries: &entries,
+        });
+        let pl = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("icp"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |name: &str| {
+            d.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(name),
+                layout: Some(&pl),
+                module: &module,
+                entry_point: Some(name),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let search = pipeline("search_reduce");
+        let sum = pipeline("sum_partials");
+        let params = buffer(
+            d,
+            "params",
+            std::mem::size_of::<Params>() as u64,
+            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        );
+        let totals = buffer(
+            d,
+            "totals",
+            (K * 4) as u64,
+            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        );
+        let readback = buffer(
+            d,
+            "readback",
+            (K * 4) as u64,
+            wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        );
+        Ok(GpuIcp {
+            ctx,
+            layout,
+            search,
+            sum,
+            params,
+            totals,
+            readback,
+            target: None,
+            source: None,
+            bind: None,
+        })
+    }
+
+    /// The context in use.
+    pub fn context(&self) -> &GpuContext {
+        &self.ctx
+    }
+
+    /// Builds the model cloud's bucket grid (CPU counting sort) and uploads it with optional normals.
+    pub fn set_target(
+        &mut self,
+        points: &[Vec3],
+        normals: Option<&[Vec3]>,
+        bucket_size_m: f32,
+    ) -> Result<()> {
+        let grid = HostGrid::build(points, normals, bucket_size_m)?;
+        self.check_size(grid.sorted.len() * 16, "the target cloud")?;
+        let d = &self.ctx.device;
+        let storage = wgpu::BufferUsages::STORAGE;
+        let init = |label: &str, bytes: &[u8]| {
+            d.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytes,
+                usage: storage,
+            })
+        };
+        let dummy = [[0.0f32; 4]];
+        let normal_data: &[[f32; 4]] = grid.normals.as_deref().unwrap_or(&dummy);
+        self.target = Some(TargetBuffers {
+            target: init("target", bytemuck::cast_slice(&grid.sorted)),
+            normals: init("normals", bytemuck::cast_slice(normal_data)),
+            keys: init("keys", bytemuck::cast_slice(&grid.keys)),
+            vals: init("vals", bytemuck::cast_slice(&grid.vals)),
+            starts: init("starts", bytemuck::cast_slice(&grid.start)),
+            has_normals: grid.normals.is_some(),
+            grid,
+        });
+        self.bind = None;
+        Ok(())
+    }
+
+    /// Uploads the data cloud, reusing the buffers when they are large enough.
+    pub fn set_source(&mut self, points: &[Vec3]) -> Result<()> {
+        if points.is_empty() {
+            return Err(GpuError::Invalid("the source cloud is empty".into()));
+        }
+        if let Some(i) = points.iter().position(|p| !p.is_finite()) {
+            return Err(GpuError::Invalid(format!("source point {i} is not finite")));
+        }
+        let n = points.len() as u32;
+        if n.div_ceil(WG) > self.ctx.limits.max_compute_workgroups_per_dimension {
+            return Err(GpuError::TooLarge(format!(
+                "{n} source points exceed one dispatch"
+            )));
+        }
+        self.check_size(points.len() * 16, "the source cloud")?;
+        let data: Vec<[f32; 4]> = points.iter().map(|p| [p.x, p.y, p.z, 1.0]).collect();
+        if self.source.as_ref().is_none_or(|s| s.capacity < n) {
+            let d = &self.ctx.device;
+            let rw = wgpu::BufferUsages::STORAGE
+                | wgpu::BufferUsages::COPY_SRC
+                | wgpu::BufferUsages::COPY_DST;
+            self.source = Some(SourceBuffers {
+                len: n,
+                capacity: n,
+                source: buffer(d, "source", n as u64 * 16, rw),
+                corr: buffer(d, "corr", n as u64 * 4, rw),
+                dist2: buffer(d, "dist2", n as u64 * 4, rw),
+                partials: buffer(d, "partials", n.div_ceil(WG) as u64 * K as u64 * 4, rw),
+            });
+            self.bind = None;
+        }
+        if let Some(s) = self.source.as_mut() {
+            s.len = n;
+            self.ctx
+                .queue
+                .write_buffer(&s.source, 0, bytemuck::cast_slice(&data));
+        }
+        Ok(())
+    }
+
+    /// One point-to-point iteration's sums for `target_from_source` with the correspondence gate.
+    pub fn p2p_sums(
+        &mut self,
+        target_from_source: Mat4,
+        max_distance_m: f32,
+        reference: Vec3,
+    ) -> Result<(P2pSums, StageTimes)> {
+        let (v, t) = self.run(
+            target_from_source,
+            max_distance_m,
+            reference,
+            0,
+            GpuKernel::None,
+        )?;
+        let f = |i: usize| v[i] as f64;
+        let sums = P2pSums {
+            count: f(0),
+            sum_p: [f(1), f(2), f(3)],
+            sum_q: [f(4), f(5), f(6)],
+            sum_pq: std::array::from_fn(|i| f(7 + i)),
+            sum_d2: f(16),
+        };
+        Ok((sums, t))
+    }
+
+    /// One point-to-plane iteration's normal equations (needs target normals).
+    pub fn p2plane_system(
+        &mut self,
+        target_from_source: Mat4,
+        max_distance_m: f32,
+        reference: Vec3,
+        kernel: GpuKernel,
+    ) -> Result<(PlaneSystem, StageTimes)> {
+        if !self.target.as_ref().is_some_and(|t| t.has_normals) {
+            return Err(GpuError::Invalid(
+                "point-to-plane needs target normals".into(),
+            ));
+        }
+        let (v, t) = self.run(target_from_source, max_distance_m, reference, 1, kernel)?;
+        let f = |i: usize| v[i] as f64;
+        let sys = PlaneSystem {
+            count: f(0),
+            jtj_upper: std::array::from_fn(|i| f(1 + i)),
+            jtr: std::array::from_fn(|i| f(22 + i)),
+            sum_wr2: f(28),
+        };
+        Ok((sys, t))
+    }
+
+    /// The correspondences themselves (input index into the target, squared distance), for
+    /// checking against the CPU search; downloads one entry per source point.
+    pub fn correspondences(
+        &mut self,
+        target_from_source: Mat4,
+        max_distance_m: f32,
+    ) -> Result<Vec<Option<(u32, f32)>>> {
+        self.run(
+            target_from_source,
+            max_distance_m,
+            Vec3::ZERO,
+            0,
+            GpuKernel::None,
+        )?;
+        let (Some(s), Some(t)) = (&self.source, &self.target) else {
+            return Err(GpuError::Invalid("no clouds uploaded".into()));
+        };
+        let idx: Vec<u32> = read_back(&self.ctx, &s.corr, s.len as u64 * 4)?;
+        let d2: Vec<f32> = read_back(&self.ctx, &s.dist2, s.len as u64 * 4)?;
+        Ok(idx
+            .iter()
+            .zip(&d2)
+            .map(|(&i, &d)| {
+                (i != NONE).then(|| (t.grid.original.get(i as usize).copied().unwrap_or(NONE), d))
+            })
+            .collect())
+    }
+
+    fn run(
+        &mut self,
+        transform: Mat4,
+        max_distance_m: f32,
+        reference: Vec3,
+        mode: u32,
+        kernel: GpuKernel,
+    ) -> Result<(Vec<f32>, StageTimes)> {
+        if !(max_distance_m.is_finite() && max_distance_m > 0.0) {
+            return Err(GpuError::Invalid(format!(
+                "max_distance_m = {max_distance_m} must be positive"
+            )));
+        }
+        let (Some(s), Some(t)) = (&self.source, &self.target) else {
+            return Err(GpuError::Invalid(
+                "upload a target and a source first".into(),
+            ));
+        };
+        let groups = s.len.div_ceil(WG);
+        let (kind, k) = match kernel {
+            GpuKernel::None => (0, 1.0),
+            GpuKernel::Huber(k) => (1, k),
+            GpuKernel::Cauchy(k) => (2, k),
+        };
+        let g = &t.grid;
+        let p = Params {
+            transform: transform.to_cols_array(),
+            origin: [g.origin.x, g.origin.y, g.origin.z, 1.0 / g.bucket_size_m],
+            reference: [
+                reference.x,
+                reference.y,
+                reference.z,
+                max_distance_m * max_distance_m,
+            ],
+            dims: [g.dims[0], g.dims[1], g.dims[2], g.keys.len() as u32 - 1],
+            counts: [s.len, mode, kind, groups],
+            kernel: [k, 0.0, 0.0, 0.0],
+        };
+        let mut times = StageTimes::default();
+        let t0 = Instant::now();
+        self.ctx
+            .queue
+            .write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
+        if self.bind.is_none() {
+            self.bind = Some(self.bind_group());
+        }
+        let Some(bind) = &self.bind else {
+            return Err(GpuError::Invalid("no bind group".into()));
+        };
+        times.upload_ms = ms(t0);
+        let t1 = Instant::now();
+        self.dispatch(bind, &self.search, groups);
+        times.search_ms = ms(t1);
+        let t2 = Instant::now();
+        self.dispatch(bind, &self.sum, 1);
+        times.reduce_ms = ms(t2);
+        let t3 = Instant::now();
+        let v: Vec<f32> = read_back_via(&self.ctx, &self.totals, &self.readback, (K * 4) as u64)?;
+        times.download_ms = ms(t3);
+        Ok((v, times))
+    }
+
+    fn dispatch(&self, bind: &wgpu::BindGroup, pipeline: &wgpu::ComputePipeline, groups: u32) {
+        let mut enc = self.ctx.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = enc.begin_compute_pass(&Default::default());
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, bind, &[]);
+            pass.dispatch_workgroups(groups, 1, 1);
+        }
+        self.ctx.queue.submit([enc.finish()]);
+        let _ = self.ctx.device.poll(wgpu::PollType::wait_indefinitely());
+    }
+
+    fn bind_group(&self) -> wgpu::BindGroup {
+        let (s, t) = (self.source.as_ref(), self.target.as_ref());
+        let bufs: Vec<&wgpu::Buffer> = match (s, t) {
+            (Some(s), Some(t)) => vec![
+                &self.params,
+                &s.source,
+                &t.target,
+                &t.normals,
+                &t.keys,
+                &t.vals,
+                &t.starts,
+                &s.corr,
+                &s.dist2,
+                &s.partials,
+                &self.totals,
+            ],
+            _ => Vec::new(),
+        };
+        let entries: Vec<wgpu::BindGroupEntry> = bufs
+            .iter()
+            .enumerate()
+            .map(|(i, b)| wgpu::BindGroupEntry {
+                binding: i as u32,
+                resource: b.as_entire_binding(),
+            })
+            .collect();
+        self.ctx
+            .device
+            .create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("icp"),
+                layout: &self.layout,
+                entries: &entries,
+            })
+    }
+
+    fn check_size(&self, bytes: usize, what: &str) -> Result<()> {
+        let max = self.ctx.limits.max_storage_buffer_binding_size as usize;
+        if bytes > max {
+            return Err(GpuError::TooLarge(format!(
+                "{what} needs {bytes} bytes, the device binds at most {max}"
+            )));
+        }
+        Ok(())
+    }
+}
+
+fn ms(t: Instant) -> f64 {
+    t.elapsed().as_secs_f64() * 1e3
+}
+
+fn buffer(d: &wgpu::Device, label: &str, size: u64, usage: wgpu::BufferUsages) -> wgpu::Buffer {
+    d.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: size.max(16),
+        usage,
+        mapped_at_creation: false,
+    })
+}
+
+fn read_back<T: Pod>(ctx: &GpuContext, src: &wgpu::Buffer, bytes: u64) -> Result<Vec<T>> {
+    let staging = buffer(
+        &ctx.device,
+        "staging",
+        bytes,
+        wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+    );
+    read_back_via(ctx, src, &staging, bytes)
+}
+
+fn read_back_via<T: Pod>(
+    ctx: &GpuContext,
+    src: &wgpu::Buffer,
+    staging: &wgpu::Buffer,
+    bytes: u64,
+) -> Result<Vec<T>> {
+    let mut enc = ctx.device.create_command_encoder(&Default::default());
+    enc.copy_buffer_to_buffer(src, 0, staging, 0, bytes);
+    ctx.queue.submit([enc.finish()]);
+    let slice = staging.slice(0..bytes);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    ctx.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    rx.recv()
+        .map_err(|e| GpuError::Readback(e.to_string()))?
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    let view = slice
+        .get_mapped_range()
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    let out = bytemuck::cast_slice::<u8, T>(&view).to_vec();
+    drop(view);
+    staging.unmap();
+    Ok(out)
+}

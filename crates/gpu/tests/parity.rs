@@ -1,0 +1,173 @@
+//! The GPU search and reductions against brute force on the CPU, on virtual-laser scans.
+//! Runs on any Vulkan adapter, Mesa's lavapipe included; skips (with a message) only where
+//! there is no adapter at all.
+
+use glam::{Mat4, Quat, Vec3};
+use gpu::{AdapterChoice, GpuContext, GpuIcp, GpuKernel};
+use scanner::{Building, BuildingGeometry, LaserConfig, ScanPose, VirtualLaser};
+
+fn open() -> Option<GpuIcp> {
+    match GpuContext::new(AdapterChoice::Any) {
+        Ok(ctx) => {
+            eprintln!("GPU adapter: {}", ctx.adapter_name());
+            Some(GpuIcp::new(ctx).expect("kernels compile"))
+        }
+        Err(e) => {
+            eprintln!("skipping: {e}");
+            None
+        }
+    }
+}
+
+fn scans() -> (Vec<Vec3>, Vec<Vec3>) {
+    let b = Building::default_building().expect("default");
+    let g = BuildingGeometry::new(&b);
+    let laser = VirtualLaser::new(LaserConfig {
+        beams: 121,
+        rotation_steps: 61,
+        ..Default::default()
+    })
+    .expect("laser");
+    let a = laser
+        .scan(
+            &g,
+            &ScanPose {
+                x_m: 6.5,
+                y_m: 0.0,
+                yaw_deg: 0.0,
+            },
+            0,
+        )
+        .without_invalid();
+    let s = laser
+        .scan(
+            &g,
+            &ScanPose {
+                x_m: 7.3,
+                y_m: 0.5,
+                yaw_deg: 5.0,
+            },
+            1,
+        )
+        .without_invalid();
+    (a.points, s.points)
+}
+
+fn brute(p: Vec3, target: &[Vec3], max_d2: f32) -> Option<f32> {
+    target
+        .iter()
+        .map(|q| (*q - p).length_squared())
+        .filter(|d| *d <= max_d2)
+        .min_by(f32::total_cmp)
+}
+
+#[test]
+fn gpu_correspondences_equal_brute_force_within_the_bucket() {
+    let Some(mut icp) = open() else { return };
+    let (target, source) = scans();
+    let bucket = 0.25f32;
+    icp.set_target(&target, None, bucket).expect("target");
+    icp.set_source(&source).expect("source");
+    let t = Mat4::from_rotation_translation(Quat::from_rotation_z(0.08), Vec3::new(0.7, 0.45, 0.0));
+    let gate = bucket; // within one bucket edge the 27-bucket search is exact
+    let corr = icp.correspondences(t, gate).expect("search");
+    assert_eq!(corr.len(), source.len());
+    let mut found = 0;
+    for (s, c) in source.iter().zip(&corr) {
+        let p = t.transform_point3(*s);
+        let truth = brute(p, &target, gate * gate);
+        match (truth, c) {
+            (None, None) => {}
+            (Some(d), Some((idx, d2))) => {
+                assert!(
+                    (d.sqrt() - d2.sqrt()).abs() < 1e-6,
+                    "distance {} vs {}",
+                    d.sqrt(),
+                    d2.sqrt()
+                );
+                assert!(((target[*idx as usize] - p).length_squared() - d).abs() < 1e-6);
+                found += 1;
+            }
+            other => panic!("GPU and brute force disagree on {p}: {other:?}"),
+        }
+    }
+    assert!(found > source.len() / 2, "only {found} correspondences");
+}
+
+#[test]
+fn gpu_sums_equal_cpu_sums() {
+    let Some(mut icp) = open() else { return };
+    let (target, source) = scans();
+    // Normals are only carried, not checked here: any unit vectors will do.
+    let normals: Vec<Vec3> = target.iter().map(|p| p.normalize_or(Vec3::Z)).collect();
+    icp.set_target(&target, Some(&normals), 0.3)
+        .expect("target");
+    icp.set_source(&source).expect("source");
+    let t = Mat4::from_rotation_translation(Quat::from_rotation_z(0.087), Vec3::new(0.8, 0.5, 0.0));
+    let reference = Vec3::new(7.0, 0.0, 1.0);
+    let corr = icp.correspondences(t, 0.3).expect("search");
+    let (sums, _) = icp.p2p_sums(t, 0.3, reference).expect("p2p");
+    let (sys, _) = icp
+        .p2plane_system(t, 0.3, reference, GpuKernel::None)
+        .expect("p2plane");
+    let (mut n, mut sp, mut sq, mut d2s, mut r2) =
+        (0.0f64, [0.0f64; 3], [0.0f64; 3], 0.0f64, 0.0f64);
+    for (s, c) in source.iter().zip(&corr) {
+        let Some((idx, d2)) = c else { continue };
+        let p = t.transform_point3(*s) - reference;
+        let q = target[*idx as usize] - reference;
+        n += 1.0;
+        for k in 0..3 {
+            sp[k] += p[k] as f64;
+            sq[k] += q[k] as f64;
+        }
+        d2s += *d2 as f64;
+        r2 += ((p - q).dot(normals[*idx as usize]) as f64).powi(2);
+    }
+    assert_eq!(sums.count, n);
+    assert_eq!(sys.count, n);
+    for k in 0..3 {
+        assert!(
+            (sums.sum_p[k] - sp[k]).abs() < 1e-3 * n,
+            "sum p {k}: {} vs {}",
+            sums.sum_p[k],
+            sp[k]
+        );
+        assert!((sums.sum_q[k] - sq[k]).abs() < 1e-3 * n, "sum q {k}");
+    }
+    assert!(
+        (sums.sum_d2 - d2s).abs() < 1e-4 * d2s.max(1.0),
+        "{} vs {d2s}",
+        sums.sum_d2
+    );
+    assert!(
+        (sys.sum_wr2 - r2).abs() < 1e-3 * r2.max(1.0),
+        "{} vs {r2}",
+        sys.sum_wr2
+    );
+}
+
+#[test]
+fn bad_inputs_are_errors() {
+    let Some(mut icp) = open() else { return };
+    assert!(icp.set_target(&[], None, 0.2).is_err());
+    assert!(icp.set_target(&[Vec3::NAN], None, 0.2).is_err());
+    assert!(icp.set_target(&[Vec3::ZERO], None, 0.0).is_err());
+    assert!(icp
+        .set_target(&[Vec3::ZERO, Vec3::splat(1e7)], None, 0.001)
+        .is_err());
+    assert!(
+        icp.p2p_sums(Mat4::IDENTITY, 0.5, Vec3::ZERO).is_err(),
+        "no clouds yet"
+    );
+    icp.set_target(&[Vec3::ZERO, Vec3::X], None, 0.5)
+        .expect("target");
+    assert!(icp.set_source(&[]).is_err());
+    icp.set_source(&[Vec3::ZERO]).expect("source");
+    assert!(
+        icp.p2plane_system(Mat4::IDENTITY, 0.5, Vec3::ZERO, GpuKernel::None)
+            .is_err(),
+        "no normals"
+    );
+    assert!(icp.p2p_sums(Mat4::IDENTITY, -1.0, Vec3::ZERO).is_err());
+}

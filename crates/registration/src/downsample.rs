@@ -1,0 +1,142 @@
+//! Input preparation: the finite points of a cloud (with the error rules for missing returns)
+//! and a fast positions-only voxel downsampling on the sparse cell index.
+
+use crate::cells::{pack, CellTable, MAX_CELLS};
+use crate::error::{RegistrationError, Result};
+use cloud::PointCloud;
+use glam::{DVec3, Vec3};
+
+/// The finite points of `cloud`. Organised clouds may hold all-NaN missing returns, which are
+/// skipped; any other non-finite coordinate is [`RegistrationError::NonFinite`]. A cloud
+/// without a finite point is [`RegistrationError::EmptyCloud`].
+pub(crate) fn finite_points(cloud: &PointCloud, which: &str) -> Result<Vec<Vec3>> {
+    let organized = cloud.organized.is_some();
+    let mut out = Vec::with_capacity(cloud.len());
+    for (index, p) in cloud.points.iter().enumerate() {
+        if p.is_finite() {
+            out.push(*p);
+        } else if !(organized && p.is_nan() && !p.to_array().iter().any(|v| v.is_infinite())) {
+            return Err(RegistrationError::NonFinite {
+                which: which.to_string(),
+                index,
+            });
+        }
+    }
+    if out.is_empty() {
+        return Err(RegistrationError::EmptyCloud {
+            which: which.to_string(),
+        });
+    }
+    Ok(out)
+}
+
+/// One point per occupied cubic voxel of edge `voxel_m`, at the centroid of the voxel's
+/// points, in the order of each voxel's first point. `name` is the parameter blamed when the
+/// voxel is absurd for the cloud's extent.
+pub(crate) fn voxel_downsample(
+    points: &[Vec3],
+    voxel_m: f64,
+    name: &'static str,
+) -> Result<Vec<Vec3>> {
+    if !(voxel_m.is_finite() && voxel_m > 1e-6) {
+        return Err(RegistrationError::invalid(
+            name,
+            voxel_m,
+            "must be a finite length above 1 micrometre",
+        ));
+    }
+    let Some(first) = points.first() else {
+        return Ok(Vec::new());
+    };
+    let (lo, hi) = points
+        .iter()
+        .fold((*first, *first), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+    let (lo, hi) = (lo.as_dvec3(), hi.as_dvec3());
+    let dims_f = (((hi - lo) / voxel_m).floor() + 1.0).to_array();
+    let cells = dims_f[0] * dims_f[1] * dims_f[2];
+    if cells > MAX_CELLS || cells.is_nan() {
+        return Err(RegistrationError::invalid(
+            name,
+            voxel_m,
+            format!("too small for the cloud's extent: {cells:.3e} voxels (at most 2^40)"),
+        ));
+    }
+    let dims = dims_f.map(|d| d as i64);
+    let inv = 1.0 / voxel_m;
+    let mut table = CellTable::with_capacity(points.len() / 4 + 16);
+    let mut acc: Vec<(DVec3, u32)> = Vec::new();
+    for p in points {
+        let rel = p.as_dvec3() - lo;
+        let c = (rel * inv).floor();
+        let c = [c.x as i64, c.y as i64, c.z as i64];
+        let c = [0, 1, 2].map(|a| c[a].clamp(0, dims[a] - 1));
+        let id = table.get_or_insert(pack(c, dims), acc.len() as u32) as usize;
+        if id == acc.len() {
+            acc.push((DVec3::ZERO, 0));
+        }
+        acc[id].0 += rel;
+        acc[id].1 += 1;
+    }
+    debug_assert_eq!(table.len(), acc.len());
+    Ok(acc
+        .iter()
+        .map(|(sum, n)| (lo + *sum / *n as f64).as_vec3())
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cloud::Organized;
+
+    #[test]
+    fn organised_missing_returns_are_skipped_but_unorganised_nan_is_an_error() {
+        let mut c = PointCloud::from_points(vec![Vec3::ZERO, Vec3::NAN, Vec3::ONE, Vec3::X]);
+        c.organized = Some(Organized { rows: 2, cols: 2 });
+        assert_eq!(finite_points(&c, "source").expect("organised").len(), 3);
+        c.organized = None;
+        match finite_points(&c, "source") {
+            Err(RegistrationError::NonFinite { which, index }) => {
+                assert_eq!((which.as_str(), index), ("source", 1))
+            }
+            other => panic!("{other:?}"),
+        }
+        c.organized = Some(Organized { rows: 2, cols: 2 });
+        c.points[1] = Vec3::new(f32::INFINITY, 0.0, 0.0);
+        assert!(matches!(
+            finite_points(&c, "target"),
+            Err(RegistrationError::NonFinite { index: 1, .. })
+        ));
+        let all_nan = PointCloud {
+            points: vec![Vec3::NAN; 4],
+            organized: Some(Organized { rows: 2, cols: 2 }),
+            ..PointCloud::default()
+        };
+        assert!(matches!(
+            finite_points(&all_nan, "target"),
+            Err(RegistrationError::EmptyCloud { .. })
+        ));
+    }
+
+    #[test]
+    fn voxels_average_their_points() {
+        let pts = vec![
+            Vec3::new(0.01, 0.01, 0.01),
+            Vec3::new(0.03, 0.03, 0.03),
+            Vec3::new(0.51, 0.0, 0.0),
+        ];
+        let d = voxel_downsample(&pts, 0.1, "v").expect("downsample");
+        assert_eq!(d.len(), 2);
+        assert!((d[0] - Vec3::splat(0.02)).length() < 1e-6);
+        assert!((d[1] - Vec3::new(0.51, 0.0, 0.0)).length() < 1e-6);
+        assert!(voxel_downsample(&pts, 0.0, "v").is_err());
+        let wide = vec![Vec3::ZERO, Vec3::splat(10_000.0)];
+        assert!(matches!(
+            voxel_downsample(&wide, 1e-4, "source_voxel_m"),
+            Err(RegistrationError::InvalidParameter {
+                name: "source_voxel_m",
+                ..
+            })
+        ));
+    }
+}

@@ -1,0 +1,79 @@
+//! Typed registration errors, each with the context needed to act on it.
+
+use crate::icp::IcpResult;
+
+/// Everything that can go wrong in a registration.
+#[derive(Debug, thiserror::Error)]
+pub enum RegistrationError {
+    /// A cloud holds no usable point (after dropping missing returns and downsampling).
+    #[error("the {which} cloud has no valid point")]
+    EmptyCloud {
+        /// `"source"`, `"target"` or `"scan N"`.
+        which: String,
+    },
+    /// An unorganised cloud holds a NaN or infinite coordinate (organised clouds may hold
+    /// all-NaN missing returns, which are skipped).
+    #[error("the {which} cloud has a non-finite point at index {index}")]
+    NonFinite {
+        /// `"source"`, `"target"` or `"scan N"`.
+        which: String,
+        /// Index of the first bad point.
+        index: usize,
+    },
+    /// The first iteration found (almost) no correspondences: the clouds do not overlap from
+    /// the given guess within the correspondence distance.
+    #[error(
+        "no overlap: the first iteration found {correspondences} correspondences within \
+         {max_correspondence_distance_m} m (need at least {needed})"
+    )]
+    NoOverlap {
+        /// The correspondence distance of the first iteration.
+        max_correspondence_distance_m: f64,
+        /// Correspondences found.
+        correspondences: usize,
+        /// Correspondences needed.
+        needed: usize,
+    },
+    /// The iterations ended without meeting the stop criteria, or with too small a fitness.
+    /// The result reached so far is carried for inspection.
+    #[error("ICP did not converge: {reason} (rmse {:.4} m, fitness {:.3}, {} iterations)",
+        result.rmse_m, result.fitness, result.iterations.len())]
+    NotConverged {
+        /// The last state of the registration.
+        result: Box<IcpResult>,
+        /// Why it is not a converged result.
+        reason: String,
+    },
+    /// A configuration value is out of its meaningful range.
+    #[error("invalid parameter {name} = {value}: {msg}")]
+    InvalidParameter {
+        /// The parameter's name (as in the configuration file).
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// What it must be.
+        msg: String,
+    },
+    /// The two inputs to a sequence registration disagree (e.g. poses and scans counts).
+    #[error("{what}: {msg}")]
+    Mismatch {
+        /// What disagrees.
+        what: &'static str,
+        /// How.
+        msg: String,
+    },
+}
+
+impl RegistrationError {
+    /// Shorthand for [`RegistrationError::InvalidParameter`].
+    pub(crate) fn invalid(name: &'static str, value: f64, msg: impl Into<String>) -> Self {
+        RegistrationError::InvalidParameter {
+            name,
+            value,
+            msg: msg.into(),
+        }
+    }
+}
+
+/// Result alias for this crate.
+pub type Result<T, E = RegistrationError> = std::result::Result<T, E>;

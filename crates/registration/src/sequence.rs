@@ -1,0 +1,151 @@
+//! Sequential registration of a scan series into one map (the 2009 paper's "meta scan"):
+//! scan `k` is registered against the union of the registered scans `0..k`, kept
+//! voxel-downsampled in the world frame.
+//!
+//! The guess for scan `k` applies the odometry's relative motion to the last registered pose:
+//! `world_from_scan[k-1] * odom[k-1]^-1 * odom[k]`. Scan 0 defines the world and keeps its
+//! odometry pose.
+
+use crate::config::IcpConfig;
+use crate::downsample::{finite_points, voxel_downsample};
+use crate::error::{RegistrationError, Result};
+use crate::icp::{register_to, IcpResult, Target};
+use cloud::PointCloud;
+use glam::{DAffine3, Vec3};
+use serde::{Deserialize, Serialize};
+
+/// Settings of a sequence registration.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SequenceConfig {
+    /// Settings of each scan-to-map registration.
+    pub icp: IcpConfig,
+    /// Each scan is downsampled to this voxel edge before it is registered and merged.
+    pub scan_voxel_m: f64,
+    /// The map is kept downsampled to this voxel edge.
+    pub map_voxel_m: f64,
+}
+
+impl Default for SequenceConfig {
+    fn default() -> Self {
+        SequenceConfig {
+            icp: IcpConfig::default(),
+            scan_voxel_m: 0.05,
+            map_voxel_m: 0.05,
+        }
+    }
+}
+
+/// The outcome of a sequence registration.
+#[derive(Debug, Clone)]
+pub struct SequenceResult {
+    /// The registered pose of every scan.
+    pub world_from_scan: Vec<DAffine3>,
+    /// All scans merged in the world frame, voxel-downsampled to `map_voxel_m`.
+    pub map: PointCloud,
+    /// Each scan's registration; `None` for scan 0, which defines the world.
+    pub results: Vec<Option<IcpResult>>,
+}
+
+/// Registers `scans` one after another against the growing map.
+///
+/// `world_from_scan_guess` is the odometry, one pose per scan, or empty for none (every
+/// relative motion is then the identity). `progress(done, total)` is called after each scan.
+/// A scan that fails to register stops the sequence with its error (for
+/// [`RegistrationError::NotConverged`] the reason names the scan).
+pub fn register_sequence(
+    scans: &[PointCloud],
+    world_from_scan_guess: &[DAffine3],
+    config: &SequenceConfig,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<SequenceResult> {
+    config.icp.validate()?;
+    for (name, v) in [
+        ("scan_voxel_m", config.scan_voxel_m),
+        ("map_voxel_m", config.map_voxel_m),
+    ] {
+        if !(v.is_finite() && (1e-4..=100.0).contains(&v)) {
+            return Err(RegistrationError::invalid(
+                name,
+                v,
+                "must be a finite length within [1e-4, 100] m",
+            ));
+        }
+    }
+    if scans.is_empty() {
+        return Err(RegistrationError::EmptyCloud {
+            which: "scan sequence".into(),
+        });
+    }
+    if !world_from_scan_guess.is_empty() && world_from_scan_guess.len() != scans.len() {
+        return Err(RegistrationError::Mismatch {
+            what: "world_from_scan_guess",
+            msg: format!(
+                "{} poses for {} scans (give one per scan, or none)",
+                world_from_scan_guess.len(),
+                scans.len()
+            ),
+        });
+    }
+    let odom = |k: usize| {
+        world_from_scan_guess
+            .get(k)
+            .copied()
+            .unwrap_or(DAffine3::IDENTITY)
+    };
+    if let Some(k) = (0..scans.len()).find(|&k| !odom(k).is_finite()) {
+        return Err(RegistrationError::Mismatch {
+            what: "world_from_scan_guess",
+            msg: format!("pose {k} is not finite"),
+        });
+    }
+    let total = scans.len();
+    let scan_points = |k: usize| -> Result<Vec<Vec3>> {
+        let p = finite_points(&scans[k], &format!("scan {k}"))?;
+        voxel_downsample(&p, config.scan_voxel_m, "scan_voxel_m")
+    };
+
+    let mut world_from_scan = vec![odom(0)];
+    let mut results = vec![None];
+    let mut map = scan_points(0)?;
+    move_points(&mut map, &odom(0));
+    map = voxel_downsample(&map, config.map_voxel_m, "map_voxel_m")?;
+    progress(1, total);
+    for k in 1..total {
+        let points = scan_points(k)?;
+        let map_cloud = PointCloud::from_points(std::mem::take(&mut map));
+        let target = Target::new(&map_cloud, &config.icp)?;
+        map = map_cloud.points;
+        let guess = world_from_scan[k - 1] * odom(k - 1).inverse() * odom(k);
+        let source = PointCloud::from_points(points);
+        let result = match register_to(&target, &source, guess, &config.icp) {
+            Ok(r) => r,
+            Err(RegistrationError::NotConverged { result, reason }) => {
+                return Err(RegistrationError::NotConverged {
+                    result,
+                    reason: format!("scan {k}: {reason}"),
+                })
+            }
+            Err(e) => return Err(e),
+        };
+        let pose = result.target_from_source;
+        let mut moved = source.points;
+        move_points(&mut moved, &pose);
+        map.extend(moved);
+        map = voxel_downsample(&map, config.map_voxel_m, "map_voxel_m")?;
+        world_from_scan.push(pose);
+        results.push(Some(result));
+        progress(k + 1, total);
+    }
+    Ok(SequenceResult {
+        world_from_scan,
+        map: PointCloud::from_points(map),
+        results,
+    })
+}
+
+fn move_points(points: &mut [Vec3], world_from_scan: &DAffine3) {
+    for p in points {
+        *p = world_from_scan.transform_point3(p.as_dvec3()).as_vec3();
+    }
+}

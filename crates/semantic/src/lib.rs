@@ -1,0 +1,1 @@
+//! Semantic maps (work in progress).

@@ -1,0 +1,211 @@
+//! Door openings and the walls above them. Along each wall, in `bin_m` bins:
+//!
+//! - a bin is *blocked* if a face of the wall has points at door level (`door_level_m` above
+//!   the floor), and *open* otherwise;
+//! - a run of open bins between blocked ones (blocked slivers up to `max_pier_m` inside it are
+//!   a door leaf crossing the face plane, and ignored) of `min_width_m..max_width_m` is an
+//!   opening candidate;
+//! - it is an opening if the wall continues above it (a lintel: face points above door level
+//!   in `min_lintel_coverage` of its bins), and, for a wall seen from one side only (which
+//!   could be hidden behind furniture at door level), if the scans saw into it: points inside
+//!   the wall's slab or behind its face, or floor within its footprint, in `min_evidence` of
+//!   its bins. A wall seen from both sides cannot be hidden on both at once, so the lintel
+//!   suffices there.
+//!
+//! The opening's edges are the nearest face points at door level either side; its height is
+//! the median lowest face point above it (the lintel's underside). The paper's labels follow:
+//! "Free space for door" (the opening volume) and "Wall above door" (the lintel).
+
+use crate::error::{check_range, Result};
+use crate::points::median;
+use crate::walls::{Scene, WallFit};
+use serde::{Deserialize, Serialize};
+
+/// Configuration of door-opening identification.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct OpeningConfig {
+    /// Bin width along a wall.
+    pub bin_m: f64,
+    /// Height range above the floor where an opening has no wall face.
+    pub door_level_m: [f64; 2],
+    /// Narrowest opening.
+    pub min_width_m: f64,
+    /// Widest opening.
+    pub max_width_m: f64,
+    /// Blocked slivers up to this width inside an opening are ignored.
+    pub max_pier_m: f64,
+    /// Fraction of an opening's bins with a lintel above.
+    pub min_lintel_coverage: f64,
+    /// Fraction of an opening's bins with points seen through it (one-sided walls).
+    pub min_evidence: f64,
+    /// How far behind a one-sided wall's face points count as seen through an opening.
+    pub behind_m: f64,
+}
+
+impl Default for OpeningConfig {
+    fn default() -> Self {
+        OpeningConfig {
+            bin_m: 0.05,
+            door_level_m: [0.3, 1.8],
+            min_width_m: 0.5,
+            max_width_m: 2.5,
+            max_pier_m: 0.15,
+            min_lintel_coverage: 0.5,
+            min_evidence: 0.25,
+            behind_m: 1.0,
+        }
+    }
+}
+
+impl OpeningConfig {
+    pub(crate) fn validate(&self) -> Result<()> {
+        check_range("openings.bin_m", self.bin_m, 0.005, 1.0, "within 0.005..1 m")?;
+        check_range("openings.door_level_m[0]", self.door_level_m[0], 0.0, 10.0, "within 0..10 m")?;
+        check_range("openings.door_level_m[1]", self.door_level_m[1] - self.door_level_m[0], 0.05, 10.0, "at least 0.05 m above door_level_m[0]")?;
+        check_range("openings.min_width_m", self.min_width_m, 0.05, 100.0, "within 0.05..100 m")?;
+        check_range("openings.max_width_m", self.max_width_m, self.min_width_m, 100.0, "at least min_width_m")?;
+        check_range("openings.max_pier_m", self.max_pier_m, 0.0, 10.0, "within 0..10 m")?;
+        check_range("openings.min_lintel_coverage", self.min_lintel_coverage, 0.0, 1.0, "within 0..1")?;
+        check_range("openings.min_evidence", self.min_evidence, 0.0, 1.0, "within 0..1")?;
+        check_range("openings.behind_m", self.behind_m, 0.0, 100.0, "within 0..100 m")
+    }
+}
+
+/// A door opening in a wall.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Opening {
+    pub wall: usize,
+    /// Near and far edge, along the wall from its start.
+    pub s0: f64,
+    pub s1: f64,
+    /// Absolute z of the opening's top (the lintel's underside).
+    pub top_z: f64,
+    pub lintel_points: u64,
+    pub confidence: f64,
+    pub rules: Vec<String>,
+}
+
+#[derive(Clone, Default)]
+struct Bin {
+    blocked: bool,
+    face_s: (f64, f64),
+    lintel: bool,
+    lintel_low_z: f64,
+    lintel_points: u64,
+    evidence: bool,
+}
+
+/// The openings of wall `wi`.
+pub(crate) fn find_openings(wi: usize, w: &WallFit, sc: &Scene, c: &OpeningConfig, face_tol: f64) -> Vec<Opening> {
+    let n = ((w.length / c.bin_m).ceil() as usize).clamp(1, 10_000_000);
+    let mut bins = vec![
+        Bin {
+            face_s: (f64::INFINITY, f64::NEG_INFINITY),
+            lintel_low_z: f64::INFINITY,
+            ..Bin::default()
+        };
+        n
+    ];
+    let (lvl0, lvl1) = (sc.floor + c.door_level_m[0], sc.floor + c.door_level_m[1]);
+    let half_t = w.thickness / 2.0;
+    let two_sided = w.measured;
+    let sigma = w.free_side;
+    let reach = half_t + if two_sided { 0.0 } else { c.behind_m } + face_tol;
+    let top = w.z_range.1;
+    sc.index.for_each_near_line(sc.points, &w.line, 0.0, w.length, reach, |i, s, d| {
+        let z = sc.points[i].z as f64;
+        let b = ((s / c.bin_m) as usize).min(n - 1);
+        let bin = &mut bins[b];
+        let on_face = w.faces.iter().any(|f| (d - f).abs() <= face_tol);
+        if on_face {
+            if z >= lvl0 && z <= lvl1 {
+                bin.blocked = true;
+                bin.face_s = (bin.face_s.0.min(s), bin.face_s.1.max(s));
+            } else if z > lvl1 && z < top - 0.02 {
+                bin.lintel = true;
+                bin.lintel_points += 1;
+            }
+            if z > sc.floor + 0.1 {
+                bin.lintel_low_z = bin.lintel_low_z.min(z);
+            }
+            return;
+        }
+        let floor_pt = (z - sc.floor).abs() <= 0.04;
+        let inside = d.abs() < half_t - face_tol;
+        let seen_through = if two_sided {
+            inside && (floor_pt || (z >= lvl0 && z <= lvl1))
+        } else {
+            // Behind the face (away from the free side), or on the floor within the footprint.
+            let depth = half_t - sigma * d; // 0 at the face, growing behind it
+            (depth > face_tol && z > sc.floor - 0.05 && z < top - 0.05) || (floor_pt && inside)
+        };
+        if seen_through {
+            bin.evidence = true;
+        }
+    });
+    // Runs of open bins; slivers of blocked bins up to max_pier inside them are ignored.
+    let pier = (c.max_pier_m / c.bin_m).round() as usize;
+    let mut runs: Vec<(usize, usize)> = Vec::new(); // [a, b) open-bin runs
+    let mut b = 0;
+    while b < n {
+        if bins[b].blocked {
+            b += 1;
+            continue;
+        }
+        let a = b;
+        while b < n && !bins[b].blocked {
+            b += 1;
+        }
+        match runs.last_mut() {
+            Some(r) if a - r.1 <= pier => r.1 = b,
+            _ => runs.push((a, b)),
+        }
+    }
+    let mut out = Vec::new();
+    for (a, b) in runs {
+        if a == 0 || b >= n {
+            continue; // not bounded by the wall on both sides
+        }
+        let s0 = bins[a - 1].face_s.1;
+        let s1 = bins[b].face_s.0;
+        let width = s1 - s0;
+        if !(width >= c.min_width_m && width <= c.max_width_m) {
+            continue;
+        }
+        let inner = &bins[a..b];
+        let k = inner.len() as f64;
+        let lintel = inner.iter().filter(|x| x.lintel).count() as f64 / k;
+        let evidence = inner.iter().filter(|x| x.evidence).count() as f64 / k;
+        if lintel < c.min_lintel_coverage || (!two_sided && evidence < c.min_evidence) {
+            continue;
+        }
+        let mut lows: Vec<f64> = inner
+            .iter()
+            .filter(|x| x.lintel_low_z.is_finite() && x.lintel_low_z > lvl1)
+            .map(|x| x.lintel_low_z)
+            .collect();
+        let Some(top_z) = median(&mut lows) else {
+            continue;
+        };
+        let lintel_points = inner.iter().map(|x| x.lintel_points).sum();
+        out.push(Opening {
+            wall: wi,
+            s0,
+            s1,
+            top_z,
+            lintel_points,
+            confidence: (lintel * if two_sided { 1.0 } else { evidence.max(0.5) }).clamp(0.0, 1.0),
+            rules: vec![format!(
+                "no wall face from {:.1} to {:.1} m above the floor over {:.2} m, between wall faces; \
+                 lintel over {:.0} % of it; seen through in {:.0} %",
+                c.door_level_m[0],
+                c.door_level_m[1],
+                width,
+                lintel * 100.0,
+                evidence * 100.0
+            )],
+        });
+    }
+    out
+}

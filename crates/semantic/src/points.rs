@@ -1,0 +1,251 @@
+//! Internal helpers shared by the stages: the finite points in the map frame, an XY bucket
+//! index over them, a simple 2D line type and robust statistics.
+
+use glam::{DVec2, Vec3};
+
+/// The finite input points, levelled into the map frame, with their input indices.
+pub(crate) struct MapPoints {
+    /// Positions in the map frame.
+    pub points: Vec<Vec3>,
+    /// For each point, its index in the input cloud.
+    pub input_index: Vec<u32>,
+}
+
+/// An XY bucket index (compressed rows: bucket -> point indices) for neighbourhood queries.
+pub(crate) struct XyIndex {
+    min: DVec2,
+    cell_m: f64,
+    cols: usize,
+    rows: usize,
+    start: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl XyIndex {
+    /// Buckets `points` (those inside `[min, max]`; others are left out) into cells of `cell_m`.
+    pub fn new(points: &[Vec3], min: DVec2, max: DVec2, cell_m: f64) -> XyIndex {
+        let cols = (((max.x - min.x) / cell_m).floor() as usize + 1).clamp(1, 1 << 16);
+        let rows = (((max.y - min.y) / cell_m).floor() as usize + 1).clamp(1, 1 << 16);
+        let cell_of = |p: &Vec3| -> Option<usize> {
+            let c = ((p.x as f64 - min.x) / cell_m).floor();
+            let r = ((p.y as f64 - min.y) / cell_m).floor();
+            (c >= 0.0 && r >= 0.0 && (c as usize) < cols && (r as usize) < rows)
+                .then(|| r as usize * cols + c as usize)
+        };
+        let mut start = vec![0u32; cols * rows + 1];
+        for p in points {
+            if let Some(c) = cell_of(p) {
+                start[c + 1] += 1;
+            }
+        }
+        for i in 0..cols * rows {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut items = vec![0u32; start[cols * rows] as usize];
+        for (i, p) in points.iter().enumerate() {
+            if let Some(c) = cell_of(p) {
+                items[fill[c] as usize] = i as u32;
+                fill[c] += 1;
+            }
+        }
+        XyIndex {
+            min,
+            cell_m,
+            cols,
+            rows,
+            start,
+            items,
+        }
+    }
+
+    /// Calls `f` with every indexed point whose bucket overlaps the box `[lo, hi]`.
+    pub fn for_each_in(&self, lo: DVec2, hi: DVec2, mut f: impl FnMut(usize)) {
+        let c0 = ((lo.x - self.min.x) / self.cell_m).floor().max(0.0) as usize;
+        let r0 = ((lo.y - self.min.y) / self.cell_m).floor().max(0.0) as usize;
+        let c1 = ((hi.x - self.min.x) / self.cell_m).floor();
+        let r1 = ((hi.y - self.min.y) / self.cell_m).floor();
+        if c1 < 0.0 || r1 < 0.0 {
+            return;
+        }
+        let c1 = (c1 as usize).min(self.cols - 1);
+        let r1 = (r1 as usize).min(self.rows - 1);
+        if c0 > c1 || r0 > r1 {
+            return;
+        }
+        for r in r0..=r1 {
+            let a = self.start[r * self.cols + c0] as usize;
+            let b = self.start[r * self.cols + c1 + 1] as usize;
+            for &i in &self.items[a..b] {
+                f(i as usize);
+            }
+        }
+    }
+
+    /// Calls `f` with every indexed point near the rectangle along `line` from `s0` to `s1`,
+    /// within `half_width` across; `f` gets the point index, along- and across-coordinates.
+    pub fn for_each_near_line(
+        &self,
+        points: &[Vec3],
+        line: &Line2,
+        s0: f64,
+        s1: f64,
+        half_width: f64,
+        mut f: impl FnMut(usize, f64, f64),
+    ) {
+        let a = line.at(s0);
+        let b = line.at(s1);
+        let pad = DVec2::splat(half_width);
+        let lo = a.min(b) - pad;
+        let hi = a.max(b) + pad;
+        self.for_each_in(lo, hi, |i| {
+            let p = points[i];
+            let q = DVec2::new(p.x as f64, p.y as f64);
+            let (s, d) = line.coords(q);
+            if s >= s0 && s <= s1 && d.abs() <= half_width {
+                f(i, s, d);
+            }
+        });
+    }
+}
+
+/// A 2D line through `origin` with unit direction `dir`; `normal` is `dir` turned left.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Line2 {
+    pub origin: DVec2,
+    pub dir: DVec2,
+}
+
+impl Line2 {
+    /// The line from `a` towards `b` (x axis if they coincide).
+    pub fn through(a: DVec2, b: DVec2) -> Line2 {
+        let d = b - a;
+        let dir = if d.length() > 1e-12 {
+            d.normalize()
+        } else {
+            DVec2::X
+        };
+        Line2 { origin: a, dir }
+    }
+
+    /// The left normal.
+    pub fn normal(&self) -> DVec2 {
+        self.dir.perp()
+    }
+
+    /// The point at along-coordinate `s`.
+    pub fn at(&self, s: f64) -> DVec2 {
+        self.origin + self.dir * s
+    }
+
+    /// Along- and across- (left positive) coordinates of `q`.
+    pub fn coords(&self, q: DVec2) -> (f64, f64) {
+        let v = q - self.origin;
+        (v.dot(self.dir), v.dot(self.normal()))
+    }
+
+    /// The same line moved `offset` to the left.
+    pub fn shifted(&self, offset: f64) -> Line2 {
+        Line2 {
+            origin: self.origin + self.normal() * offset,
+            dir: self.dir,
+        }
+    }
+
+    /// Direction angle in radians.
+    pub fn angle(&self) -> f64 {
+        self.dir.y.atan2(self.dir.x)
+    }
+}
+
+/// The angle between two undirected directions, in degrees (0..=90).
+pub(crate) fn undirected_angle_deg(a: DVec2, b: DVec2) -> f64 {
+    let c = a.normalize_or_zero().dot(b.normalize_or_zero()).abs().min(1.0);
+    c.acos().to_degrees()
+}
+
+/// The `q`-quantile (0..=1) of `v` (sorted in place); `None` if empty.
+pub(crate) fn quantile(v: &mut [f64], q: f64) -> Option<f64> {
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    let i = ((v.len() - 1) as f64 * q.clamp(0.0, 1.0)).round() as usize;
+    Some(v[i])
+}
+
+/// Median of `v` (sorted in place); `None` if empty.
+pub(crate) fn median(v: &mut [f64]) -> Option<f64> {
+    quantile(v, 0.5)
+}
+
+/// Least-squares slope and intercept of `y = a + b x`; `None` for fewer than 2 distinct x.
+pub(crate) fn linear_fit(xy: &[(f64, f64)]) -> Option<(f64, f64)> {
+    let n = xy.len() as f64;
+    if xy.len() < 2 {
+        return None;
+    }
+    let mx = xy.iter().map(|p| p.0).sum::<f64>() / n;
+    let my = xy.iter().map(|p| p.1).sum::<f64>() / n;
+    let sxx: f64 = xy.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = xy.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    if sxx < 1e-12 {
+        return None;
+    }
+    let b = sxy / sxx;
+    Some((my - b * mx, b))
+}
+
+/// Total-least-squares line through weighted 2D points: centroid and unit direction.
+pub(crate) fn fit_line(points: &[DVec2]) -> Option<(DVec2, DVec2)> {
+    if points.len() < 2 {
+        return None;
+    }
+    let n = points.len() as f64;
+    let c = points.iter().copied().sum::<DVec2>() / n;
+    let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
+    for p in points {
+        let d = *p - c;
+        sxx += d.x * d.x;
+        sxy += d.x * d.y;
+        syy += d.y * d.y;
+    }
+    let angle = 0.5 * (2.0 * sxy).atan2(sxx - syy);
+    let dir = DVec2::new(angle.cos(), angle.sin());
+    (sxx + syy > 1e-12).then_some((c, dir))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn index_finds_points_near_a_line() {
+        let pts: Vec<Vec3> = (0..100)
+            .map(|i| Vec3::new(i as f32 * 0.1, (i % 3) as f32 * 0.1, 1.0))
+            .collect();
+        let idx = XyIndex::new(
+            &pts,
+            DVec2::new(0.0, 0.0),
+            DVec2::new(10.0, 1.0),
+            0.5,
+        );
+        let line = Line2::through(DVec2::new(0.0, 0.0), DVec2::new(1.0, 0.0));
+        let mut n = 0;
+        idx.for_each_near_line(&pts, &line, 2.0, 4.0, 0.05, |_, s, d| {
+            assert!((2.0..=4.0).contains(&s) && d.abs() <= 0.05);
+            n += 1;
+        });
+        assert_eq!(n, 7);
+    }
+
+    #[test]
+    fn fits() {
+        let (a, b) = linear_fit(&[(0.0, 1.0), (1.0, 3.0), (2.0, 5.0)]).expect("fit");
+        assert!((a - 1.0).abs() < 1e-12 && (b - 2.0).abs() < 1e-12);
+        let (_, dir) = fit_line(&[DVec2::new(0.0, 0.0), DVec2::new(1.0, 1.0), DVec2::new(2.0, 2.0)])
+            .expect("fit");
+        assert!((undirected_angle_deg(dir, DVec2::new(1.0, 1.0))).abs() < 1e-6);
+        assert_eq!(median(&mut [3.0, 1.0, 2.0]), Some(2.0));
+    }
+}

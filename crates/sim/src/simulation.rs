@@ -1,0 +1,246 @@
+//! A scenario's run: the world, one robot, its controller, the event detectors and the judge,
+//! advanced one fixed step at a time. The whole state is serialisable (see checkpoint.rs).
+
+use crate::contacts::{self, ContactDetector};
+use crate::controller::Controller;
+use crate::doors::{DoorDetector, FreeSpaceDetector};
+use crate::error::Result;
+use crate::events::{Emitter, Event};
+use crate::joints;
+use crate::judge::{Judge, Observation, Verdict};
+use crate::motion::MotionDetector;
+use crate::robot::{robot_pose, RobotModel, RobotPose};
+use crate::scenario::Scenario;
+use crate::spec::WorldSpec;
+use crate::stairs::StairsDetector;
+use crate::world::World;
+use serde::{Deserialize, Serialize};
+
+/// One trajectory sample of the robot's chassis.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct TrajectoryPoint {
+    /// Simulated time (s).
+    pub time_s: f64,
+    /// Pose and speed.
+    pub pose: RobotPose,
+}
+
+/// What a finished run produced.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Outcome {
+    /// Every event, in time order.
+    pub events: Vec<Event>,
+    /// The robot's trajectory at the scenario's rate.
+    pub trajectory: Vec<TrajectoryPoint>,
+    /// The verdict.
+    pub verdict: Verdict,
+    /// The scenario's name.
+    pub scenario_name: String,
+    /// The robot model's name.
+    pub robot_model: String,
+}
+
+/// A running simulation of one scenario.
+#[derive(Serialize, Deserialize)]
+pub struct Simulation {
+    pub(crate) world: World,
+    pub(crate) scenario: Scenario,
+    pub(crate) model_name: String,
+    pub(crate) controller: Controller,
+    pub(crate) contacts: ContactDetector,
+    pub(crate) doors: DoorDetector,
+    pub(crate) free_spaces: FreeSpaceDetector,
+    pub(crate) stairs: StairsDetector,
+    pub(crate) motion: MotionDetector,
+    pub(crate) judge: Judge,
+    pub(crate) events: Vec<Event>,
+    pub(crate) trajectory: Vec<TrajectoryPoint>,
+    pub(crate) next_sample_s: f64,
+    pub(crate) step_limit: u64,
+}
+
+impl Simulation {
+    /// Builds the world of `spec`, puts the scenario's robot (`model`) at its start and resolves
+    /// the rules (unknown entities are errors).
+    pub fn new(spec: &WorldSpec, scenario: &Scenario, model: &RobotModel) -> Result<Simulation> {
+        scenario.validate()?;
+        let judge = Judge::new(&scenario.rules, spec)?;
+        let mut world = World::new(spec, scenario.world.clone())?;
+        world.add_robot(model, &scenario.start, &scenario.robot_name)?;
+        let doors = DoorDetector::new(&world, &scenario.events);
+        let step_limit = (scenario.time_limit_s / world.dt_secs()).round().max(1.0) as u64;
+        let mut sim = Simulation {
+            world,
+            scenario: scenario.clone(),
+            model_name: model.name.clone(),
+            controller: Controller::default(),
+            contacts: ContactDetector::default(),
+            doors,
+            free_spaces: FreeSpaceDetector::default(),
+            stairs: StairsDetector::default(),
+            motion: MotionDetector::default(),
+            judge,
+            events: vec![],
+            trajectory: vec![],
+            next_sample_s: 0.0,
+            step_limit,
+        };
+        sim.sample();
+        Ok(sim)
+    }
+
+    /// Advances one fixed step: controller, physics, broken joints, event detectors, judge.
+    pub fn step(&mut self) {
+        let t = self.world.time_s();
+        let pose = self.robot_pose();
+        let s = &self.scenario;
+        let (v, w) = self
+            .controller
+            .command(t, &pose, &s.velocity, &s.waypoints, &s.controller);
+        let world = &mut self.world;
+        if let Some(robot) = world.robots.first_mut() {
+            robot.drive(&mut world.physics, v, w);
+        }
+        world.step_physics();
+        let mut new_events = vec![];
+        let mut out = Emitter {
+            time_s: world.time_s(),
+            log: &mut new_events,
+        };
+        joints::break_overloaded(world, &mut out);
+        let cfg = &self.scenario.events;
+        let scan = contacts::scan(world);
+        self.contacts.update(world, &scan, cfg, &mut out);
+        self.doors.update(world, cfg, &mut out);
+        self.free_spaces.update(world, &mut out);
+        self.stairs.update(world, &scan, cfg, &mut out);
+        self.motion.update(world, cfg, &mut out);
+        let door_angles: Vec<(u32, f64)> = world
+            .doors
+            .iter()
+            .filter(|d| d.joint.is_some())
+            .map(|d| (d.entity, d.angle_deg(&world.physics)))
+            .collect();
+        let obs = Observation {
+            time_s: world.time_s(),
+            events: &new_events,
+            robot_entity: world.robots.first().map(|r| r.entity).unwrap_or(0),
+            pose: self.robot_pose(),
+            wall_contact_s: self.wall_contact_s(),
+            door_angles: &door_angles,
+        };
+        self.judge.observe(&obs);
+        self.events.append(&mut new_events);
+        self.sample();
+    }
+
+    fn sample(&mut self) {
+        let t = self.world.time_s();
+        if t + 1e-9 >= self.next_sample_s {
+            let rate = self.scenario.trajectory_rate_hz;
+            self.next_sample_s = if rate > 0.0 { t + 1.0 / rate } else { t };
+            let pose = self.robot_pose();
+            self.trajectory.push(TrajectoryPoint { time_s: t, pose });
+        }
+    }
+
+    /// Steps until the simulated time reaches `t_s` (or the time limit).
+    pub fn run_until(&mut self, t_s: f64) {
+        let target = ((t_s / self.world.dt_secs()).round().max(0.0) as u64).min(self.step_limit);
+        while self.world.steps < target {
+            self.step();
+        }
+    }
+
+    /// Runs to the time limit, or until every goal has passed when the scenario says
+    /// `stop_when_goals_met`; returns the verdict.
+    pub fn run(&mut self) -> Verdict {
+        while !self.is_finished() {
+            self.step();
+        }
+        self.verdict()
+    }
+
+    /// Whether the run is over (time limit, or goals met with `stop_when_goals_met`).
+    pub fn is_finished(&self) -> bool {
+        self.world.steps >= self.step_limit
+            || (self.scenario.stop_when_goals_met && self.judge.goals_met())
+    }
+
+    /// Simulated time (s).
+    pub fn time_s(&self) -> f64 {
+        self.world.time_s()
+    }
+
+    /// Steps taken.
+    pub fn steps(&self) -> u64 {
+        self.world.steps
+    }
+
+    /// Every event so far.
+    pub fn events(&self) -> &[Event] {
+        &self.events
+    }
+
+    /// The trajectory so far.
+    pub fn trajectory(&self) -> &[TrajectoryPoint] {
+        &self.trajectory
+    }
+
+    /// The robot's current pose.
+    pub fn robot_pose(&self) -> RobotPose {
+        self.world
+            .robots
+            .first()
+            .map(|r| robot_pose(&self.world.physics, r))
+            .unwrap_or_default()
+    }
+
+    /// Total time the robot has touched walls (s).
+    pub fn wall_contact_s(&self) -> f64 {
+        self.contacts.wall_contact_s.get(&0).copied().unwrap_or(0.0)
+    }
+
+    /// The highest stair tread the robot has reached on a staircase (-1: none).
+    pub fn highest_step(&self, stairs_entity: u32) -> i32 {
+        self.stairs.highest(0, stairs_entity)
+    }
+
+    /// The widest angle a door has reached (degrees).
+    pub fn widest_door_angle_deg(&self, door_entity: u32) -> Option<f64> {
+        self.doors.widest_deg.get(&door_entity).copied()
+    }
+
+    /// The verdict now (undecided goals count as failed).
+    pub fn verdict(&self) -> Verdict {
+        self.judge.verdict(self.time_s(), self.wall_contact_s())
+    }
+
+    /// The world.
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// The scenario.
+    pub fn scenario(&self) -> &Scenario {
+        &self.scenario
+    }
+
+    /// The events, trajectory and verdict.
+    pub fn outcome(&self) -> Outcome {
+        Outcome {
+            events: self.events.clone(),
+            trajectory: self.trajectory.clone(),
+            verdict: self.verdict(),
+            scenario_name: self.scenario.name.clone(),
+            robot_model: self.model_name.clone(),
+        }
+    }
+}
+
+/// Runs a scenario headless in a world and returns what it produced.
+pub fn run_scenario(spec: &WorldSpec, scenario: &Scenario, model: &RobotModel) -> Result<Outcome> {
+    let mut sim = Simulation::new(spec, scenario, model)?;
+    sim.run();
+    Ok(sim.outcome())
+}

@@ -2,6 +2,7 @@
 //! A thin binary over the library crates; it maps errors to exit codes
 //! (0 success, 1 the job failed, 2 bad input or usage).
 
+mod bench;
 mod building_cmd;
 mod config;
 mod convert;
@@ -39,6 +40,9 @@ enum Command {
     Register(register::RegisterArgs),
     /// Scan a building with the virtual 3D laser from one or more poses.
     Scan(scan::ScanArgs),
+    /// Benchmarks that print and save figures (ICP on CPU and GPU).
+    #[command(subcommand)]
+    Bench(bench::BenchCommand),
     /// Generate or check building descriptions.
     #[command(subcommand)]
     Building(building_cmd::BuildingCommand),
@@ -60,6 +64,7 @@ fn main() -> ExitCode {
             Command::Register(a) => register::run(a, &cfg),
             Command::Scan(a) => scan::run(a, &cfg),
             Command::Building(c) => building_cmd::run(c, &cfg),
+        Command::Bench(c) => bench::run(c),
         });
     match result {
         Ok(()) => ExitCode::SUCCESS,

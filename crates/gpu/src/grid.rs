@@ -28,9 +28,14 @@ pub(crate) struct HostGrid {
     pub keys: Vec<u32>,
     /// Hash table values: bucket id.
     pub vals: Vec<u32>,
-    /// Bucket `b` holds sorted points `start[b]..start[b + 1]`.
+    /// Sub-cells per bucket axis: each bucket is cut into `sub^3` sub-cells.
+    pub sub: u32,
+    /// Sub-cell `k` of bucket `b` holds sorted points `start[b * sub^3 + k]..start[b * sub^3 + k + 1]`.
     pub start: Vec<u32>,
 }
+
+/// Target edge of a sub-cell (metres).
+const LEAF_M: f32 = 0.05;
 
 /// The hash of a bucket key (Knuth's multiplicative hash), as in the shader.
 pub(crate) fn slot_of(key: u32, mask: u32) -> u32 {
@@ -69,23 +74,32 @@ impl HostGrid {
             )));
         }
         let dims = [span.x as u32, span.y as u32, span.z as u32];
-        let key_of = |p: Vec3| {
-            let c = ((p - origin) / bucket_size_m).floor();
-            c.x as u32 + dims[0] * (c.y as u32 + dims[1] * c.z as u32)
+        let sub = (bucket_size_m / LEAF_M).round().clamp(1.0, 8.0) as u32;
+        let sub3 = sub * sub * sub;
+        let cell_of = |p: Vec3| {
+            let g = (p - origin) / bucket_size_m;
+            let c = g.floor();
+            let f = ((g - c) * sub as f32).floor().clamp(Vec3::ZERO, Vec3::splat(sub as f32 - 1.0));
+            let key = c.x as u32 + dims[0] * (c.y as u32 + dims[1] * c.z as u32);
+            (key, f.x as u32 + sub * (f.y as u32 + sub * f.z as u32))
         };
         let mut id_of: HashMap<u32, u32> = HashMap::new();
-        let mut counts: Vec<u32> = Vec::new();
-        let ids: Vec<u32> = points
+        let slots_of: Vec<(u32, u32)> = points
             .iter()
             .map(|p| {
-                let id = *id_of.entry(key_of(*p)).or_insert_with(|| {
-                    counts.push(0);
-                    counts.len() as u32 - 1
-                });
-                counts[id as usize] += 1;
-                id
+                let (key, subcell) = cell_of(*p);
+                let next = id_of.len() as u32;
+                (*id_of.entry(key).or_insert(next), subcell)
             })
             .collect();
+        let total = id_of.len() as u64 * sub3 as u64;
+        if total > 50_000_000 {
+            return Err(GpuError::TooLarge(format!("{total} sub-cells; use larger buckets")));
+        }
+        let mut counts = vec![0u32; total as usize];
+        for (id, subcell) in &slots_of {
+            counts[(id * sub3 + subcell) as usize] += 1;
+        }
         let mut start = Vec::with_capacity(counts.len() + 1);
         let mut acc = 0u32;
         start.push(0);
@@ -97,9 +111,10 @@ impl HostGrid {
         let mut sorted = vec![[0.0f32; 4]; points.len()];
         let mut original = vec![0u32; points.len()];
         let mut sorted_normals = normals.map(|_| vec![[0.0f32; 4]; points.len()]);
-        for (i, (p, id)) in points.iter().zip(&ids).enumerate() {
-            let slot = fill[*id as usize] as usize;
-            fill[*id as usize] += 1;
+        for (i, (p, (id, subcell))) in points.iter().zip(&slots_of).enumerate() {
+            let cell = (id * sub3 + subcell) as usize;
+            let slot = fill[cell] as usize;
+            fill[cell] += 1;
             sorted[slot] = [p.x, p.y, p.z, 1.0];
             original[slot] = i as u32;
             if let (Some(out), Some(n)) = (sorted_normals.as_mut(), normals) {
@@ -130,6 +145,7 @@ impl HostGrid {
             normals: sorted_normals,
             keys,
             vals,
+            sub,
             start,
         })
     }

@@ -14,7 +14,7 @@ struct Params {
     reference: vec4<f32>,     // xyz: centring point for the sums, w: max squared distance
     dims: vec4<u32>,          // buckets per axis, w: hash mask
     counts: vec4<u32>,        // x: source points, y: mode (0 p2p, 1 p2plane), z: kernel (0 none, 1 huber, 2 cauchy), w: partials
-    kernel: vec4<f32>,        // x: kernel width k (m)
+    kernel: vec4<f32>,        // x: kernel width k (m), z: sub-cells per bucket axis
 };
 
 @group(0) @binding(0) var<uniform> params: Params;
@@ -45,25 +45,62 @@ fn bucket_of(key: u32) -> u32 {
 
 struct Hit { index: u32, d2: f32 };
 
-fn nearest(p: vec3<f32>) -> Hit {
-    var best = Hit(NONE, params.reference.w);
+// Squared distance from p to the box [lo, lo + size].
+fn box_d2(p: vec3<f32>, lo: vec3<f32>, size: f32) -> f32 {
+    let d = max(max(lo - p, p - (lo + vec3<f32>(size))), vec3<f32>(0.0));
+    return dot(d, d);
+}
+
+// Scans bucket cc: only its sub-cells that overlap the ball of the best distance so far.
+fn scan_bucket(p: vec3<f32>, cc: vec3<i32>, best: ptr<function, Hit>) {
     let dims = vec3<i32>(params.dims.xyz);
-    let g = clamp((p - params.origin.xyz) * params.origin.w, vec3<f32>(-4.0), vec3<f32>(params.dims.xyz) + vec3<f32>(4.0));
-    let c = vec3<i32>(floor(g));
-    for (var dz = -1; dz <= 1; dz++) {
-        for (var dy = -1; dy <= 1; dy++) {
-            for (var dx = -1; dx <= 1; dx++) {
-                let cc = c + vec3<i32>(dx, dy, dz);
-                if (any(cc < vec3<i32>(0)) || any(cc >= dims)) { continue; }
-                let key = u32(cc.x) + params.dims.x * (u32(cc.y) + params.dims.y * u32(cc.z));
-                let b = bucket_of(key);
-                if (b == NONE) { continue; }
-                let end = starts[b + 1u];
-                for (var j = starts[b]; j < end; j++) {
+    if (any(cc < vec3<i32>(0)) || any(cc >= dims)) { return; }
+    let size = 1.0 / params.origin.w;
+    let lo = params.origin.xyz + vec3<f32>(cc) * size;
+    if (box_d2(p, lo, size) > (*best).d2) { return; }
+    let key = u32(cc.x) + params.dims.x * (u32(cc.y) + params.dims.y * u32(cc.z));
+    let b = bucket_of(key);
+    if (b == NONE) { return; }
+    let sub = i32(params.kernel.z);
+    let leaf = size / f32(sub);
+    let reach = sqrt((*best).d2);
+    let a = clamp(vec3<i32>(floor((p - vec3<f32>(reach) - lo) / leaf)), vec3<i32>(0), vec3<i32>(sub - 1));
+    let z = clamp(vec3<i32>(floor((p + vec3<f32>(reach) - lo) / leaf)), vec3<i32>(0), vec3<i32>(sub - 1));
+    let base = b * u32(sub * sub * sub);
+    for (var sz = a.z; sz <= z.z; sz++) {
+        for (var sy = a.y; sy <= z.y; sy++) {
+            for (var sx = a.x; sx <= z.x; sx++) {
+                let k = base + u32(sx + sub * (sy + sub * sz));
+                let first = starts[k];
+                let end = starts[k + 1u];
+                if (first == end) { continue; }
+                if (box_d2(p, lo + vec3<f32>(f32(sx), f32(sy), f32(sz)) * leaf, leaf) > (*best).d2) { continue; }
+                for (var j = first; j < end; j++) {
                     let d = model[j].xyz - p;
                     let d2 = dot(d, d);
-                    if (d2 < best.d2 || (d2 == best.d2 && best.index != NONE && j < best.index)) {
-                        best = Hit(j, d2);
+                    if (d2 < (*best).d2 || (d2 == (*best).d2 && (*best).index != NONE && j < (*best).index)) {
+                        *best = Hit(j, d2);
+                    }
+                }
+            }
+        }
+    }
+}
+
+// The paper's bucket search: the query's bucket first, then its 26 neighbours (faces, edges,
+// corners), skipping buckets and sub-cells farther than the best point so far. Exact for every
+// neighbour within one bucket edge; with the bucket edge >= the correspondence gate, exact.
+fn nearest(p: vec3<f32>) -> Hit {
+    var best = Hit(NONE, params.reference.w);
+    let g = clamp((p - params.origin.xyz) * params.origin.w, vec3<f32>(-4.0), vec3<f32>(params.dims.xyz) + vec3<f32>(4.0));
+    let c = vec3<i32>(floor(g));
+    scan_bucket(p, c, &best);
+    for (var order = 1; order <= 3; order++) {
+        for (var dz = -1; dz <= 1; dz++) {
+            for (var dy = -1; dy <= 1; dy++) {
+                for (var dx = -1; dx <= 1; dx++) {
+                    if (abs(dx) + abs(dy) + abs(dz) == order) {
+                        scan_bucket(p, c + vec3<i32>(dx, dy, dz), &best);
                     }
                 }
             }

@@ -378,7 +378,7 @@ impl GpuIcp {
             ],
             dims: [g.dims[0], g.dims[1], g.dims[2], g.keys.len() as u32 - 1],
             counts: [s.len, mode, kind, groups],
-            kernel: [k, 0.0, 0.0, 0.0],
+            kernel: [k, 0.0, g.sub as f32, 0.0],
         };
         let mut times = StageTimes::default();
         let t0 = Instant::now();

@@ -100,7 +100,8 @@ pub struct IcpConfig {
     pub method: Method,
     /// The nearest-neighbour structure for correspondences.
     pub nn: NnBackend,
-    /// Bucket edge of [`NnBackend::Grid`]; correspondences farther than this may be missed.
+    /// Bucket edge of [`NnBackend::Grid`]; correspondences farther than this may be missed, so
+    /// the defaults make it as wide as the gate (the grid is then exact).
     pub bucket_size_m: f64,
     /// Iteration limit; reaching it without meeting a stop criterion is
     /// [`RegistrationError::NotConverged`].
@@ -318,97 +319,46 @@ mod tests {
 
     #[test]
     fn absurd_values_are_rejected_by_name() {
+        let with = |f: fn(&mut IcpConfig)| {
+            let mut c = IcpConfig::default();
+            f(&mut c);
+            c
+        };
         let cases: Vec<(&str, IcpConfig)> = vec![
+            ("max_iterations", with(|c| c.max_iterations = 0)),
+            ("max_iterations", with(|c| c.max_iterations = 10_001)),
             (
-                "max_iterations",
-                IcpConfig {
-                    max_iterations: 0,
-                    ..Default::default()
-                },
-            ),
-            (
-                "max_iterations",
-                IcpConfig {
-                    max_iterations: 10_001,
-                    ..Default::default()
-                },
+                "max_correspondence_distance_m",
+                with(|c| c.max_correspondence_distance_m = f64::NAN),
             ),
             (
                 "max_correspondence_distance_m",
-                IcpConfig {
-                    max_correspondence_distance_m: f64::NAN,
-                    ..Default::default()
-                },
-            ),
-            (
-                "max_correspondence_distance_m",
-                IcpConfig {
-                    max_correspondence_distance_m: -1.0,
-                    ..Default::default()
-                },
+                with(|c| c.max_correspondence_distance_m = -1.0),
             ),
             (
                 "final_correspondence_distance_m",
-                IcpConfig {
-                    final_correspondence_distance_m: 2.0,
-                    ..Default::default()
-                },
+                with(|c| c.final_correspondence_distance_m = 2.0),
             ),
-            (
-                "bucket_size_m",
-                IcpConfig {
-                    bucket_size_m: 0.0,
-                    ..Default::default()
-                },
-            ),
-            (
-                "source_voxel_m",
-                IcpConfig {
-                    source_voxel_m: Some(0.0),
-                    ..Default::default()
-                },
-            ),
+            ("bucket_size_m", with(|c| c.bucket_size_m = 0.0)),
+            ("source_voxel_m", with(|c| c.source_voxel_m = Some(0.0))),
             (
                 "target_voxel_m",
-                IcpConfig {
-                    target_voxel_m: Some(f64::INFINITY),
-                    ..Default::default()
-                },
+                with(|c| c.target_voxel_m = Some(f64::INFINITY)),
             ),
             (
                 "reject_worst_fraction",
-                IcpConfig {
-                    reject_worst_fraction: 0.5,
-                    ..Default::default()
-                },
+                with(|c| c.reject_worst_fraction = 0.5),
             ),
             (
                 "kernel.k_m",
-                IcpConfig {
-                    kernel: RobustKernel::Cauchy { k_m: 0.0 },
-                    ..Default::default()
-                },
+                with(|c| c.kernel = RobustKernel::Cauchy { k_m: 0.0 }),
             ),
-            (
-                "neighbours_k",
-                IcpConfig {
-                    neighbours_k: 2,
-                    ..Default::default()
-                },
-            ),
-            (
-                "min_fitness",
-                IcpConfig {
-                    min_fitness: 1.5,
-                    ..Default::default()
-                },
-            ),
+            ("neighbours_k", with(|c| c.neighbours_k = 2)),
+            ("normal_voxel_m", with(|c| c.normal_voxel_m = -0.1)),
+            ("min_fitness", with(|c| c.min_fitness = 1.5)),
             (
                 "translation_epsilon_m",
-                IcpConfig {
-                    translation_epsilon_m: -1e-3,
-                    ..Default::default()
-                },
+                with(|c| c.translation_epsilon_m = -1e-3),
             ),
         ];
         for (name, c) in cases {

@@ -1,7 +1,7 @@
 //! Input preparation: the finite points of a cloud (with the error rules for missing returns)
 //! and a fast positions-only voxel downsampling on the sparse cell index.
 
-use crate::cells::{pack, CellTable, MAX_CELLS};
+use crate::cells::{sort_into_cells, Lattice};
 use crate::error::{RegistrationError, Result};
 use cloud::PointCloud;
 use glam::{DVec3, Vec3};
@@ -38,49 +38,19 @@ pub(crate) fn voxel_downsample(
     voxel_m: f64,
     name: &'static str,
 ) -> Result<Vec<Vec3>> {
-    if !(voxel_m.is_finite() && voxel_m > 1e-6) {
-        return Err(RegistrationError::invalid(
-            name,
-            voxel_m,
-            "must be a finite length above 1 micrometre",
-        ));
-    }
-    let Some(first) = points.first() else {
-        return Ok(Vec::new());
-    };
-    let (lo, hi) = points
-        .iter()
-        .fold((*first, *first), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
-    let (lo, hi) = (lo.as_dvec3(), hi.as_dvec3());
-    let dims_f = (((hi - lo) / voxel_m).floor() + 1.0).to_array();
-    let cells = dims_f[0] * dims_f[1] * dims_f[2];
-    if cells > MAX_CELLS || cells.is_nan() {
-        return Err(RegistrationError::invalid(
-            name,
-            voxel_m,
-            format!("too small for the cloud's extent: {cells:.3e} voxels (at most 2^40)"),
-        ));
-    }
-    let dims = dims_f.map(|d| d as i64);
-    let inv = 1.0 / voxel_m;
-    let mut table = CellTable::with_capacity(points.len() / 4 + 16);
-    let mut acc: Vec<(DVec3, u32)> = Vec::new();
-    for p in points {
-        let rel = p.as_dvec3() - lo;
-        let c = (rel * inv).floor();
-        let c = [c.x as i64, c.y as i64, c.z as i64];
-        let c = [0, 1, 2].map(|a| c[a].clamp(0, dims[a] - 1));
-        let id = table.get_or_insert(pack(c, dims), acc.len() as u32) as usize;
-        if id == acc.len() {
-            acc.push((DVec3::ZERO, 0));
-        }
-        acc[id].0 += rel;
-        acc[id].1 += 1;
-    }
-    debug_assert_eq!(table.len(), acc.len());
-    Ok(acc
-        .iter()
-        .map(|(sum, n)| (lo + *sum / *n as f64).as_vec3())
+    let lattice = Lattice::new(points, voxel_m, name)?;
+    let (_, start, order) = sort_into_cells(points, &lattice);
+    let origin = Vec3::from(lattice.origin).as_dvec3();
+    Ok(start
+        .windows(2)
+        .map(|w| {
+            let members = &order[w[0] as usize..w[1] as usize];
+            let sum: DVec3 = members
+                .iter()
+                .map(|&i| points[i as usize].as_dvec3() - origin)
+                .sum();
+            (origin + sum / members.len() as f64).as_vec3()
+        })
         .collect())
 }
 

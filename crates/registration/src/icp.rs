@@ -1,13 +1,13 @@
 //! The ICP loop (Besl & McKay 1992, as in the 2009 paper): correspondences, one step of the
-//! chosen method, composition of the increment, stop criteria; and the prepared [`Target`].
+//! chosen method, composition of the increment, stop criteria.
 
-use crate::config::{IcpConfig, Method, NnBackend};
+use crate::config::{IcpConfig, Method};
 use crate::correspondences::Correspondences;
-use crate::covariance::{estimate_surface, Surface};
+use crate::covariance::estimate_surface;
 use crate::downsample::{finite_points, voxel_downsample};
 use crate::error::{RegistrationError, Result};
 use crate::linalg::{increment, motion_size};
-use crate::nearest::{NearestNeighbors, NnIndex};
+use crate::target::Target;
 use crate::{gicp, point_to_plane, point_to_point};
 use cloud::PointCloud;
 use glam::{Affine3A, DAffine3, DMat4, Mat3, Vec3};
@@ -53,103 +53,6 @@ pub struct IcpResult {
     pub fitness: f64,
     /// Wall time of the whole call (target preparation included for [`register`]).
     pub total_ms: f64,
-}
-
-/// A target cloud prepared for registration: its points (downsampled if configured), their
-/// nearest-neighbour structure and, for point-to-plane and GICP, their normals and
-/// covariances. Build it once and register many sources against it with [`register_to`].
-pub struct Target {
-    points: Vec<Vec3>,
-    index: NnIndex,
-    normals: Vec<Vec3>,
-    covariances: Vec<Mat3>,
-    method: Method,
-    build_ms: f64,
-}
-
-impl Target {
-    /// Prepares `cloud` as a target with the preparation settings of `config` (`method`, `nn`,
-    /// `bucket_size_m`, `target_voxel_m`, `normal_voxel_m`, `neighbours_k`). For point-to-plane
-    /// and GICP, points whose neighbourhood is degenerate are left out.
-    pub fn new(cloud: &PointCloud, config: &IcpConfig) -> Result<Target> {
-        config.validate()?;
-        let start = Instant::now();
-        let mut points = finite_points(cloud, "target")?;
-        if let Some(v) = config.target_voxel_m {
-            points = voxel_downsample(&points, v, "target_voxel_m")?;
-        }
-        let (mut normals, mut covariances) = (Vec::new(), Vec::new());
-        if config.method.needs_surface() {
-            let gicp = config.method == Method::Gicp;
-            let Surface {
-                normals: n,
-                covariances: c,
-            } = estimate_surface(&points, config.target_voxel_m, config, gicp)?;
-            let keep: Vec<usize> = (0..points.len()).filter(|&i| n[i] != Vec3::ZERO).collect();
-            points = keep.iter().map(|&i| points[i]).collect();
-            normals = keep.iter().map(|&i| n[i]).collect();
-            if gicp {
-                covariances = keep.iter().map(|&i| c[i]).collect();
-            }
-            if points.is_empty() {
-                return Err(RegistrationError::EmptyCloud {
-                    which: "target (no point with a non-degenerate neighbourhood)".into(),
-                });
-            }
-        }
-        let index = NnIndex::build(&points, config.nn, config.bucket_size_m)?;
-        Ok(Target {
-            points,
-            index,
-            normals,
-            covariances,
-            method: config.method,
-            build_ms: start.elapsed().as_secs_f64() * 1e3,
-        })
-    }
-
-    /// The target points used for correspondences.
-    pub fn points(&self) -> &[Vec3] {
-        &self.points
-    }
-
-    /// Number of target points used.
-    pub fn len(&self) -> usize {
-        self.points.len()
-    }
-
-    /// True if no point is used (never for a built target).
-    pub fn is_empty(&self) -> bool {
-        self.points.is_empty()
-    }
-
-    /// The nearest-neighbour backend in use.
-    pub fn backend(&self) -> NnBackend {
-        match self.index {
-            NnIndex::Grid(_) => NnBackend::Grid,
-            NnIndex::KdTree(_) => NnBackend::KdTree,
-        }
-    }
-
-    /// The nearest target point (index into [`Target::points`], squared distance) within
-    /// `max_distance_m`.
-    pub fn nearest(&self, query: Vec3, max_distance_m: f32) -> Option<(u32, f32)> {
-        self.index.nearest(query, max_distance_m)
-    }
-
-    /// Time spent preparing the target.
-    pub fn build_ms(&self) -> f64 {
-        self.build_ms
-    }
-
-    /// Whether the target was prepared with what `method` needs.
-    fn supports(&self, method: Method) -> bool {
-        match method {
-            Method::PointToPoint => true,
-            Method::PointToPlane => self.method != Method::PointToPoint,
-            Method::Gicp => self.method == Method::Gicp,
-        }
-    }
 }
 
 /// Registers `source` to `target`: returns `target_from_source`, starting from the guess.
@@ -202,7 +105,8 @@ pub fn register_to(
             f64::NAN,
             format!(
                 "the target was prepared for {} and has no surface estimates for {}",
-                target.method, config.method
+                target.prepared_for(),
+                config.method
             ),
         ));
     }
@@ -277,8 +181,8 @@ impl Loop<'_> {
             let it_start = Instant::now();
             let t32 = Affine3A::from_mat4(DMat4::from(t).as_mat4());
             self.corr.find(
-                &self.target.index,
-                &self.target.points,
+                self.target.index(),
+                self.target.points(),
                 self.source,
                 &t32,
                 gate as f32,
@@ -364,7 +268,7 @@ impl Loop<'_> {
                 let s = point_to_point::accumulate(
                     &self.corr,
                     self.source,
-                    &target.points,
+                    target.points(),
                     t32,
                     c.kernel,
                 );
@@ -374,8 +278,8 @@ impl Loop<'_> {
                 let s = point_to_plane::accumulate(
                     &self.corr,
                     self.source,
-                    &target.points,
-                    &target.normals,
+                    target.points(),
+                    target.normals(),
                     t32,
                     c.kernel,
                 );
@@ -386,8 +290,8 @@ impl Loop<'_> {
                     &self.corr,
                     self.source,
                     self.source_cov,
-                    &target.points,
-                    &target.covariances,
+                    target.points(),
+                    target.covariances(),
                     t,
                     c.kernel,
                 );

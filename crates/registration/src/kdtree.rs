@@ -63,6 +63,12 @@ impl KdTree {
     }
 }
 
+impl std::fmt::Debug for KdTree {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("KdTree").field("points", &self.len).finish()
+    }
+}
+
 impl NearestNeighbors for KdTree {
     #[inline]
     fn nearest(&self, query: Vec3, max_distance_m: f32) -> Option<(u32, f32)> {

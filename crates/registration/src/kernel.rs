@@ -29,6 +29,8 @@ impl RobustKernel {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::point_to_point::CorrelationSums;
+    use glam::{DAffine3, DVec3};
 
     #[test]
     fn weights_follow_the_kernels() {
@@ -41,5 +43,38 @@ mod tests {
         assert!((c.weight(0.0) - 1.0).abs() < 1e-12);
         assert!((c.weight(0.1) - 0.5).abs() < 1e-12);
         assert!(c.weight(1.0) < 0.01);
+    }
+
+    #[test]
+    fn kernel_weights_shrug_off_gross_outliers_in_a_step() {
+        // 200 exact pairs shifted by 2 cm, plus 20 pairs 0.4 m off in y.
+        let truth = DAffine3::from_translation(DVec3::new(0.02, 0.0, 0.0));
+        let pairs: Vec<(DVec3, DVec3)> = (0..220)
+            .map(|i| {
+                let f = i as f64;
+                let d = DVec3::new((f * 0.7).sin() * 3.0, (f * 0.3).cos() * 2.0, f * 0.01);
+                let m = truth.transform_point3(d);
+                (
+                    d,
+                    if i < 200 {
+                        m
+                    } else {
+                        m + DVec3::new(0.0, 0.4, 0.0)
+                    },
+                )
+            })
+            .collect();
+        let solve = |kernel: RobustKernel| {
+            let mut s = CorrelationSums::default();
+            for (d, m) in &pairs {
+                s.add(*d, *m, kernel.weight(d.distance(*m)));
+            }
+            let t = s.solve().expect("solvable");
+            (t.translation - truth.translation).length()
+        };
+        let plain = solve(RobustKernel::None);
+        let cauchy = solve(RobustKernel::Cauchy { k_m: 0.03 });
+        assert!(plain > 0.01, "{plain}");
+        assert!(cauchy < plain / 10.0, "{cauchy} vs {plain}");
     }
 }

@@ -9,7 +9,8 @@
 use crate::config::IcpConfig;
 use crate::downsample::{finite_points, voxel_downsample};
 use crate::error::{RegistrationError, Result};
-use crate::icp::{register_to, IcpResult, Target};
+use crate::icp::{register_to, IcpResult};
+use crate::target::Target;
 use cloud::PointCloud;
 use glam::{DAffine3, Vec3};
 use serde::{Deserialize, Serialize};

@@ -21,6 +21,19 @@ fn cpu_ns() -> u64 {
         .unwrap_or(0)
 }
 
+/// CPU time of the whole process (all threads), ms, 10 ms resolution.
+fn process_cpu_ms() -> f64 {
+    std::fs::read_to_string("/proc/self/stat")
+        .ok()
+        .and_then(|s| {
+            let rest = s.rsplit_once(')')?.1.split_whitespace().collect::<Vec<_>>();
+            let utime: f64 = rest.get(11)?.parse().ok()?;
+            let stime: f64 = rest.get(12)?.parse().ok()?;
+            Some((utime + stime) * 10.0)
+        })
+        .unwrap_or(0.0)
+}
+
 fn ms(t: Instant) -> f64 {
     t.elapsed().as_secs_f64() * 1e3
 }
@@ -92,11 +105,15 @@ fn measure() {
 
     let run = |name: &str, c: &IcpConfig| {
         let mut best: Option<(f64, f64, IcpResult)> = None;
+        let mut best_cpu = f64::MAX;
         for _ in 0..3 {
             let t = Instant::now();
             let prepared = Target::new(&target, c).expect("target");
             let prep = ms(t);
-            let r = match register_to(&prepared, &source, start, c) {
+            let cpu = process_cpu_ms();
+            let r = register_to(&prepared, &source, start, c);
+            best_cpu = best_cpu.min(process_cpu_ms() - cpu);
+            let r = match r {
                 Ok(r) => r,
                 Err(RegistrationError::NotConverged { result, .. }) => *result,
                 Err(e) => panic!("{name}: {e}"),
@@ -110,14 +127,38 @@ fn measure() {
         let (et, er) = pose_error(&r.target_from_source, &truth);
         let n = r.iterations.len();
         let mean = r.iterations.iter().map(|i| i.time_ms).sum::<f64>() / n as f64;
+        let threads = rayon::current_num_threads() as f64;
         println!(
-            "{name}: {:.0} ms (target {prep:.0} + register {reg:.0}), {n} it at {mean:.1} ms, error {:.1} mm {:.3} deg, converged {}",
+            "{name}: {:.0} ms (target {prep:.0} + register {reg:.0}), {n} it at {mean:.1} ms (CPU time / {threads} threads: {:.1} ms), error {:.1} mm {:.3} deg, converged {}",
             prep + reg,
+            best_cpu / threads / n as f64,
             et * 1e3,
             er,
             r.converged
         );
     };
+    println!("\n-- one point-to-point iteration at full resolution from the start (best of 5)");
+    let one = IcpConfig {
+        max_iterations: 1,
+        ..IcpConfig::point_to_point()
+    };
+    let prepared = Target::new(&target, &one).expect("target");
+    let mut best = (f64::MAX, 0.0);
+    for _ in 0..5 {
+        let t = Instant::now();
+        let r = match register_to(&prepared, &source, start, &one) {
+            Err(RegistrationError::NotConverged { result, .. }) => *result,
+            other => panic!("{other:?}"),
+        };
+        if ms(t) < best.0 {
+            best = (ms(t), r.iterations[0].time_ms);
+        }
+    }
+    println!(
+        "register_to: {:.1} ms, of which the iteration {:.1} ms",
+        best.0, best.1
+    );
+
     println!(
         "\n-- point-to-point at full resolution, 0.5 m gate, 10 iterations (best of 3, 2 threads)"
     );
@@ -171,4 +212,20 @@ fn measure() {
         }
     }
     run("defaults", &IcpConfig::default());
+    for bucket in [0.3, 0.5] {
+        run(
+            &format!("defaults, grid {bucket} m"),
+            &IcpConfig {
+                bucket_size_m: bucket,
+                ..IcpConfig::default()
+            },
+        );
+    }
+    run(
+        "defaults, kdtree",
+        &IcpConfig {
+            nn: NnBackend::KdTree,
+            ..IcpConfig::default()
+        },
+    );
 }

@@ -1,1 +1,108 @@
-//! Semantic maps (work in progress).
+//! Semantic maps for semsim: from a registered point cloud of a building to walls, floor,
+//! ceiling, doors and stairs with their relations (Będkowski & Masłowski 2009, section 1.3),
+//! and the evaluation of such a map against the building it was scanned in.
+//!
+//! # Stages (one module each, one config section each in [`SemanticConfig`])
+//! 1. Levelling, floor and ceiling ([`FloorCeilingConfig`]): the floor plane is fitted and
+//!    levelled, floor and ceiling heights come from a z histogram.
+//! 2. Localisation, as the paper's Fig. 3: the XY projection image of a height band under the
+//!    ceiling ([`ProjectionConfig`]), the 8-neighbour noise filter ([`noise_filter`]),
+//!    dilation ([`dilate`]), skeletonisation ([`skeletonize`], Zhang-Suen thinning), the
+//!    progressive probabilistic Hough transform ([`hough_lines_p`], as OpenCV's `HoughLinesP`)
+//!    and merging of collinear segments ([`MergeConfig`]): the wall prerequisites.
+//! 3. Identification: walls from the points near each prerequisite's vertical plane
+//!    ([`WallConfig`]); door openings, lintels ([`OpeningConfig`]) and leaves ([`DoorConfig`]);
+//!    staircases from level regions of a height map ([`StairsConfig`]); per-point labels.
+//! 4. The semantic net ([`NetConfig`]): entities with ids, oriented boxes, support, confidence
+//!    and rules; relations (parallel, orthogonal, above, under, equal height, available inside,
+//!    connected via joint) computed from the geometry.
+//!
+//! [`build_semantic_map`] runs them all and returns a [`MapOutput`]: the [`SemanticMap`]
+//! (versioned JSON, `schema/semantic_map.schema.json`), per-point labels, the intermediate
+//! images and per-stage timings. [`evaluate`] scores a map against a [`scanner::Building`].
+//!
+//! # Confidence
+//! Walls: the fraction of their length with face points (x 0.85 if only one face was seen).
+//! Door openings and lintels: the fraction of the opening with a lintel above (times the
+//! see-through fraction for one-sided walls). Doors: the leaf's covered fraction. Stairs: found
+//! levels over steps. Floor and ceiling: 1.
+//!
+//! ```
+//! use cloud::PointCloud;
+//! use glam::Vec3;
+//! use semantic::{build_semantic_map, EntityClass, SemanticConfig};
+//!
+//! // A 6 m x 4 m room, 2.6 m high: floor, ceiling and four walls, points every 4 cm.
+//! let mut pts = Vec::new();
+//! let (w, d, h) = (6.0f32, 4.0f32, 2.6f32);
+//! let step = 0.04f32;
+//! for i in 0..=(w / step) as i32 {
+//!     for j in 0..=(d / step) as i32 {
+//!         let (x, y) = (i as f32 * step, j as f32 * step);
+//!         pts.push(Vec3::new(x, y, 0.0));
+//!         pts.push(Vec3::new(x, y, h));
+//!     }
+//! }
+//! for k in 0..=(h / step) as i32 {
+//!     let z = k as f32 * step;
+//!     for i in 0..=(w / step) as i32 {
+//!         pts.push(Vec3::new(i as f32 * step, 0.0, z));
+//!         pts.push(Vec3::new(i as f32 * step, d, z));
+//!     }
+//!     for j in 0..=(d / step) as i32 {
+//!         pts.push(Vec3::new(0.0, j as f32 * step, z));
+//!         pts.push(Vec3::new(w, j as f32 * step, z));
+//!     }
+//! }
+//! let out = build_semantic_map(&PointCloud::from_points(pts), &SemanticConfig::default()).unwrap();
+//! assert_eq!(out.map.of_class(EntityClass::Wall).count(), 4);
+//! assert_eq!(out.map.of_class(EntityClass::Floor).count(), 1);
+//! assert!((out.ceiling_z_m.unwrap() - 2.6).abs() < 0.01);
+//! let text = out.map.to_json_string();
+//! assert!(text.contains("\"format\": \"semsim.semantic_map\""));
+//! ```
+
+mod dilation;
+mod doors;
+mod error;
+mod evaluate;
+mod floor_ceiling;
+mod hough;
+mod labels;
+mod map;
+mod merge;
+mod net;
+mod noise_filter;
+mod openings;
+mod pipeline;
+mod points;
+mod projection;
+mod render;
+mod skeleton;
+mod stairs;
+mod walls;
+
+pub use dilation::{dilate, DilationConfig};
+pub use doors::DoorConfig;
+pub use error::{Result, SemanticError};
+pub use evaluate::{
+    evaluate, evaluate_labels, evaluate_with, ClassScore, DoorMatch, EvalConfig, Evaluation,
+    LabelEvaluation, StairsMatch, WallMatch,
+};
+pub use floor_ceiling::FloorCeilingConfig;
+pub use hough::{hough_lines_p, HoughConfig, HoughParams, PixelSegment, Unvote};
+pub use labels::LabelConfig;
+pub use map::{
+    DoorInfo, Entity, EntityClass, HingeEdge, OpeningInfo, OrientedBox, Relation, RelationType,
+    SemanticMap, StairsInfo, SwingSide, WallInfo, MAP_FORMAT, MAP_VERSION,
+};
+pub use merge::{MergeConfig, Segment};
+pub use net::NetConfig;
+pub use noise_filter::{noise_filter, NoiseFilterConfig};
+pub use openings::OpeningConfig;
+pub use pipeline::{build_semantic_map, MapOutput, SemanticConfig, StageTime};
+pub use projection::{HeightBand, ImageFrame, ProjectionConfig, ProjectionValue};
+pub use render::{class_color, render_labels, render_segments, render_top_view};
+pub use skeleton::skeletonize;
+pub use stairs::StairsConfig;
+pub use walls::WallConfig;

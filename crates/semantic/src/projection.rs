@@ -199,6 +199,7 @@ impl Mask {
             && self.data[y as usize * self.width + x as usize]
     }
 
+    #[cfg(test)]
     pub fn count(&self) -> usize {
         self.data.iter().filter(|&&v| v).count()
     }

@@ -3,20 +3,22 @@
 //!
 //! A laser mounted below the upper treads sees a staircase as risers (short parallel lines
 //! across it at equal spacing) and side faces with a stepped top edge. Both show in a height
-//! map: each pixel's highest point between the floor and `max_height_m` (wall slabs left out).
-//! Pixels of equal height (within `level_tolerance_m`) form level regions; regions whose heights
-//! differ by one or two rises and that lie within a run of each other chain into a candidate.
-//! A candidate is a staircase if its levels sit at whole multiples of one rise above the floor
-//! (`min_steps` of them at least) and climb steadily in one direction:
+//! map (`cell_m` pixels): each pixel's highest point between the floor and `max_height_m`, wall
+//! slabs left out. Pixels within two pixels of each other form blobs (sparse scans leave gaps).
+//! A blob is a staircase if the heights of its pixels pile up at whole multiples of one rise
+//! above the floor (`min_steps` levels at least; a level is a peak of the height histogram
+//! over a 5 cm window) and the levels climb steadily in one direction:
 //!
-//! - rise: slope of level height over level index (least squares);
-//! - direction: slope of the level centroids over the index, snapped to a wall direction;
-//! - run: slope of the front edges (the nearest point along the direction that is higher than
-//!   half a rise below level k) over k; start: the first front edge;
-//! - width: the extent across the direction; landing: the top level's depth beyond one run.
+//! - rise: slope of the level heights over their index (least squares);
+//! - direction: slope of the level centroids over the index, snapped to a wall's direction or
+//!   normal within `snap_direction_deg`;
+//! - run: slope of the front edges over the index (front edge k: the nearest point along the
+//!   direction that stands higher than half a rise under level k); start: the first front edge;
+//! - width: the extent across the direction (1 % to 99 % of the points); landing: the top
+//!   level's depth beyond one run. The step count is the top level's index.
 
 use crate::error::{check_range, Result};
-use crate::points::{linear_fit, median, quantile};
+use crate::points::{linear_fit, quantile};
 use crate::projection::ImageFrame;
 use crate::walls::{Scene, WallFit};
 use glam::DVec2;
@@ -26,6 +28,8 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct StairsConfig {
+    /// Pixel edge of the height map.
+    pub cell_m: f64,
     /// Fewest steps of a staircase.
     pub min_steps: u32,
     /// Plausible step heights.
@@ -34,9 +38,7 @@ pub struct StairsConfig {
     pub run_m: [f64; 2],
     /// Highest tread above the floor.
     pub max_height_m: f64,
-    /// Neighbouring pixels this close in height are one level.
-    pub level_tolerance_m: f64,
-    /// Smallest level region.
+    /// Fewest pixels of a level.
     pub min_level_pixels: usize,
     /// Narrowest staircase.
     pub min_width_m: f64,
@@ -47,11 +49,11 @@ pub struct StairsConfig {
 impl Default for StairsConfig {
     fn default() -> Self {
         StairsConfig {
+            cell_m: 0.05,
             min_steps: 3,
             rise_m: [0.08, 0.25],
             run_m: [0.15, 0.5],
             max_height_m: 2.6,
-            level_tolerance_m: 0.03,
             min_level_pixels: 3,
             min_width_m: 0.4,
             snap_direction_deg: 10.0,
@@ -61,13 +63,14 @@ impl Default for StairsConfig {
 
 impl StairsConfig {
     pub(crate) fn validate(&self) -> Result<()> {
+        check_range("stairs.cell_m", self.cell_m, 1e-3, 10.0, "within 0.001..10 m")?;
         check_range("stairs.min_steps", self.min_steps as f64, 2.0, 1000.0, "within 2..1000")?;
         check_range("stairs.rise_m[0]", self.rise_m[0], 0.01, 1.0, "within 0.01..1 m")?;
         check_range("stairs.rise_m[1]", self.rise_m[1], self.rise_m[0], 1.0, "within rise_m[0]..1 m")?;
         check_range("stairs.run_m[0]", self.run_m[0], 0.01, 2.0, "within 0.01..2 m")?;
         check_range("stairs.run_m[1]", self.run_m[1], self.run_m[0], 2.0, "within run_m[0]..2 m")?;
         check_range("stairs.max_height_m", self.max_height_m, 0.1, 100.0, "within 0.1..100 m")?;
-        check_range("stairs.level_tolerance_m", self.level_tolerance_m, 1e-3, 0.5, "within 0.001..0.5 m")?;
+        check_range("stairs.min_level_pixels", self.min_level_pixels as f64, 1.0, 1e6, "at least 1")?;
         check_range("stairs.min_width_m", self.min_width_m, 0.0, 100.0, "within 0..100 m")?;
         check_range("stairs.snap_direction_deg", self.snap_direction_deg, 0.0, 45.0, "within 0..45 deg")
     }
@@ -101,17 +104,18 @@ impl Staircase {
     }
 }
 
-struct Region {
-    pixels: Vec<usize>,
-    height: f64,
-    lo: (usize, usize),
-    hi: (usize, usize),
-}
-
 /// Finds the staircases.
-pub(crate) fn find_stairs(sc: &Scene, frame: &ImageFrame, walls: &[WallFit], c: &StairsConfig) -> Vec<Staircase> {
+pub(crate) fn find_stairs(sc: &Scene, image: &ImageFrame, walls: &[WallFit], c: &StairsConfig, max_pixels: u64) -> Vec<Staircase> {
+    // The height map covers the projection image's area at its own resolution.
+    let scale = image.resolution_m / c.cell_m;
+    let own = ImageFrame {
+        origin_m: image.origin_m,
+        resolution_m: c.cell_m,
+        width_px: (image.width_px as f64 * scale).ceil().max(1.0) as u32,
+        height_px: (image.height_px as f64 * scale).ceil().max(1.0) as u32,
+    };
+    let frame = &if (own.len() as u64) <= max_pixels { own } else { *image };
     let (w, h) = (frame.width_px as usize, frame.height_px as usize);
-    let res = frame.resolution_m;
     // Wall slabs (and a margin) are left out of the height map.
     let mut excluded = vec![false; w * h];
     for wall in walls {
@@ -152,223 +156,271 @@ pub(crate) fn find_stairs(sc: &Scene, frame: &ImageFrame, walls: &[WallFit], c: 
             hmax[k] = p.z;
         }
     }
-    // Level regions: 4-connected pixels of nearly equal height.
-    let mut region_of = vec![u32::MAX; w * h];
-    let mut regions: Vec<Region> = Vec::new();
-    let tol = c.level_tolerance_m as f32;
+    // Blobs: pixels of the height map within two pixels of each other.
+    let mut blob_of = vec![u32::MAX; w * h];
+    let mut blobs: Vec<Vec<usize>> = Vec::new();
     for start in 0..w * h {
-        if hmax[start].is_nan() || region_of[start] != u32::MAX {
+        if hmax[start].is_nan() || blob_of[start] != u32::MAX {
             continue;
         }
-        let id = regions.len() as u32;
+        let id = blobs.len() as u32;
+        blob_of[start] = id;
         let mut stack = vec![start];
-        region_of[start] = id;
         let mut pixels = Vec::new();
         while let Some(k) = stack.pop() {
             pixels.push(k);
-            let (x, y) = (k % w, k / w);
-            let mut visit = |n: usize| {
-                if region_of[n] == u32::MAX && !hmax[n].is_nan() && (hmax[n] - hmax[k]).abs() <= tol {
-                    region_of[n] = id;
-                    stack.push(n);
+            let (x, y) = ((k % w) as isize, (k / w) as isize);
+            for dy in -2..=2isize {
+                for dx in -2..=2isize {
+                    let (nx, ny) = (x + dx, y + dy);
+                    if nx < 0 || ny < 0 || nx >= w as isize || ny >= h as isize {
+                        continue;
+                    }
+                    let n = ny as usize * w + nx as usize;
+                    if blob_of[n] == u32::MAX && !hmax[n].is_nan() {
+                        blob_of[n] = id;
+                        stack.push(n);
+                    }
                 }
-            };
-            if x > 0 {
-                visit(k - 1);
-            }
-            if x + 1 < w {
-                visit(k + 1);
-            }
-            if y > 0 {
-                visit(k - w);
-            }
-            if y + 1 < h {
-                visit(k + w);
             }
         }
-        let mut hs: Vec<f64> = pixels.iter().map(|&k| hmax[k] as f64).collect();
-        let height = median(&mut hs).unwrap_or(0.0) - sc.floor;
-        let lo = pixels.iter().fold((usize::MAX, usize::MAX), |a, &k| (a.0.min(k % w), a.1.min(k / w)));
-        let hi = pixels.iter().fold((0, 0), |a, &k| (a.0.max(k % w), a.1.max(k / w)));
-        regions.push(Region { pixels, height, lo, hi });
+        blobs.push(pixels);
     }
-    // Chain regions one or two rises apart and within a run of each other.
-    let reach = (c.run_m[1] / res).ceil() as usize + 1;
-    let keep: Vec<usize> = (0..regions.len()).filter(|&r| regions[r].pixels.len() >= c.min_level_pixels).collect();
-    let mut parent: Vec<usize> = (0..regions.len()).collect();
-    fn root(p: &mut [usize], mut i: usize) -> usize {
-        while p[i] != i {
-            p[i] = p[p[i]];
-            i = p[i];
-        }
-        i
-    }
-    for (ai, &a) in keep.iter().enumerate() {
-        for &b in &keep[ai + 1..] {
-            let (ra, rb) = (&regions[a], &regions[b]);
-            let dh = (ra.height - rb.height).abs();
-            if dh < c.rise_m[0] * 0.8 || dh > c.rise_m[1] * 2.2 {
-                continue;
-            }
-            let gap_x = rb.lo.0.saturating_sub(ra.hi.0).max(ra.lo.0.saturating_sub(rb.hi.0));
-            let gap_y = rb.lo.1.saturating_sub(ra.hi.1).max(ra.lo.1.saturating_sub(rb.hi.1));
-            if gap_x > reach || gap_y > reach {
-                continue;
-            }
-            let near = ra.pixels.iter().any(|&p| {
-                rb.pixels.iter().any(|&q| {
-                    let (dx, dy) = ((p % w).abs_diff(q % w), (p / w).abs_diff(q / w));
-                    dx * dx + dy * dy <= reach * reach
-                })
-            });
-            if near {
-                let (x, y) = (root(&mut parent, a), root(&mut parent, b));
-                parent[x] = y;
-            }
+    // The points of each blob.
+    let mut blob_points: Vec<Vec<usize>> = vec![Vec::new(); blobs.len()];
+    for (i, &px) in pixel_of_point.iter().enumerate() {
+        if px != u32::MAX {
+            blob_points[blob_of[px as usize] as usize].push(i);
         }
     }
-    let mut clusters: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
-    for &r in &keep {
-        let k = root(&mut parent, r);
-        clusters.entry(k).or_default().push(r);
+    let mut directions: Vec<DVec2> = Vec::new();
+    for wall in walls {
+        let d = wall.line.dir;
+        for cand in [d, d.perp(), -d, -d.perp()] {
+            if !directions.iter().any(|e| e.angle_to(cand).abs().to_degrees() < c.snap_direction_deg) {
+                directions.push(cand);
+            }
+        }
     }
     let mut out = Vec::new();
-    for members in clusters.values() {
-        if members.len() < c.min_steps as usize {
+    for (pixels, members) in blobs.iter().zip(&blob_points) {
+        if pixels.len() < (c.min_steps as usize) * c.min_level_pixels || members.len() < 20 {
             continue;
         }
-        if let Some(s) = analyse(members, &regions, &region_of, &pixel_of_point, sc, frame, walls, c) {
-            out.push(s);
+        let xy: Vec<DVec2> = members.iter().map(|&i| DVec2::new(sc.points[i].x as f64, sc.points[i].y as f64)).collect();
+        let mut cands = directions.clone();
+        if let Some((_, d)) = crate::points::fit_line(&xy) {
+            for cand in [d, d.perp(), -d, -d.perp()] {
+                if !cands.iter().any(|e| e.angle_to(cand).abs().to_degrees() < c.snap_direction_deg) {
+                    cands.push(cand);
+                }
+            }
+        }
+        let pts: Vec<(DVec2, f64)> = members.iter().zip(&xy).map(|(&i, q)| (*q, sc.points[i].z as f64 - sc.floor)).collect();
+        let best = cands
+            .iter()
+            .filter_map(|&dir| profile(&pts, dir, c))
+            .max_by(|a, b| a.score.total_cmp(&b.score));
+        if let Some(p) = best {
+            out.push(finish(&pts, p, c));
         }
     }
     out
 }
 
-#[allow(clippy::too_many_arguments)]
-fn analyse(
-    members: &[usize],
-    regions: &[Region],
-    region_of: &[u32],
-    pixel_of_point: &[u32],
-    sc: &Scene,
-    frame: &ImageFrame,
-    walls: &[WallFit],
-    c: &StairsConfig,
-) -> Option<Staircase> {
-    let w = frame.width_px as usize;
-    // Rise: the median of the gaps between consecutive distinct heights in the plausible range.
-    let mut hs: Vec<f64> = members.iter().map(|&r| regions[r].height).collect();
-    hs.sort_by(f64::total_cmp);
-    let mut gaps: Vec<f64> = hs
-        .windows(2)
-        .map(|p| p[1] - p[0])
-        .filter(|g| *g >= c.rise_m[0] && *g <= c.rise_m[1])
+/// A staircase profile along one direction.
+struct Profile {
+    dir: DVec2,
+    rise: f64,
+    offset: f64,
+    run: f64,
+    /// Along-coordinate of the first front edge.
+    front1: f64,
+    steps: u32,
+    found: u32,
+    score: f64,
+}
+
+/// Fits a staircase profile to points `(xy, height above floor)` climbing along `dir`.
+///
+/// The upper envelope of the points along `dir` (highest point per 1 cm bin) climbs one level
+/// per step; its running maximum (from the low end) plateaus at the level tops, so the peaks of
+/// the running maximum's histogram are the levels, at whole multiples of the rise (a little
+/// lower: the laser samples an edge a few centimetres under it). Each envelope bin then belongs
+/// to the level nearest its height. The rise is refined by a least-squares fit of each level's
+/// top (its second highest bin) over the index; the run by one of the levels' middles (median
+/// bin, unbiased by the sampling at either edge) over the index, the top level (with the
+/// landing) left out.
+fn profile(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<Profile> {
+    let bin = 0.01;
+    let mut s: Vec<f64> = pts.iter().map(|(q, _)| q.dot(dir)).collect();
+    let s_lo = quantile(&mut s.clone(), 0.005)? - 0.05;
+    let s_hi = quantile(&mut s, 0.995)? + 0.05;
+    let nb = (((s_hi - s_lo) / bin).ceil() as usize).clamp(1, 100_000);
+    let mut env = vec![f64::NEG_INFINITY; nb];
+    for (q, z) in pts {
+        let v = (q.dot(dir) - s_lo) / bin;
+        if v >= 0.0 && (v as usize) < nb {
+            env[v as usize] = env[v as usize].max(*z);
+        }
+    }
+    let env: Vec<(f64, f64)> = env
+        .iter()
+        .enumerate()
+        .filter(|(_, z)| z.is_finite())
+        .map(|(i, z)| (s_lo + (i as f64 + 0.5) * bin, *z))
         .collect();
-    let mut rise = median(&mut gaps)?;
-    // Level index of each region; drop those off the rise grid; refine the rise.
-    let mut levels: Vec<(u32, usize)> = Vec::new();
-    for _ in 0..2 {
-        levels = members
-            .iter()
-            .filter_map(|&r| {
-                let hgt = regions[r].height;
-                let k = (hgt / rise).round();
-                (k >= 1.0 && (hgt - k * rise).abs() <= 0.3 * rise).then_some((k as u32, r))
-            })
-            .collect();
-        let pts: Vec<(f64, f64)> = levels.iter().map(|&(k, r)| (k as f64, regions[r].height)).collect();
-        if let Some((_, slope)) = linear_fit(&pts) {
-            if slope >= c.rise_m[0] && slope <= c.rise_m[1] {
-                rise = slope;
-            }
-        }
-    }
-    let mut ks: Vec<u32> = levels.iter().map(|l| l.0).collect();
-    ks.sort_unstable();
-    ks.dedup();
-    let n = *ks.last()?;
-    if (ks.len() as u32) < c.min_steps || ks[0] > 2 || (ks.len() as f64) < 0.6 * n as f64 {
+    if env.len() < 10 {
         return None;
     }
-    // Direction: centroid of each level's pixels against its index.
-    let mut cx = Vec::new();
-    let mut cy = Vec::new();
-    for &k in &ks {
-        let px: Vec<usize> = levels.iter().filter(|l| l.0 == k).flat_map(|l| regions[l.1].pixels.iter().copied()).collect();
-        let m = px.iter().fold(DVec2::ZERO, |a, &p| {
-            a + crate::projection::pixel_center(frame, (p % w) as f64, (p / w) as f64)
-        }) / px.len() as f64;
-        cx.push((k as f64, m.x));
-        cy.push((k as f64, m.y));
+    // Running maximum and its plateaus.
+    let mut running = f64::NEG_INFINITY;
+    let maxima: Vec<f64> = env
+        .iter()
+        .map(|e| {
+            running = running.max(e.1);
+            running
+        })
+        .collect();
+    let (rise, offset) = level_grid(&maxima, c)?;
+    let n = ((running - offset) / rise).round().max(0.0) as u32;
+    // Levels: envelope bins nearest each multiple of the rise.
+    let mut levels: Vec<Vec<(f64, f64)>> = vec![Vec::new(); n as usize + 1];
+    for &(s, z) in &env {
+        let k = ((z - offset) / rise).round();
+        if k >= 1.0 && k <= n as f64 && (z - offset - k * rise).abs() <= 0.45 * rise {
+            levels[k as usize].push((s, z));
+        }
     }
-    let (_, vx) = linear_fit(&cx)?;
-    let (_, vy) = linear_fit(&cy)?;
-    let v = DVec2::new(vx, vy);
-    if v.length() < 0.5 * c.run_m[0] {
+    let mut tops = Vec::new();
+    let mut mids = Vec::new();
+    for (k, bins) in levels.iter().enumerate().skip(1) {
+        if bins.len() < 2 {
+            continue;
+        }
+        let mut z: Vec<f64> = bins.iter().map(|b| b.1).collect();
+        z.sort_by(|x, y| y.total_cmp(x));
+        tops.push((k as f64, z[1]));
+        if (k as u32) < n {
+            let mut ss: Vec<f64> = bins.iter().map(|b| b.0).collect();
+            mids.push((k as f64, crate::points::median(&mut ss)?));
+        }
+    }
+    let found = tops.len() as u32;
+    if n < c.min_steps || (found as f64) < 0.6 * n as f64 || mids.len() < 2 {
         return None;
     }
-    let mut dir = v.normalize();
-    let mut rules = Vec::new();
-    for wall in walls {
-        for cand in [wall.line.dir, wall.line.dir.perp()] {
-            for cand in [cand, -cand] {
-                if dir.angle_to(cand).abs().to_degrees() <= c.snap_direction_deg {
-                    dir = cand;
-                }
-            }
-        }
+    let (_, rise) = linear_fit(&tops).filter(|(_, r)| *r >= c.rise_m[0] && *r <= c.rise_m[1])?;
+    let (a, run) = linear_fit(&mids)?;
+    if std::env::var_os("SEMSIM_DEBUG").is_some() {
+        eprintln!("profile {dir:?}: rise {rise:.3} run {run:.3} n {n} tops {tops:?} mids {mids:?}");
     }
-    // The staircase's points: those in the pixels of its regions.
-    let member_set: std::collections::HashSet<u32> = levels.iter().map(|l| l.1 as u32).collect();
-    let mut pts: Vec<(f64, f64, f64)> = Vec::new(); // (s, t, z above floor)
-    for (i, &px) in pixel_of_point.iter().enumerate() {
-        if px == u32::MAX || !member_set.contains(&region_of[px as usize]) {
-            continue;
-        }
-        let p = sc.points[i];
-        let q = DVec2::new(p.x as f64, p.y as f64);
-        pts.push((q.dot(dir), dir.perp_dot(q), p.z as f64 - sc.floor));
-    }
-    let mut fronts = Vec::new();
-    for k in 1..=n {
-        let mut s: Vec<f64> = pts.iter().filter(|p| p.2 >= (k as f64 - 0.5) * rise).map(|p| p.0).collect();
-        if s.len() < 5 {
-            continue;
-        }
-        s.select_nth_unstable_by(2, f64::total_cmp);
-        fronts.push((k as f64, s[2]));
-    }
-    let (a, run) = linear_fit(&fronts)?;
     if run < c.run_m[0] || run > c.run_m[1] {
         return None;
     }
-    let mut ts: Vec<f64> = pts.iter().map(|p| p.1).collect();
-    let (t0, t1) = (quantile(&mut ts, 0.01)?, quantile(&mut ts, 0.99)?);
-    let width = t1 - t0;
-    if width < c.min_width_m {
+    let residual = mids.iter().map(|(k, m)| (m - a - run * k).abs()).sum::<f64>() / mids.len() as f64;
+    if residual > 0.25 * run {
         return None;
     }
-    let front1 = a + run;
-    let mut top: Vec<f64> = pts.iter().filter(|p| p.2 >= (n as f64 - 0.5) * rise).map(|p| p.0).collect();
-    let far = quantile(&mut top, 0.99)?;
-    let top_depth = far - (a + run * n as f64);
-    let landing = if top_depth - run > 0.1 { top_depth - run } else { 0.0 };
-    let start = dir * front1 + dir.perp() * ((t0 + t1) / 2.0);
-    rules.push(format!(
-        "{} levels at multiples of a {rise:.3} m rise above the floor, climbing {run:.3} m per step",
-        ks.len()
-    ));
-    rules.push(format!("step count {n}: the top level over the rise; width {width:.2} m across the risers"));
-    Some(Staircase {
-        steps: n,
+    Some(Profile {
+        dir,
         rise,
+        offset: 0.0,
         run,
+        front1: a + run / 2.0,
+        steps: n,
+        found,
+        score: found as f64 - residual / run,
+    })
+}
+
+/// The rise and offset of a set of heights that pile up at whole multiples of one rise: the
+/// peaks of their histogram (1 cm bins, 3 cm window) fitted to the grid `offset + k rise`.
+fn level_grid(heights: &[f64], c: &StairsConfig) -> Option<(f64, f64)> {
+    let bin = 0.01;
+    let n = ((c.max_height_m / bin).ceil() as usize + 2).min(100_000);
+    let mut hist = vec![0usize; n];
+    for &hgt in heights {
+        if hgt >= 0.0 {
+            hist[((hgt / bin) as usize).min(n - 1)] += 1;
+        }
+    }
+    let smooth: Vec<usize> = (0..n).map(|i| hist[i.saturating_sub(1)..(i + 2).min(n)].iter().sum()).collect();
+    let peaks: Vec<f64> = (0..n)
+        .filter(|&i| smooth[i] >= 3 && (i == 0 || smooth[i] > smooth[i - 1]) && (i + 1 == n || smooth[i] >= smooth[i + 1]))
+        .map(|i| (i as f64 + 0.5) * bin)
+        .collect();
+    if peaks.len() < c.min_steps as usize {
+        return None;
+    }
+    let mut candidates: Vec<f64> = peaks.windows(2).map(|p| p[1] - p[0]).collect();
+    candidates.push(peaks[0] + 0.01);
+    candidates.retain(|r| *r >= c.rise_m[0] && *r <= c.rise_m[1]);
+    let mut best: Option<(f64, f64, f64)> = None; // score, rise, offset
+    for r0 in candidates {
+        let (mut rise, mut offset) = (r0, 0.0);
+        let mut ks: Vec<f64> = Vec::new();
+        for _ in 0..3 {
+            let fit: Vec<(f64, f64)> = peaks
+                .iter()
+                .filter_map(|&p| {
+                    let k = ((p - offset) / rise).round();
+                    (k >= 1.0 && (p - offset - k * rise).abs() <= 0.25 * rise).then_some((k, p))
+                })
+                .collect();
+            ks = fit.iter().map(|f| f.0).collect();
+            ks.dedup();
+            if let Some((a, b)) = linear_fit(&fit) {
+                if b >= c.rise_m[0] && b <= c.rise_m[1] && a.abs() <= 0.3 * b {
+                    rise = b;
+                    offset = a;
+                }
+            }
+        }
+        let top = ks.last().copied().unwrap_or(0.0);
+        let score = ks.len() as f64 - 0.5 * (top - ks.len() as f64);
+        let enough = ks.len() >= c.min_steps as usize && ks.first().is_some_and(|&k| k <= 2.0);
+        if enough && best.is_none_or(|b| score > b.0) {
+            best = Some((score, rise, offset));
+        }
+    }
+    best.map(|b| (b.1, b.2))
+}
+
+fn finish(pts: &[(DVec2, f64)], p: Profile, c: &StairsConfig) -> Staircase {
+    let _ = c;
+    let dir = p.dir;
+    let mut ts: Vec<f64> = pts.iter().map(|(q, _)| dir.perp_dot(*q)).collect();
+    let t0 = quantile(&mut ts, 0.01).unwrap_or(0.0);
+    let t1 = quantile(&mut ts, 0.99).unwrap_or(0.0);
+    let width = t1 - t0;
+    let top_h = p.offset + (p.steps as f64 - 0.5) * p.rise;
+    let mut far: Vec<f64> = pts.iter().filter(|(_, z)| *z >= top_h).map(|(q, _)| q.dot(dir)).collect();
+    let far = quantile(&mut far, 0.99).unwrap_or(p.front1);
+    let top_depth = far - (p.front1 + p.run * (p.steps as f64 - 1.0));
+    let landing = if top_depth - p.run > 0.1 { top_depth - p.run } else { 0.0 };
+    let start = dir * p.front1 + dir.perp() * ((t0 + t1) / 2.0);
+    let rules = vec![
+        format!(
+            "{} of {} levels: the nearest point along {:.1} deg above each height jumps {:.3} m every {:.3} m of height (the paper's parallel lines at equal spacing, each step above the previous)",
+            p.found,
+            p.steps,
+            dir.y.atan2(dir.x).to_degrees(),
+            p.run,
+            p.rise
+        ),
+        format!("step count {} from the top level; {width:.2} m wide", p.steps),
+    ];
+    Staircase {
+        steps: p.steps,
+        rise: p.rise,
+        run: p.run,
         width,
         dir,
         start,
         landing,
         support: pts.len() as u64,
-        confidence: (ks.len() as f64 / n as f64).min(1.0),
+        confidence: (p.found as f64 / p.steps as f64).min(1.0),
         rules,
-    })
+    }
 }

@@ -12,12 +12,18 @@
 //!    centre lies half an assumed thickness behind it (the median measured thickness of the
 //!    map's other walls, or `default_thickness_m`).
 //! 3. Extent: the face points at every height form runs along the plane; the runs that overlap
-//!    the segment (gaps up to `max_gap_m`) give the wall's ends.
+//!    the segment (gaps up to `max_gap_m`) give the wall's ends. Where another surface crosses
+//!    the plane (points off the faces spread over 15 cm or more across it, within 3 cm along
+//!    it: the face of a wall meeting this one), the face points belong to the corner and do
+//!    not extend the wall, so a wall ends at the face of the wall it meets.
 //! 4. Height: robust z range of the face points, snapped to floor and ceiling; a prerequisite
-//!    that does not come down to the floor (`max_bottom_above_floor_m`) is no wall (a beam, a
-//!    pipe, a shelf top).
+//!    that does not come down to the floor (`max_bottom_above_floor_m`) or up to the ceiling
+//!    (`max_top_below_ceiling_m`) is no wall (a beam, a pipe, a door leaf, a cupboard).
 //!
-//! Duplicates (the same wall found twice) merge into the longer one.
+//! Duplicates (the same wall found twice) merge into the longer one. Collinear walls join
+//! across a junction with a crossing wall (`junction_gap_m`) or across a stretch the scans did
+//! not see (`occlusion_gap_m`, nothing seen through it): a wall runs on behind partitions and
+//! furniture.
 
 use crate::error::{check_range, Result};
 use crate::merge::Segment;
@@ -49,6 +55,13 @@ pub struct WallConfig {
     pub snap_m: f64,
     /// A wall must come down to this height above the floor.
     pub max_bottom_above_floor_m: f64,
+    /// ... and reach up to this depth under the ceiling along 30 % of its length at least (a
+    /// door leaf or a cupboard does not).
+    pub max_top_below_ceiling_m: f64,
+    /// Collinear walls this far apart are one wall if a crossing wall stands in the gap.
+    pub junction_gap_m: f64,
+    /// Collinear walls this far apart are one wall if nothing was seen through the gap.
+    pub occlusion_gap_m: f64,
     /// Walls whose lines are this near (and directions within `merge.max_angle_deg`) and that
     /// overlap are one wall.
     pub duplicate_offset_m: f64,
@@ -67,6 +80,9 @@ impl Default for WallConfig {
             max_gap_m: 0.35,
             snap_m: 0.15,
             max_bottom_above_floor_m: 0.6,
+            max_top_below_ceiling_m: 0.15,
+            junction_gap_m: 1.2,
+            occlusion_gap_m: 1.5,
             duplicate_offset_m: 0.15,
         }
     }
@@ -83,6 +99,9 @@ impl WallConfig {
         check_range("walls.max_gap_m", self.max_gap_m, 0.0, 100.0, "within 0..100 m")?;
         check_range("walls.snap_m", self.snap_m, 0.0, 10.0, "within 0..10 m")?;
         check_range("walls.max_bottom_above_floor_m", self.max_bottom_above_floor_m, 0.0, 100.0, "within 0..100 m")?;
+        check_range("walls.max_top_below_ceiling_m", self.max_top_below_ceiling_m, 0.0, 100.0, "within 0..100 m")?;
+        check_range("walls.junction_gap_m", self.junction_gap_m, 0.0, 100.0, "within 0..100 m")?;
+        check_range("walls.occlusion_gap_m", self.occlusion_gap_m, 0.0, 100.0, "within 0..100 m")?;
         check_range("walls.duplicate_offset_m", self.duplicate_offset_m, 0.0, 10.0, "within 0..10 m")
     }
 }
@@ -94,6 +113,8 @@ pub(crate) struct Scene<'a> {
     pub floor: f64,
     pub ceiling: f64,
     pub band: (f64, f64),
+    /// The middle of the cloud (XY).
+    pub middle: DVec2,
 }
 
 impl Scene<'_> {
@@ -159,6 +180,7 @@ pub(crate) fn identify_walls(segments: &[Segment], sc: &Scene, c: &WallConfig, m
         }
         kept.push(w);
     }
+    merge_through_gaps(&mut kept, sc, c, max_angle_deg);
     let mut measured: Vec<f64> = kept.iter().filter(|w| w.measured).map(|w| w.thickness).collect();
     let assumed = median(&mut measured).unwrap_or(c.default_thickness_m);
     for w in &mut kept {
@@ -176,6 +198,85 @@ pub(crate) fn identify_walls(segments: &[Segment], sc: &Scene, c: &WallConfig, m
     }
     kept.retain(|w| w.length >= c.min_length_m);
     kept
+}
+
+/// Joins collinear walls across a gap: a wall runs on behind the partitions that meet it
+/// (a crossing wall in a gap up to `junction_gap_m`) and behind whatever hid it from the
+/// scans (a gap up to `occlusion_gap_m` through which nothing was seen: no floor within the
+/// wall's footprint, nothing behind a one-sided wall's face).
+fn merge_through_gaps(walls: &mut Vec<WallFit>, sc: &Scene, c: &WallConfig, max_angle_deg: f64) {
+    loop {
+        let mut join = None;
+        'search: for i in 0..walls.len() {
+            for j in 0..walls.len() {
+                if i == j {
+                    continue;
+                }
+                let (a, b) = (&walls[i], &walls[j]);
+                if undirected_angle_deg(a.line.dir, b.line.dir) > max_angle_deg {
+                    continue;
+                }
+                let tol = c.duplicate_offset_m + (a.thickness + b.thickness) / 4.0;
+                let (s0, d0) = a.line.coords(b.start());
+                let (s1, d1) = a.line.coords(b.end());
+                if d0.abs() > tol || d1.abs() > tol {
+                    continue;
+                }
+                // b must start after a ends, within the junction gap.
+                let (lo, hi) = (s0.min(s1), s0.max(s1));
+                let gap = lo - a.length;
+                if !(gap > 0.0 && gap <= c.junction_gap_m.max(c.occlusion_gap_m)) {
+                    continue;
+                }
+                let (g0, g1) = (a.line.at(a.length), a.line.at(lo));
+                let crossed = walls.iter().enumerate().any(|(k, w)| {
+                    if k == i || k == j || undirected_angle_deg(w.line.dir, a.line.dir) < 60.0 {
+                        return false;
+                    }
+                    // Where w's line meets a's, within the gap and within w's extent.
+                    let (sa, da) = w.line.coords(g0);
+                    let (sb, db) = w.line.coords(g1);
+                    if da.signum() == db.signum() && da.abs().min(db.abs()) > w.thickness / 2.0 + 0.1 {
+                        return false;
+                    }
+                    let t = da / (da - db);
+                    let s = if t.is_finite() { sa + (sb - sa) * t } else { sa };
+                    s >= -(a.thickness / 2.0 + 0.2) && s <= w.length + a.thickness / 2.0 + 0.2
+                });
+                if (crossed && gap <= c.junction_gap_m) || (gap <= c.occlusion_gap_m && !seen_through(a, a.length, lo, sc)) {
+                    join = Some((i, j, hi));
+                    break 'search;
+                }
+            }
+        }
+        let Some((i, j, hi)) = join else {
+            return;
+        };
+        let b = walls.remove(j);
+        let a = &mut walls[if j < i { i - 1 } else { i }];
+        let gained = hi - a.length;
+        a.coverage = (a.coverage * a.length + b.coverage * b.length) / hi.max(1e-9);
+        a.length = hi;
+        a.support += b.support;
+        a.rules.push(format!("joined with a collinear piece {gained:.2} m on, across a wall junction"));
+    }
+}
+
+/// True if the scans saw through wall `w` between `s0` and `s1` along it: floor within its
+/// footprint (two faces), or anything behind its face (one face; `w.line` is the face here).
+fn seen_through(w: &WallFit, s0: f64, s1: f64, sc: &Scene) -> bool {
+    let mut n = 0;
+    sc.index.for_each_near_line(sc.points, &w.line, s0 + 0.05, s1 - 0.05, w.thickness / 2.0 + 1.0, |i, _, d| {
+        let z = sc.z(i);
+        let hit = if w.measured {
+            (z - sc.floor).abs() <= 0.04 && d.abs() <= w.thickness / 2.0 - 0.02
+        } else {
+            let behind = -w.free_side * d;
+            behind >= 0.05 && z >= sc.floor - 0.05 && z <= sc.ceiling - 0.05
+        };
+        n += usize::from(hit);
+    });
+    n >= 5
 }
 
 fn duplicate(k: &WallFit, w: &WallFit, c: &WallConfig, max_angle_deg: f64) -> bool {
@@ -242,15 +343,15 @@ fn pick_faces(peaks: &[(f64, usize)], c: &WallConfig) -> Vec<f64> {
     }
 }
 
-fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
-    let len0 = seg.length_m();
+/// The faces of the wall along `line` over `[a, b]` from the band points, and the line refitted
+/// on them (three rounds); `None` if too few points.
+fn refine_line(mut line: Line2, a: f64, b: f64, sc: &Scene, c: &WallConfig) -> Option<(Line2, Vec<f64>)> {
     let hw = c.search_half_width_m;
-    let mut line = seg.line();
-    let mut faces = Vec::new();
     let in_band = |z: f64| z >= sc.band.0 && z <= sc.band.1;
+    let anchor = line.origin;
     for _ in 0..3 {
         let mut near: Vec<(usize, f64)> = Vec::new();
-        sc.index.for_each_near_line(sc.points, &line, -0.1, len0 + 0.1, hw, |i, _, d| {
+        sc.index.for_each_near_line(sc.points, &line, a - 0.1, b + 0.1, hw, |i, _, d| {
             if in_band(sc.z(i)) {
                 near.push((i, d));
             }
@@ -259,11 +360,9 @@ fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
             return None;
         }
         let ds: Vec<f64> = near.iter().map(|n| n.1).collect();
-        faces = pick_faces(&face_peaks(&ds, hw, c), c);
+        let faces = pick_faces(&face_peaks(&ds, hw, c), c);
         // Refit the direction on each face's points, weighted by their counts.
-        let mut dir = DVec2::ZERO;
-        let mut centre = DVec2::ZERO;
-        let mut total = 0.0;
+        let (mut dir, mut centre, mut total) = (DVec2::ZERO, DVec2::ZERO, 0.0);
         for f in &faces {
             let pts: Vec<DVec2> = near
                 .iter()
@@ -283,46 +382,95 @@ fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
         }
         let dir = dir.normalize();
         let centre = centre / total;
-        // Keep the segment's extent: the new origin is seg.a projected onto the new line.
-        let s_a = (seg.a() - centre).dot(dir);
         line = Line2 {
-            origin: centre + dir * s_a,
+            origin: centre + dir * (anchor - centre).dot(dir),
             dir,
         };
     }
-    // Final face offsets relative to the refined line.
     let mut ds = Vec::new();
-    sc.index.for_each_near_line(sc.points, &line, -0.1, len0 + 0.1, hw, |i, _, d| {
+    sc.index.for_each_near_line(sc.points, &line, a - 0.1, b + 0.1, hw, |i, _, d| {
         if in_band(sc.z(i)) {
             ds.push(d);
         }
     });
-    faces = pick_faces(&face_peaks(&ds, hw, c), c);
-    if faces.is_empty() {
-        return None;
-    }
+    let faces = pick_faces(&face_peaks(&ds, hw, c), c);
+    (!faces.is_empty()).then_some((line, faces))
+}
+
+/// A wall's extent along `line` from `[a, b]` (see the module docs), grown while it reaches the
+/// searched range's ends, and the corner regions `(s0, s1, z0, z1)` where a crossing surface
+/// hides the face points.
+#[allow(clippy::type_complexity)]
+fn find_extent(line: &Line2, faces: &[f64], a: f64, b: f64, sc: &Scene, c: &WallConfig) -> Option<(f64, f64, Vec<(f64, f64, f64, f64)>)> {
+    let hw = c.search_half_width_m;
     let tol = c.face_tolerance_m;
-    let on_face = |d: f64, faces: &[f64]| faces.iter().any(|f| (d - f).abs() <= tol);
-    let z_lo = sc.floor + 0.05;
-    let z_hi = sc.ceiling - 0.05;
-    // Extent: runs of face points along the line, grown while they reach the search's ends.
+    let on_face = |d: f64| faces.iter().any(|f| (d - f).abs() <= tol);
+    let (z_lo, z_hi) = (sc.floor + 0.05, sc.ceiling - 0.05);
+    let (f_lo, f_hi) = (faces[0] - 2.0 * tol, faces[faces.len() - 1] + 2.0 * tol);
     let (mut e0, mut e1) = (0.5f64, 0.5f64);
     let mut found = None;
     for _ in 0..8 {
-        let mut s_vals = Vec::new();
-        sc.index.for_each_near_line(sc.points, &line, -e0, len0 + e1, hw, |i, s, d| {
+        // Face points, and per 3 cm of the line the spread of the points off the faces: a
+        // surface across the line (another wall's face at a corner or junction) covers many
+        // distances; the face points there belong to the corner, not to this wall's extent.
+        let bin = 0.03;
+        let (r0, r1) = (a - e0, b + e1);
+        let nb = (((r1 - r0) / bin).ceil() as usize + 1).min(10_000_000);
+        let mut across = vec![(0u32, f64::INFINITY, f64::NEG_INFINITY); nb];
+        let mut face_pts = Vec::new();
+        sc.index.for_each_near_line(sc.points, line, r0, r1, hw, |i, s, d| {
             let z = sc.z(i);
-            if z >= z_lo && z <= z_hi && on_face(d, &faces) {
-                s_vals.push(s);
+            if z < z_lo || z > z_hi {
+                return;
+            }
+            let k = (((s - r0) / bin) as usize).min(nb - 1);
+            if on_face(d) {
+                face_pts.push((k, s, z));
+            } else if d < f_lo || d > f_hi {
+                let x = &mut across[k];
+                x.0 |= 1 << ((((d + hw) / bin) as usize).min(31));
+                x.1 = x.1.min(z);
+                x.2 = x.2.max(z);
             }
         });
-        s_vals.sort_by(f64::total_cmp);
-        let Some((lo, hi)) = extent(&s_vals, 0.0, len0, c.max_gap_m) else {
-            return None;
+        // A crossing surface hides the face points at its own heights only (a cupboard in
+        // front of a wall leaves the wall above it).
+        let hidden = |k: usize, z: f64| {
+            let x = &across[k];
+            x.0.count_ones() >= 5 && z >= x.1 - 0.1 && z <= x.2 + 0.1
         };
-        let grow_lo = lo <= -e0 + c.max_gap_m;
-        let grow_hi = hi >= len0 + e1 - c.max_gap_m;
-        found = Some((lo, hi));
+        let mut s_vals: Vec<f64> = face_pts.iter().filter(|(k, _, z)| !hidden(*k, *z)).map(|p| p.1).collect();
+        s_vals.sort_by(f64::total_cmp);
+        if std::env::var_os("SEMSIM_DEBUG_EXTENT").is_some() && line.origin.x.abs() < 0.3 && line.dir.x.abs() < 0.1 {
+            let gaps: Vec<(f64, f64)> = s_vals.windows(2).filter(|w| w[1] - w[0] > 0.15).map(|w| (w[0], w[1])).collect();
+            let hid: Vec<f64> = face_pts.iter().filter(|(k, _, z)| hidden(*k, *z)).map(|p| (p.1 * 100.0).round() / 100.0).collect();
+            eprintln!("extent dbg a {a:.2} b {b:.2} r0 {r0:.2} r1 {r1:.2} n {} first {:?} last {:?} gaps {gaps:?} hidden {hid:?}", s_vals.len(), s_vals.first(), s_vals.last());
+        }
+        let (lo, hi) = extent(&s_vals, a, b, c.max_gap_m)?;
+        let grow_lo = lo <= r0 + c.max_gap_m;
+        let grow_hi = hi >= r1 - c.max_gap_m;
+        let crossing: Vec<(f64, f64, f64, f64)> = across
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| m.0.count_ones() >= 5)
+            .map(|(k, m)| (r0 + k as f64 * bin, r0 + (k + 1) as f64 * bin, m.1 - 0.1, m.2 + 0.1))
+            .collect();
+        // An end just past a wall-high crossing surface is that corner's residue (noise
+        // spreads the surface): the wall ends at the surface.
+        let wall_high = |x: &&(f64, f64, f64, f64)| x.3 - x.2 >= 1.5;
+        let lo = crossing
+            .iter()
+            .filter(wall_high)
+            .filter(|x| x.0 >= lo - 0.01 && x.0 <= lo + 0.15)
+            .map(|x| (x.0 + x.1) / 2.0)
+            .fold(lo, f64::max);
+        let hi = crossing
+            .iter()
+            .filter(wall_high)
+            .filter(|x| x.1 <= hi + 0.01 && x.1 >= hi - 0.15)
+            .map(|x| (x.0 + x.1) / 2.0)
+            .fold(hi, f64::min);
+        found = Some((lo, hi, crossing));
         if !grow_lo && !grow_hi {
             break;
         }
@@ -333,18 +481,49 @@ fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
             e1 *= 3.0;
         }
     }
-    let (lo, hi) = found?;
-    // Face points over the final extent: support, coverage, heights, free sides.
+    found
+}
+
+fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
+    let len0 = seg.length_m();
+    let hw = c.search_half_width_m;
+    // Refit the line on the faces over the extent found, and the extent on the refitted line,
+    // until the extent settles (a short prerequisite may grow into a long wall).
+    let mut line = seg.line();
+    let (mut ends_a, mut ends_b) = (seg.a(), seg.b());
+    let mut fit = None;
+    for _ in 0..3 {
+        let (a, b) = (line.coords(ends_a).0, line.coords(ends_b).0);
+        let (l, faces) = refine_line(line, a, b, sc, c)?;
+        line = l;
+        let (a, b) = (line.coords(ends_a).0, line.coords(ends_b).0);
+        let (lo, hi, crossing) = find_extent(&line, &faces, a, b, sc, c)?;
+        let settled = (lo - a).abs() < 0.1 && (hi - b).abs() < 0.1;
+        ends_a = line.at(lo);
+        ends_b = line.at(hi);
+        fit = Some((faces, lo, hi, crossing));
+        if settled {
+            break;
+        }
+    }
+    let (faces, lo, hi, crossing) = fit?;
+    let tol = c.face_tolerance_m;
+    let on_face = |d: f64, faces: &[f64]| faces.iter().any(|f| (d - f).abs() <= tol);
+    let (z_lo, z_hi) = (sc.floor + 0.05, sc.ceiling - 0.05);
+    let crossed = |s: f64, z: f64| crossing.iter().any(|&(a, b, z0, z1)| s >= a && s < b && z >= z0 && z <= z1);
+    // Face points over the final extent (corners left out): support, coverage, heights, free sides.
     let mut zs = Vec::new();
     let mut bins = vec![false; (((hi - lo) / 0.1).ceil() as usize).clamp(1, 1_000_000)];
+    let mut top_bins = vec![false; bins.len()];
     let mut front = vec![[0usize; 2]; faces.len()];
     let strip = (0.02, 0.10);
     sc.index.for_each_near_line(sc.points, &line, lo, hi, hw + strip.1, |i, s, d| {
         let z = sc.z(i);
-        if z >= z_lo && z <= z_hi && on_face(d, &faces) {
+        if z >= z_lo && z <= z_hi && on_face(d, &faces) && !crossed(s, z) {
             zs.push(z);
             let b = (((s - lo) / 0.1) as usize).min(bins.len() - 1);
             bins[b] = true;
+            top_bins[b] |= z >= sc.ceiling - c.max_top_below_ceiling_m;
         }
         if sc.on_slab(i, 0.04) {
             for (k, f) in faces.iter().enumerate() {
@@ -355,13 +534,21 @@ fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
             }
         }
     });
+    let debug = std::env::var_os("SEMSIM_DEBUG_WALLS").is_some();
+    if debug {
+        eprintln!("wall cand {:?}->{:?} faces {faces:?} extent {lo:.2}..{hi:.2} of {len0:.2}, {} face pts, {} crossing bins", seg.a_m, seg.b_m, zs.len(), crossing.len());
+    }
     if zs.len() < c.min_face_points {
         return None;
     }
     let support = zs.len() as u64;
     let bottom = quantile(&mut zs, 0.01)?;
-    let top = quantile(&mut zs, 0.99)?;
-    if bottom > sc.floor + c.max_bottom_above_floor_m {
+    let top = quantile(&mut zs, 0.995)?;
+    if debug {
+        eprintln!("  z {bottom:.2}..{top:.2}");
+    }
+    let top_coverage = top_bins.iter().filter(|&&b| b).count() as f64 / top_bins.len() as f64;
+    if bottom > sc.floor + c.max_bottom_above_floor_m || top < sc.ceiling - c.max_top_below_ceiling_m || top_coverage < 0.3 {
         return None;
     }
     let snap = |v: f64, to: f64| if (v - to).abs() <= c.snap_m { to } else { v };
@@ -415,9 +602,9 @@ fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
         let k = (0..faces.len()).find(|&k| side(k) != 0.0).unwrap_or(0);
         let mut s = side(k);
         if s == 0.0 {
-            // No floor or ceiling seen beside it: assume the free space faces the cloud's bulk.
-            s = 1.0;
-            rules.push("free side of the face unknown (no floor or ceiling points beside it)".into());
+            // No floor or ceiling seen beside it: the free space faces the cloud's middle.
+            s = if (sc.middle - line.at((lo + hi) / 2.0)).dot(line.normal()) >= 0.0 { 1.0 } else { -1.0 };
+            rules.push("free side unknown (no floor or ceiling beside the face): taken towards the middle of the cloud".into());
         }
         fit.line = fit.line.shifted(faces[k]);
         fit.free_side = s;

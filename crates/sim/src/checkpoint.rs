@@ -27,10 +27,12 @@ impl Simulation {
     }
 
     fn decode(bytes: &[u8], path: &Path) -> Result<Simulation> {
-        let body = bytes.strip_prefix(MAGIC.as_slice()).ok_or_else(|| SimError::Checkpoint {
-            path: path.to_path_buf(),
-            msg: "not a semsim checkpoint (or another format version)".into(),
-        })?;
+        let body = bytes
+            .strip_prefix(MAGIC.as_slice())
+            .ok_or_else(|| SimError::Checkpoint {
+                path: path.to_path_buf(),
+                msg: "not a semsim checkpoint (or another format version)".into(),
+            })?;
         ciborium::from_reader(body).map_err(|e| SimError::Checkpoint {
             path: path.to_path_buf(),
             msg: format!("cannot decode: {e}"),
@@ -40,7 +42,8 @@ impl Simulation {
     /// Saves the state to `path` atomically.
     pub fn save_checkpoint(&self, path: &Path) -> Result<()> {
         cloud::write_atomically(path, |w| {
-            w.write_all(MAGIC).map_err(|e| cloud::CloudError::io(path, e))?;
+            w.write_all(MAGIC)
+                .map_err(|e| cloud::CloudError::io(path, e))?;
             ciborium::into_writer(self, &mut *w).map_err(|e| SimError::Checkpoint {
                 path: path.to_path_buf(),
                 msg: format!("cannot encode: {e}"),

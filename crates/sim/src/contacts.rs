@@ -3,9 +3,9 @@
 //! that into started / continued / stopped events and wall touches. Rapier has no "continued"
 //! event; ours comes at a fixed rate per touching pair.
 //!
-//! Robot-vs-floor contacts are never collisions (wheels always touch the floor). Wheel contacts
-//! with stair steps drive the climbing events instead; chassis and arm contacts with steps are
-//! collisions.
+//! Wheel-vs-floor contacts are never collisions (wheels always touch the floor); a chassis or
+//! arm touching the floor (after tipping over) is one. Wheel contacts with stair steps drive the
+//! climbing events instead; chassis and arm contacts with steps are collisions.
 
 use crate::doors::entity_refs;
 use crate::events::{Emitter, EventConfig, EventKind};
@@ -53,7 +53,9 @@ pub(crate) fn scan(world: &World) -> ContactScan {
                 } else {
                     (pair.collider1, 1.0)
                 };
-                let Some(tag) = world.tag(other) else { continue };
+                let Some(tag) = world.tag(other) else {
+                    continue;
+                };
                 if tag.entity == robot.entity {
                     continue;
                 }
@@ -70,7 +72,6 @@ pub(crate) fn scan(world: &World) -> ContactScan {
                     (EntityClass::Floor, Part::Wheel) => {
                         on_floor.insert(me.index);
                     }
-                    (EntityClass::Floor, _) => {}
                     (EntityClass::Stairs, Part::Wheel) => on_stairs.push(WheelOnStairs {
                         wheel: me.index,
                         stairs: tag.entity,
@@ -121,7 +122,9 @@ impl ContactDetector {
         };
         let mut wall_now = BTreeSet::new();
         for &(ri, other) in &scan.pairs {
-            let Some(robot) = world.robots.get(ri) else { continue };
+            let Some(robot) = world.robots.get(ri) else {
+                continue;
+            };
             let class = world.entity(other).map(|e| e.class);
             let is_wall = class.is_some_and(|c| c.is_wall());
             if is_wall {
@@ -148,7 +151,12 @@ impl ContactDetector {
                     if t + 1e-9 >= p.next_continued_s {
                         p.next_continued_s += period;
                         let d = t - p.started_s;
-                        out.emit(EventKind::CollisionContinued, ents(), "", &[("duration_s", d)]);
+                        out.emit(
+                            EventKind::CollisionContinued,
+                            ents(),
+                            "",
+                            &[("duration_s", d)],
+                        );
                     }
                 }
             }
@@ -156,12 +164,16 @@ impl ContactDetector {
         let released: Vec<(usize, u32)> = self
             .active
             .iter()
-            .filter(|(_, p)| p.last_touch_s < t && t - p.last_touch_s + 1e-9 >= cfg.contact_release_s)
+            .filter(|(_, p)| {
+                p.last_touch_s < t && t - p.last_touch_s + 1e-9 >= cfg.contact_release_s
+            })
             .map(|(k, _)| *k)
             .collect();
         for key in released {
             if let Some(p) = self.active.remove(&key) {
-                let Some(robot) = world.robots.get(key.0) else { continue };
+                let Some(robot) = world.robots.get(key.0) else {
+                    continue;
+                };
                 let d = p.last_touch_s - p.started_s;
                 out.emit(
                     EventKind::CollisionStopped,

@@ -73,21 +73,70 @@ impl ControllerConfig {
     /// Checks the gains.
     pub fn validate(&self) -> Result<()> {
         let el = "controller";
-        check_range(el, "speed_mps", self.speed_mps, 0.01, 20.0, "0.01 to 20 m/s")?;
-        check_range(el, "tolerance_m", self.tolerance_m, 0.01, 10.0, "0.01 to 10 m")?;
-        check_range(el, "turn_in_place_deg", self.turn_in_place_deg, 1.0, 180.0, "1 to 180")?;
-        check_range(el, "heading_gain", self.heading_gain, 0.0, 100.0, "0 to 100")?;
-        check_range(el, "turn_rate_radps", self.turn_rate_radps, 0.01, 20.0, "0.01 to 20")?;
+        check_range(
+            el,
+            "speed_mps",
+            self.speed_mps,
+            0.01,
+            20.0,
+            "0.01 to 20 m/s",
+        )?;
+        check_range(
+            el,
+            "tolerance_m",
+            self.tolerance_m,
+            0.01,
+            10.0,
+            "0.01 to 10 m",
+        )?;
+        check_range(
+            el,
+            "turn_in_place_deg",
+            self.turn_in_place_deg,
+            1.0,
+            180.0,
+            "1 to 180",
+        )?;
+        check_range(
+            el,
+            "heading_gain",
+            self.heading_gain,
+            0.0,
+            100.0,
+            "0 to 100",
+        )?;
+        check_range(
+            el,
+            "turn_rate_radps",
+            self.turn_rate_radps,
+            0.01,
+            20.0,
+            "0.01 to 20",
+        )?;
         check_range(el, "slowdown_m", self.slowdown_m, 0.0, 100.0, "0 to 100 m")?;
         Ok(())
     }
 }
 
-pub(crate) fn validate_commands(velocity: &[VelocityCommand], waypoints: &[Waypoint]) -> Result<()> {
+pub(crate) fn validate_commands(
+    velocity: &[VelocityCommand],
+    waypoints: &[Waypoint],
+) -> Result<()> {
     for (i, v) in velocity.iter().enumerate() {
         let el = format!("velocity[{i}]");
-        check_finite(&el, "linear_mps, angular_radps", &[v.linear_mps, v.angular_radps])?;
-        check_range(&el, "from_s", v.from_s, 0.0, 1.0e7, "a time of at least 0 s")?;
+        check_finite(
+            &el,
+            "linear_mps, angular_radps",
+            &[v.linear_mps, v.angular_radps],
+        )?;
+        check_range(
+            &el,
+            "from_s",
+            v.from_s,
+            0.0,
+            1.0e7,
+            "a time of at least 0 s",
+        )?;
         check_range(&el, "to_s", v.to_s, v.from_s, 1.0e7, "at least from_s")?;
     }
     for (i, w) in waypoints.iter().enumerate() {

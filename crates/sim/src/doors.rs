@@ -1,13 +1,13 @@
 //! Doors: leaves on revolute joints (axis z through the hinge, limits, damping, hinge friction),
 //! the opened/closed detector and the free-space detector (entered, left, crossed).
 
-use crate::events::{EntityRef, Emitter, EventConfig, EventKind};
+use crate::events::{Emitter, EntityRef, EventConfig, EventKind};
 use crate::spec::{DoorSpec, EntityClass};
 use crate::world::{cuboid, groups, Part, Tag, World, G_DOOR, G_ROBOT};
 use glam::{Quat, Vec3};
 use rapier3d::prelude::{
-    ColliderHandle, ImpulseJointHandle, PhysicsWorld, Pose, RevoluteJointBuilder,
-    RigidBodyBuilder, RigidBodyHandle,
+    ColliderHandle, ImpulseJointHandle, PhysicsWorld, Pose, RevoluteJointBuilder, RigidBodyBuilder,
+    RigidBodyHandle,
 };
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -46,7 +46,11 @@ pub(crate) fn spawn_door(
     friction: f32,
 ) -> DoorBody {
     let sign = d.opens.sign();
-    let hinge = Vec3::new(d.hinge_m[0] as f32, d.hinge_m[1] as f32, d.leaf.center_m[2] as f32);
+    let hinge = Vec3::new(
+        d.hinge_m[0] as f32,
+        d.hinge_m[1] as f32,
+        d.leaf.center_m[2] as f32,
+    );
     let open = (sign * d.initial_deg).to_radians() as f32;
     let body = physics.bodies.insert(
         RigidBodyBuilder::dynamic()
@@ -63,7 +67,10 @@ pub(crate) fn spawn_door(
     };
     let collider = physics.colliders.insert_with_parent(
         cuboid(&d.leaf)
-            .position(Pose::from_parts(rel, Quat::from_rotation_z(d.leaf.yaw_deg.to_radians() as f32)))
+            .position(Pose::from_parts(
+                rel,
+                Quat::from_rotation_z(d.leaf.yaw_deg.to_radians() as f32),
+            ))
             .mass(d.mass_kg as f32)
             .friction(friction)
             .collision_groups(groups(G_DOOR, G_ROBOT))
@@ -152,9 +159,9 @@ impl FreeSpaceDetector {
             };
             let p = chassis.translation();
             for (fi, fs) in world.free_spaces.iter().enumerate() {
-                let now = np
-                    .intersection_pairs_with(fs.collider)
-                    .any(|(a, b, hit)| hit && (a == robot.chassis_collider || b == robot.chassis_collider));
+                let now = np.intersection_pairs_with(fs.collider).any(|(a, b, hit)| {
+                    hit && (a == robot.chassis_collider || b == robot.chassis_collider)
+                });
                 let side = {
                     let d = [p.x as f64 - fs.center_xy[0], p.y as f64 - fs.center_xy[1]];
                     if d[0] * fs.normal_xy[0] + d[1] * fs.normal_xy[1] >= 0.0 {

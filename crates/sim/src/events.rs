@@ -124,7 +124,12 @@ impl Event {
     /// order; numbers with 4 decimals (non-finite ones as `null`).
     pub fn to_json_line(&self) -> String {
         let mut s = String::with_capacity(160);
-        let _ = write!(s, "{{\"time_s\":{},\"kind\":\"{}\",\"entities\":[", fmt_f(self.time_s), self.kind.name());
+        let _ = write!(
+            s,
+            "{{\"time_s\":{},\"kind\":\"{}\",\"entities\":[",
+            fmt_f(self.time_s),
+            self.kind.name()
+        );
         for (i, e) in self.entities.iter().enumerate() {
             if i > 0 {
                 s.push(',');
@@ -194,9 +199,9 @@ pub struct EventConfig {
     pub tip_limit_deg: f64,
     /// Tipping is reported again only after the robot came back this far below the limit.
     pub tip_rearm_deg: f64,
-    /// A robot commanded to move but slower than this ...
-    pub stuck_speed_mps: f64,
-    /// ... for this long is stuck (s).
+    /// A robot commanded to drive that moves less than this (m) ...
+    pub stuck_distance_m: f64,
+    /// ... in this long is stuck (s).
     pub stuck_after_s: f64,
     /// A step tread is stood on when the contact normal's z is above this.
     pub tread_normal_z: f64,
@@ -212,7 +217,7 @@ impl Default for EventConfig {
             door_closed_deg: 3.0,
             tip_limit_deg: 45.0,
             tip_rearm_deg: 10.0,
-            stuck_speed_mps: 0.02,
+            stuck_distance_m: 0.05,
             stuck_after_s: 3.0,
             tread_normal_z: 0.7,
         }
@@ -223,16 +228,86 @@ impl EventConfig {
     /// Checks rates and thresholds.
     pub fn validate(&self) -> Result<()> {
         let el = "events";
-        check_range(el, "movement_rate_hz", self.movement_rate_hz, 0.0, 1000.0, "0 to 1000")?;
-        check_range(el, "contact_rate_hz", self.contact_rate_hz, 0.0, 1000.0, "0 to 1000")?;
-        check_range(el, "contact_release_s", self.contact_release_s, 0.0, 10.0, "0 to 10 s")?;
-        check_range(el, "door_closed_deg", self.door_closed_deg, 0.0, 90.0, "0 to 90")?;
-        check_range(el, "door_opened_deg", self.door_opened_deg, self.door_closed_deg, 180.0, "door_closed_deg to 180")?;
-        check_range(el, "tip_limit_deg", self.tip_limit_deg, 1.0, 180.0, "1 to 180")?;
-        check_range(el, "tip_rearm_deg", self.tip_rearm_deg, 0.0, self.tip_limit_deg, "0 to tip_limit_deg")?;
-        check_range(el, "stuck_speed_mps", self.stuck_speed_mps, 0.0, 10.0, "0 to 10")?;
-        check_range(el, "stuck_after_s", self.stuck_after_s, 0.1, 1.0e6, "at least 0.1 s")?;
-        check_range(el, "tread_normal_z", self.tread_normal_z, 0.0, 1.0, "0 to 1")?;
+        check_range(
+            el,
+            "movement_rate_hz",
+            self.movement_rate_hz,
+            0.0,
+            1000.0,
+            "0 to 1000",
+        )?;
+        check_range(
+            el,
+            "contact_rate_hz",
+            self.contact_rate_hz,
+            0.0,
+            1000.0,
+            "0 to 1000",
+        )?;
+        check_range(
+            el,
+            "contact_release_s",
+            self.contact_release_s,
+            0.0,
+            10.0,
+            "0 to 10 s",
+        )?;
+        check_range(
+            el,
+            "door_closed_deg",
+            self.door_closed_deg,
+            0.0,
+            90.0,
+            "0 to 90",
+        )?;
+        check_range(
+            el,
+            "door_opened_deg",
+            self.door_opened_deg,
+            self.door_closed_deg,
+            180.0,
+            "door_closed_deg to 180",
+        )?;
+        check_range(
+            el,
+            "tip_limit_deg",
+            self.tip_limit_deg,
+            1.0,
+            180.0,
+            "1 to 180",
+        )?;
+        check_range(
+            el,
+            "tip_rearm_deg",
+            self.tip_rearm_deg,
+            0.0,
+            self.tip_limit_deg,
+            "0 to tip_limit_deg",
+        )?;
+        check_range(
+            el,
+            "stuck_distance_m",
+            self.stuck_distance_m,
+            0.0,
+            100.0,
+            "0 to 100 m",
+        )?;
+        check_range(
+            el,
+            "stuck_after_s",
+            self.stuck_after_s,
+            0.1,
+            1.0e6,
+            "at least 0.1 s",
+        )?;
+        check_range(
+            el,
+            "tread_normal_z",
+            self.tread_normal_z,
+            0.0,
+            1.0,
+            "0 to 1",
+        )?;
         Ok(())
     }
 }

@@ -36,7 +36,7 @@ impl Default for ImportConfig {
             door_mass_kg: 20.0,
             door_damping_per_s: 1.0,
             door_hinge_friction_nm: 2.0,
-            door_break_force_n: 2500.0,
+            door_break_force_n: 800.0,
             door_max_deg: 100.0,
             free_space_margin_m: 0.4,
         }
@@ -52,10 +52,38 @@ impl WorldSpec {
     /// The ground-truth world of a (validated) building.
     pub fn from_building_with(b: &Building, cfg: &ImportConfig) -> Result<WorldSpec> {
         let el = "import config";
-        check_range(el, "door_mass_kg", cfg.door_mass_kg, 0.1, 1.0e4, "0.1 kg to 10 t")?;
-        check_range(el, "door_max_deg", cfg.door_max_deg, 1.0, 180.0, "1 to 180 degrees")?;
-        check_range(el, "free_space_margin_m", cfg.free_space_margin_m, 0.0, 10.0, "0 to 10 m")?;
-        check_range(el, "door_break_force_n", cfg.door_break_force_n, 0.0, 1.0e9, "0 (unbreakable) or a force in N")?;
+        check_range(
+            el,
+            "door_mass_kg",
+            cfg.door_mass_kg,
+            0.1,
+            1.0e4,
+            "0.1 kg to 10 t",
+        )?;
+        check_range(
+            el,
+            "door_max_deg",
+            cfg.door_max_deg,
+            1.0,
+            180.0,
+            "1 to 180 degrees",
+        )?;
+        check_range(
+            el,
+            "free_space_margin_m",
+            cfg.free_space_margin_m,
+            0.0,
+            10.0,
+            "0 to 10 m",
+        )?;
+        check_range(
+            el,
+            "door_break_force_n",
+            cfg.door_break_force_n,
+            0.0,
+            1.0e9,
+            "0 (unbreakable) or a force in N",
+        )?;
         let geometry = BuildingGeometry::new(b);
         let ids: HashMap<&str, u32> = geometry
             .entities()
@@ -116,15 +144,21 @@ impl WorldSpec {
         let mut next_id = geometry.entities().iter().map(|e| e.id).max().unwrap_or(0) + 1;
         for (i, w) in b.walls.iter().enumerate() {
             let wall_name = format!("walls[{i}]");
-            let wall_id = *ids.get(wall_name.as_str()).ok_or_else(|| SimError::Invalid {
-                element: wall_name.clone(),
-                msg: "the building geometry has no entity for this wall".into(),
-            })?;
-            let len = ((w.end_m[0] - w.start_m[0]).powi(2) + (w.end_m[1] - w.start_m[1]).powi(2)).sqrt();
+            let wall_id = *ids
+                .get(wall_name.as_str())
+                .ok_or_else(|| SimError::Invalid {
+                    element: wall_name.clone(),
+                    msg: "the building geometry has no entity for this wall".into(),
+                })?;
+            let len =
+                ((w.end_m[0] - w.start_m[0]).powi(2) + (w.end_m[1] - w.start_m[1]).powi(2)).sqrt();
             if len <= 1e-9 {
                 continue;
             }
-            let u = [(w.end_m[0] - w.start_m[0]) / len, (w.end_m[1] - w.start_m[1]) / len];
+            let u = [
+                (w.end_m[0] - w.start_m[0]) / len,
+                (w.end_m[1] - w.start_m[1]) / len,
+            ];
             let yaw = u[1].atan2(u[0]);
             let at = |s: f64| [w.start_m[0] + u[0] * s, w.start_m[1] + u[1] * s];
             for (j, d) in w.doors.iter().enumerate() {
@@ -143,8 +177,16 @@ impl WorldSpec {
                         let (hinge_s, closed_yaw, sense) = match (leaf.hinge, leaf.swing) {
                             (Hinge::Start, Swing::Left) => (d.offset_m, yaw, OpeningSense::Ccw),
                             (Hinge::Start, Swing::Right) => (d.offset_m, yaw, OpeningSense::Cw),
-                            (Hinge::End, Swing::Left) => (d.offset_m + d.width_m, yaw + std::f64::consts::PI, OpeningSense::Cw),
-                            (Hinge::End, Swing::Right) => (d.offset_m + d.width_m, yaw + std::f64::consts::PI, OpeningSense::Ccw),
+                            (Hinge::End, Swing::Left) => (
+                                d.offset_m + d.width_m,
+                                yaw + std::f64::consts::PI,
+                                OpeningSense::Cw,
+                            ),
+                            (Hinge::End, Swing::Right) => (
+                                d.offset_m + d.width_m,
+                                yaw + std::f64::consts::PI,
+                                OpeningSense::Ccw,
+                            ),
                         };
                         let leaf_len = (d.width_m - 0.01).max(0.01);
                         let leaf_h = (d.height_m - 0.01).max(0.01);
@@ -161,7 +203,11 @@ impl WorldSpec {
                                     h[1] + closed_yaw.sin() * leaf_len / 2.0,
                                     0.005 + leaf_h / 2.0,
                                 ],
-                                half_extents_m: [leaf_len / 2.0, leaf.thickness_m / 2.0, leaf_h / 2.0],
+                                half_extents_m: [
+                                    leaf_len / 2.0,
+                                    leaf.thickness_m / 2.0,
+                                    leaf_h / 2.0,
+                                ],
                                 yaw_deg: closed_yaw.to_degrees(),
                             },
                             hinge_m: h,
@@ -173,7 +219,8 @@ impl WorldSpec {
                             mass_kg: cfg.door_mass_kg,
                             damping_per_s: cfg.door_damping_per_s,
                             hinge_friction_nm: cfg.door_hinge_friction_nm,
-                            break_force_n: (cfg.door_break_force_n > 0.0).then_some(cfg.door_break_force_n),
+                            break_force_n: (cfg.door_break_force_n > 0.0)
+                                .then_some(cfg.door_break_force_n),
                         });
                         Some(id)
                     }

@@ -19,7 +19,10 @@ pub(crate) fn joint_load(joint: &ImpulseJoint, substep_dt: f64) -> (f64, f64) {
 }
 
 fn load(physics: &PhysicsWorld, h: ImpulseJointHandle, substep_dt: f64) -> Option<(f64, f64)> {
-    physics.impulse_joints.get(h).map(|j| joint_load(j, substep_dt))
+    physics
+        .impulse_joints
+        .get(h)
+        .map(|j| joint_load(j, substep_dt))
 }
 
 /// Checks every breakable joint after a step; removes and reports the broken ones.

@@ -34,13 +34,32 @@ pub struct Verdict {
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
 enum Check {
-    PassThrough { free_space: u32, entered: u32 },
-    ReachTop { stairs: u32, steps: u32, highest: i64 },
-    OpenDoor { door: u32, initial_deg: f64, widest_deg: f64, by_deg: f64 },
-    Reach { goal: ReachGoal, closest_m: f64 },
-    MaxWall { max_s: f64 },
+    PassThrough {
+        free_space: u32,
+        entered: u32,
+    },
+    ReachTop {
+        stairs: u32,
+        steps: u32,
+        highest: i64,
+    },
+    OpenDoor {
+        door: u32,
+        initial_deg: f64,
+        widest_deg: f64,
+        by_deg: f64,
+    },
+    Reach {
+        goal: ReachGoal,
+        closest_m: f64,
+    },
+    MaxWall {
+        max_s: f64,
+    },
     NoBrokenJoint,
-    NoTipping { max_tilt_deg: f64 },
+    NoTipping {
+        max_tilt_deg: f64,
+    },
     NoStuck,
 }
 
@@ -55,7 +74,10 @@ impl Tracked {
     fn is_goal(&self) -> bool {
         matches!(
             self.check,
-            Check::PassThrough { .. } | Check::ReachTop { .. } | Check::OpenDoor { .. } | Check::Reach { .. }
+            Check::PassThrough { .. }
+                | Check::ReachTop { .. }
+                | Check::OpenDoor { .. }
+                | Check::Reach { .. }
         )
     }
 }
@@ -81,7 +103,13 @@ impl Judge {
     /// Resolves every entity reference; unknown or wrong-class names are errors.
     pub(crate) fn new(rules: &Rules, spec: &WorldSpec) -> Result<Judge> {
         let mut out = vec![];
-        let mut push = |rule: String, check: Check| out.push(Tracked { rule, check, result: None });
+        let mut push = |rule: String, check: Check| {
+            out.push(Tracked {
+                rule,
+                check,
+                result: None,
+            })
+        };
         if let Some(r) = &rules.pass_through_door {
             let el = "rules.pass_through_door";
             let e = spec.resolve(r, el)?;
@@ -98,19 +126,40 @@ impl Judge {
                     })?,
                 c => return Err(wrong(el, r, c, "door or free_space_for_door")),
             };
-            push(format!("pass_through_door = {r}"), Check::PassThrough { free_space, entered: 0 });
+            push(
+                format!("pass_through_door = {r}"),
+                Check::PassThrough {
+                    free_space,
+                    entered: 0,
+                },
+            );
         }
         if let Some(r) = &rules.reach_top_of_stairs {
             let el = "rules.reach_top_of_stairs";
             let e = spec.resolve(r, el)?;
-            let s = spec.stairs.iter().find(|s| s.entity == e.id).ok_or_else(|| wrong(el, r, e.class, "stairs"))?;
+            let s = spec
+                .stairs
+                .iter()
+                .find(|s| s.entity == e.id)
+                .ok_or_else(|| wrong(el, r, e.class, "stairs"))?;
             let steps = s.steps.len() as u32 + u32::from(s.landing.is_some());
-            push(format!("reach_top_of_stairs = {r}"), Check::ReachTop { stairs: e.id, steps, highest: -1 });
+            push(
+                format!("reach_top_of_stairs = {r}"),
+                Check::ReachTop {
+                    stairs: e.id,
+                    steps,
+                    highest: -1,
+                },
+            );
         }
         if let Some(r) = &rules.open_door {
             let el = "rules.open_door";
             let e = spec.resolve(r, el)?;
-            let d = spec.doors.iter().find(|d| d.entity == e.id).ok_or_else(|| wrong(el, r, e.class, "door"))?;
+            let d = spec
+                .doors
+                .iter()
+                .find(|d| d.entity == e.id)
+                .ok_or_else(|| wrong(el, r, e.class, "door"))?;
             push(
                 format!("open_door = {r}"),
                 Check::OpenDoor {
@@ -124,11 +173,17 @@ impl Judge {
         if let Some(g) = rules.reach {
             push(
                 format!("reach = ({}, {}) within {} m", g.x_m, g.y_m, g.radius_m),
-                Check::Reach { goal: g, closest_m: f64::INFINITY },
+                Check::Reach {
+                    goal: g,
+                    closest_m: f64::INFINITY,
+                },
             );
         }
         if let Some(m) = rules.max_wall_contact_s {
-            push(format!("max_wall_contact_s = {m}"), Check::MaxWall { max_s: m });
+            push(
+                format!("max_wall_contact_s = {m}"),
+                Check::MaxWall { max_s: m },
+            );
         }
         if rules.no_broken_joint {
             push("no_broken_joint".into(), Check::NoBrokenJoint);
@@ -147,45 +202,92 @@ impl Judge {
         let t = o.time_s;
         for r in self.rules.iter_mut().filter(|r| r.result.is_none()) {
             let mut decide = |passed: bool, reason: String| {
-                r.result = Some(RuleResult { rule: r.rule.clone(), passed, reason, decided_s: t });
+                r.result = Some(RuleResult {
+                    rule: r.rule.clone(),
+                    passed,
+                    reason,
+                    decided_s: t,
+                });
             };
             match &mut r.check {
-                Check::PassThrough { free_space, entered } => {
-                    for e in o.events.iter().filter(|e| e.involves(*free_space) && e.involves(o.robot_entity)) {
+                Check::PassThrough {
+                    free_space,
+                    entered,
+                } => {
+                    for e in o
+                        .events
+                        .iter()
+                        .filter(|e| e.involves(*free_space) && e.involves(o.robot_entity))
+                    {
                         if e.kind == EventKind::DoorFreeSpaceEntered {
                             *entered += 1;
                         }
-                        if e.kind == EventKind::DoorFreeSpaceLeft && e.value("crossed") == Some(1.0) {
-                            decide(true, format!("passed through the opening at {} s", fmt_f(e.time_s)));
+                        if e.kind == EventKind::DoorFreeSpaceLeft && e.value("crossed") == Some(1.0)
+                        {
+                            decide(
+                                true,
+                                format!("passed through the opening at {} s", fmt_f(e.time_s)),
+                            );
                             break;
                         }
                     }
                 }
-                Check::ReachTop { stairs, steps, highest } => {
-                    for e in o.events.iter().filter(|e| e.involves(*stairs) && e.involves(o.robot_entity)) {
+                Check::ReachTop {
+                    stairs,
+                    steps,
+                    highest,
+                } => {
+                    for e in o
+                        .events
+                        .iter()
+                        .filter(|e| e.involves(*stairs) && e.involves(o.robot_entity))
+                    {
                         if e.kind == EventKind::StairsStepReached {
                             *highest = (*highest).max(e.value("step").unwrap_or(-1.0) as i64);
                         }
                         if e.kind == EventKind::StairsClimbingFinished {
-                            decide(true, format!("stood on the top ({steps} treads incl. landing) at {} s", fmt_f(e.time_s)));
+                            decide(
+                                true,
+                                format!(
+                                    "stood on the top ({steps} treads incl. landing) at {} s",
+                                    fmt_f(e.time_s)
+                                ),
+                            );
                             break;
                         }
                     }
                 }
-                Check::OpenDoor { door, initial_deg, widest_deg, by_deg } => {
+                Check::OpenDoor {
+                    door,
+                    initial_deg,
+                    widest_deg,
+                    by_deg,
+                } => {
                     if let Some(&(_, a)) = o.door_angles.iter().find(|d| d.0 == *door) {
                         *widest_deg = widest_deg.max(a);
                     }
-                    let opened_event = o.events.iter().any(|e| e.kind == EventKind::DoorOpened && e.involves(*door));
+                    let opened_event = o
+                        .events
+                        .iter()
+                        .any(|e| e.kind == EventKind::DoorOpened && e.involves(*door));
                     if opened_event || *widest_deg >= *initial_deg + *by_deg {
-                        decide(true, format!("opened from {:.1} to {:.1} degrees", initial_deg, widest_deg));
+                        decide(
+                            true,
+                            format!(
+                                "opened from {:.1} to {:.1} degrees",
+                                initial_deg, widest_deg
+                            ),
+                        );
                     }
                 }
                 Check::Reach { goal, closest_m } => {
                     let d = (o.pose.x_m - goal.x_m).hypot(o.pose.y_m - goal.y_m);
                     *closest_m = closest_m.min(d);
                     if d <= goal.radius_m {
-                        decide(true, format!("reached ({:.2}, {:.2})", o.pose.x_m, o.pose.y_m));
+                        decide(
+                            true,
+                            format!("reached ({:.2}, {:.2})", o.pose.x_m, o.pose.y_m),
+                        );
                     }
                 }
                 Check::MaxWall { max_s } => {
@@ -195,20 +297,39 @@ impl Judge {
                 }
                 Check::NoBrokenJoint => {
                     if let Some(e) = o.events.iter().find(|e| e.kind == EventKind::JointBroken) {
-                        let who = e.entities.first().map(|x| x.name.clone()).unwrap_or_default();
+                        let who = e
+                            .entities
+                            .first()
+                            .map(|x| x.name.clone())
+                            .unwrap_or_default();
                         let f = e.value("force_n").unwrap_or(f64::NAN);
                         decide(false, format!("{} of {who} broke ({f:.0} N)", e.detail));
                     }
                 }
                 Check::NoTipping { max_tilt_deg } => {
-                    *max_tilt_deg = max_tilt_deg.max(o.pose.roll_deg.abs().max(o.pose.pitch_deg.abs()));
-                    if let Some(e) = o.events.iter().find(|e| e.kind == EventKind::RobotTipped && e.involves(o.robot_entity)) {
-                        let (r, p) = (e.value("roll_deg").unwrap_or(0.0), e.value("pitch_deg").unwrap_or(0.0));
-                        decide(false, format!("tipped over (roll {r:.0}, pitch {p:.0} degrees)"));
+                    *max_tilt_deg =
+                        max_tilt_deg.max(o.pose.roll_deg.abs().max(o.pose.pitch_deg.abs()));
+                    if let Some(e) = o
+                        .events
+                        .iter()
+                        .find(|e| e.kind == EventKind::RobotTipped && e.involves(o.robot_entity))
+                    {
+                        let (r, p) = (
+                            e.value("roll_deg").unwrap_or(0.0),
+                            e.value("pitch_deg").unwrap_or(0.0),
+                        );
+                        decide(
+                            false,
+                            format!("tipped over (roll {r:.0}, pitch {p:.0} degrees)"),
+                        );
                     }
                 }
                 Check::NoStuck => {
-                    if let Some(e) = o.events.iter().find(|e| e.kind == EventKind::RobotStuck && e.involves(o.robot_entity)) {
+                    if let Some(e) = o
+                        .events
+                        .iter()
+                        .find(|e| e.kind == EventKind::RobotStuck && e.involves(o.robot_entity))
+                    {
                         let (x, y) = (e.value("x_m").unwrap_or(0.0), e.value("y_m").unwrap_or(0.0));
                         decide(false, format!("stuck at ({x:.2}, {y:.2})"));
                     }
@@ -259,7 +380,11 @@ impl Judge {
                 RuleResult { rule: r.rule.clone(), passed, reason, decided_s: end_s }
             })
             .collect();
-        Verdict { passed: rules.iter().all(|r| r.passed), rules, end_time_s: end_s }
+        Verdict {
+            passed: rules.iter().all(|r| r.passed),
+            rules,
+            end_time_s: end_s,
+        }
     }
 }
 

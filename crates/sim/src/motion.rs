@@ -12,7 +12,9 @@ use serde::{Deserialize, Serialize};
 struct RobotMotion {
     next_movement_s: f64,
     tipped: bool,
-    still_s: f64,
+    /// Where and when the robot last made progress (moved more than the stuck distance).
+    anchor: [f64; 2],
+    anchor_s: f64,
     stuck: bool,
 }
 
@@ -25,7 +27,8 @@ pub(crate) struct MotionDetector {
 impl MotionDetector {
     pub(crate) fn update(&mut self, world: &World, cfg: &EventConfig, out: &mut Emitter) {
         let t = out.time_s;
-        self.robots.resize_with(world.robots.len(), RobotMotion::default);
+        self.robots
+            .resize_with(world.robots.len(), RobotMotion::default);
         for (robot, m) in world.robots.iter().zip(self.robots.iter_mut()) {
             let p = robot_pose(&world.physics, robot);
             let ids = [robot.entity];
@@ -58,23 +61,22 @@ impl MotionDetector {
             } else if m.tipped && tilt < cfg.tip_limit_deg - cfg.tip_rearm_deg {
                 m.tipped = false;
             }
-            let (v, w) = robot.command;
-            let commanded = v.abs() > 0.05 || w.abs() > 0.2;
-            let moving = p.ground_speed_mps > cfg.stuck_speed_mps || p.yaw_rate_radps.abs() > 0.05;
-            if commanded && !moving {
-                m.still_s += world.dt_secs();
-                if !m.stuck && m.still_s >= cfg.stuck_after_s {
-                    m.stuck = true;
-                    out.emit(
-                        EventKind::RobotStuck,
-                        entity_refs(world, &ids),
-                        "",
-                        &[("x_m", p.x_m), ("y_m", p.y_m), ("still_s", m.still_s)],
-                    );
-                }
-            } else {
-                m.still_s = 0.0;
+            // Stuck: commanded to drive, yet within `stuck_distance_m` of where it was
+            // `stuck_after_s` ago (turning in place is not checked).
+            let (v, _) = robot.command;
+            let moved = (p.x_m - m.anchor[0]).hypot(p.y_m - m.anchor[1]);
+            if v.abs() <= 0.05 || moved > cfg.stuck_distance_m {
+                m.anchor = [p.x_m, p.y_m];
+                m.anchor_s = t;
                 m.stuck = false;
+            } else if !m.stuck && t - m.anchor_s >= cfg.stuck_after_s {
+                m.stuck = true;
+                out.emit(
+                    EventKind::RobotStuck,
+                    entity_refs(world, &ids),
+                    "",
+                    &[("x_m", p.x_m), ("y_m", p.y_m), ("still_s", t - m.anchor_s)],
+                );
             }
         }
     }

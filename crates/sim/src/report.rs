@@ -29,7 +29,16 @@ pub fn trajectory_to_csv(trajectory: &[TrajectoryPoint]) -> String {
     let mut s = String::from("time_s,x_m,y_m,z_m,roll_deg,pitch_deg,yaw_deg,speed_mps\n");
     for p in trajectory {
         let q = &p.pose;
-        let row = [p.time_s, q.x_m, q.y_m, q.z_m, q.roll_deg, q.pitch_deg, q.yaw_deg, q.speed_mps];
+        let row = [
+            p.time_s,
+            q.x_m,
+            q.y_m,
+            q.z_m,
+            q.roll_deg,
+            q.pitch_deg,
+            q.yaw_deg,
+            q.speed_mps,
+        ];
         let cells: Vec<String> = row.iter().map(|v| fmt_f(*v)).collect();
         s.push_str(&cells.join(","));
         s.push('\n');
@@ -54,13 +63,24 @@ pub fn report_markdown(outcome: &Outcome, cfg: &ReportConfig) -> String {
         outcome.robot_model,
         fmt_secs(v.end_time_s),
         outcome.events.len(),
-        outcome.events.iter().filter(|e| e.kind.is_significant()).count()
+        outcome
+            .events
+            .iter()
+            .filter(|e| e.kind.is_significant())
+            .count()
     );
-    let _ = writeln!(s, "## Verdict: {}\n", if v.passed { "PASSED" } else { "FAILED" });
+    let _ = writeln!(
+        s,
+        "## Verdict: {}\n",
+        if v.passed { "PASSED" } else { "FAILED" }
+    );
     if v.rules.is_empty() {
         let _ = writeln!(s, "No rules.\n");
     } else {
-        let _ = writeln!(s, "| rule | result | decided at (s) | reason |\n|---|---|---|---|");
+        let _ = writeln!(
+            s,
+            "| rule | result | decided at (s) | reason |\n|---|---|---|---|"
+        );
         for r in &v.rules {
             let _ = writeln!(
                 s,
@@ -73,11 +93,26 @@ pub fn report_markdown(outcome: &Outcome, cfg: &ReportConfig) -> String {
         }
         s.push('\n');
     }
-    let _ = writeln!(s, "## Timeline\n\n| time (s) | event | entities | values |\n|---|---|---|---|");
-    let significant: Vec<_> = outcome.events.iter().filter(|e| e.kind.is_significant()).collect();
+    let _ = writeln!(
+        s,
+        "## Timeline\n\n| time (s) | event | entities | values |\n|---|---|---|---|"
+    );
+    let significant: Vec<_> = outcome
+        .events
+        .iter()
+        .filter(|e| e.kind.is_significant())
+        .collect();
     for e in significant.iter().take(cfg.max_timeline_rows) {
-        let ents: Vec<String> = e.entities.iter().map(|x| format!("{} ({})", x.name, x.class.name())).collect();
-        let mut vals: Vec<String> = e.values.iter().map(|(k, x)| format!("{k} = {x:.2}")).collect();
+        let ents: Vec<String> = e
+            .entities
+            .iter()
+            .map(|x| format!("{} ({})", x.name, x.class.name()))
+            .collect();
+        let mut vals: Vec<String> = e
+            .values
+            .iter()
+            .map(|(k, x)| format!("{k} = {x:.2}"))
+            .collect();
         if !e.detail.is_empty() {
             vals.insert(0, e.detail.clone());
         }
@@ -91,10 +126,21 @@ pub fn report_markdown(outcome: &Outcome, cfg: &ReportConfig) -> String {
         );
     }
     if significant.len() > cfg.max_timeline_rows {
-        let _ = writeln!(s, "\n{} more significant events are in events.jsonl.", significant.len() - cfg.max_timeline_rows);
+        let _ = writeln!(
+            s,
+            "\n{} more significant events are in events.jsonl.",
+            significant.len() - cfg.max_timeline_rows
+        );
     }
-    let moves = outcome.events.iter().filter(|e| e.kind == EventKind::Movement).count();
-    let _ = writeln!(s, "\n{moves} movement events are in events.jsonl; the trajectory is in trajectory.csv.");
+    let moves = outcome
+        .events
+        .iter()
+        .filter(|e| e.kind == EventKind::Movement)
+        .count();
+    let _ = writeln!(
+        s,
+        "\n{moves} movement events are in events.jsonl; the trajectory is in trajectory.csv."
+    );
     s
 }
 
@@ -123,7 +169,11 @@ pub fn write_report_md(path: &Path, outcome: &Outcome, cfg: &ReportConfig) -> Re
 /// Writes `events.jsonl`, `trajectory.csv` and `report.md` into `dir` (which must exist);
 /// returns their paths in that order.
 pub fn write_outputs(dir: &Path, outcome: &Outcome, cfg: &ReportConfig) -> Result<[PathBuf; 3]> {
-    let paths = [dir.join("events.jsonl"), dir.join("trajectory.csv"), dir.join("report.md")];
+    let paths = [
+        dir.join("events.jsonl"),
+        dir.join("trajectory.csv"),
+        dir.join("report.md"),
+    ];
     write_events_jsonl(&paths[0], outcome)?;
     write_trajectory_csv(&paths[1], outcome)?;
     write_report_md(&paths[2], outcome, cfg)?;

@@ -8,7 +8,8 @@ use crate::world::{groups, Part, Tag, G_DOOR, G_ROBOT, G_SENSOR, G_STATIC};
 use glam::{Quat, Vec3};
 use rapier3d::prelude::{
     CoefficientCombineRule, ColliderBuilder, ColliderHandle, ImpulseJointHandle, JointAxis,
-    MassProperties, PhysicsWorld, Pose, RevoluteJointBuilder, RigidBodyBuilder, RigidBodyHandle,
+    MassProperties, MotorModel, PhysicsWorld, Pose, RevoluteJointBuilder, RigidBodyBuilder,
+    RigidBodyHandle, SharedShape,
 };
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -62,6 +63,37 @@ pub struct WheelModel {
     /// Whether its motor drives it (otherwise it rolls freely).
     #[serde(default = "yes")]
     pub driven: bool,
+    /// Cleats (grousers) around the tyre: 0 = a plain cylinder. Cleats hook onto stair
+    /// nosings, which plain tyres can only climb by friction.
+    #[serde(default)]
+    pub cleats: u32,
+    /// How far the cleats stand out of the tyre (m).
+    #[serde(default)]
+    pub cleat_height_m: f64,
+}
+
+/// A wheel's collider shape: a cylinder along y, with cleats if the model has them.
+fn wheel_shape(w: &WheelModel) -> ColliderBuilder {
+    let (r, half_w) = (w.radius_m as f32, w.width_m as f32 / 2.0);
+    if w.cleats == 0 || w.cleat_height_m <= 0.0 {
+        return ColliderBuilder::cylinder(half_w, r);
+    }
+    let h = w.cleat_height_m as f32;
+    let sink = 0.01_f32.min(r / 4.0);
+    let thick = (std::f32::consts::TAU * r / w.cleats as f32 * 0.25).min(0.03);
+    let mut parts = vec![(Pose::IDENTITY, SharedShape::cylinder(half_w, r))];
+    for i in 0..w.cleats {
+        let a = std::f32::consts::TAU * i as f32 / w.cleats as f32;
+        let c = r + h / 2.0 - sink / 2.0;
+        parts.push((
+            Pose::from_parts(
+                Vec3::new(c * a.cos(), 0.0, c * a.sin()),
+                Quat::from_rotation_y(-a),
+            ),
+            SharedShape::cuboid((h + sink) / 2.0, half_w, thick / 2.0),
+        ));
+    }
+    ColliderBuilder::compound(parts)
 }
 
 fn yes() -> bool {
@@ -159,7 +191,11 @@ pub struct StartPose {
 impl StartPose {
     /// Checks that every number is finite.
     pub fn validate(&self) -> Result<()> {
-        check_finite("start", "x_m, y_m, yaw_deg, z_m", &[self.x_m, self.y_m, self.yaw_deg, self.z_m])
+        check_finite(
+            "start",
+            "x_m, y_m, yaw_deg, z_m",
+            &[self.x_m, self.y_m, self.yaw_deg, self.z_m],
+        )
     }
 }
 
@@ -176,13 +212,14 @@ impl RobotModel {
 
     /// A built-in model by name (`pioneer3at`, `inspection`).
     pub fn builtin(name: &str) -> Result<RobotModel> {
-        let (n, text) = BUILTINS
-            .iter()
-            .find(|b| b.0 == name)
-            .ok_or_else(|| SimError::UnknownRobotModel {
-                name: name.to_string(),
-                builtins: Self::builtin_names().join(", "),
-            })?;
+        let (n, text) =
+            BUILTINS
+                .iter()
+                .find(|b| b.0 == name)
+                .ok_or_else(|| SimError::UnknownRobotModel {
+                    name: name.to_string(),
+                    builtins: Self::builtin_names().join(", "),
+                })?;
         RobotModel::from_toml_str(text, &format!("<built-in robot model {n}>"))
     }
 
@@ -224,7 +261,14 @@ impl RobotModel {
         for s in c.size_m {
             check_range(el, "chassis.size_m", s, 0.01, 10.0, "1 cm to 10 m")?;
         }
-        check_range(el, "chassis.mass_kg", c.mass_kg, 0.1, 10_000.0, "0.1 kg to 10 t")?;
+        check_range(
+            el,
+            "chassis.mass_kg",
+            c.mass_kg,
+            0.1,
+            10_000.0,
+            "0.1 kg to 10 t",
+        )?;
         check_finite(el, "chassis.com_offset_m", &c.com_offset_m)?;
         if self.wheels.len() < 2 || self.wheels.len() > 32 {
             return Err(SimError::Invalid {
@@ -238,9 +282,24 @@ impl RobotModel {
             check_range(&wel, "radius_m", w.radius_m, 0.01, 2.0, "1 cm to 2 m")?;
             check_range(&wel, "width_m", w.width_m, 0.005, 1.0, "5 mm to 1 m")?;
             check_range(&wel, "mass_kg", w.mass_kg, 0.01, 1000.0, "10 g to 1 t")?;
+            check_range(&wel, "cleats", w.cleats as f64, 0.0, 64.0, "0 to 64")?;
+            check_range(
+                &wel,
+                "cleat_height_m",
+                w.cleat_height_m,
+                0.0,
+                w.radius_m,
+                "0 to the radius",
+            )?;
         }
-        let left = self.wheels.iter().any(|w| w.driven && w.position_m[1] > 0.0);
-        let right = self.wheels.iter().any(|w| w.driven && w.position_m[1] < 0.0);
+        let left = self
+            .wheels
+            .iter()
+            .any(|w| w.driven && w.position_m[1] > 0.0);
+        let right = self
+            .wheels
+            .iter()
+            .any(|w| w.driven && w.position_m[1] < 0.0);
         if !(left && right) {
             return Err(SimError::Invalid {
                 element: el.to_string(),
@@ -248,10 +307,38 @@ impl RobotModel {
             });
         }
         let d = &self.drive;
-        check_range(el, "drive.max_speed_mps", d.max_speed_mps, 0.01, 20.0, "0.01 to 20 m/s")?;
-        check_range(el, "drive.max_yaw_rate_radps", d.max_yaw_rate_radps, 0.01, 20.0, "0.01 to 20 rad/s")?;
-        check_range(el, "drive.max_wheel_torque_nm", d.max_wheel_torque_nm, 0.01, 1.0e4, "0.01 to 1e4 N m")?;
-        check_range(el, "drive.wheel_friction", d.wheel_friction, 0.0, 5.0, "0 to 5")?;
+        check_range(
+            el,
+            "drive.max_speed_mps",
+            d.max_speed_mps,
+            0.01,
+            20.0,
+            "0.01 to 20 m/s",
+        )?;
+        check_range(
+            el,
+            "drive.max_yaw_rate_radps",
+            d.max_yaw_rate_radps,
+            0.01,
+            20.0,
+            "0.01 to 20 rad/s",
+        )?;
+        check_range(
+            el,
+            "drive.max_wheel_torque_nm",
+            d.max_wheel_torque_nm,
+            0.01,
+            1.0e4,
+            "0.01 to 1e4 N m",
+        )?;
+        check_range(
+            el,
+            "drive.wheel_friction",
+            d.wheel_friction,
+            0.0,
+            5.0,
+            "0 to 5",
+        )?;
         check_range(el, "drive.skid_factor", d.skid_factor, 0.5, 5.0, "0.5 to 5")?;
         if let Some(arm) = &self.arm {
             check_finite(el, "arm.mount_m", &arm.mount_m)?;
@@ -264,12 +351,40 @@ impl RobotModel {
             for (i, l) in arm.links.iter().enumerate() {
                 let lel = format!("{el}.arm.links[{i}]");
                 check_range(&lel, "length_m", l.length_m, 0.01, 5.0, "1 cm to 5 m")?;
-                check_range(&lel, "thickness_m", l.thickness_m, 0.005, 1.0, "5 mm to 1 m")?;
+                check_range(
+                    &lel,
+                    "thickness_m",
+                    l.thickness_m,
+                    0.005,
+                    1.0,
+                    "5 mm to 1 m",
+                )?;
                 check_range(&lel, "mass_kg", l.mass_kg, 0.01, 1000.0, "10 g to 1 t")?;
                 check_range(&lel, "min_deg", l.min_deg, -180.0, 180.0, "-180 to 180")?;
-                check_range(&lel, "max_deg", l.max_deg, l.min_deg, 180.0, "min_deg to 180")?;
-                check_range(&lel, "angle_deg", l.angle_deg, l.min_deg, l.max_deg, "within the limits")?;
-                check_range(&lel, "max_torque_nm", l.max_torque_nm, 0.0, 1.0e5, "0 to 1e5 N m")?;
+                check_range(
+                    &lel,
+                    "max_deg",
+                    l.max_deg,
+                    l.min_deg,
+                    180.0,
+                    "min_deg to 180",
+                )?;
+                check_range(
+                    &lel,
+                    "angle_deg",
+                    l.angle_deg,
+                    l.min_deg,
+                    l.max_deg,
+                    "within the limits",
+                )?;
+                check_range(
+                    &lel,
+                    "max_torque_nm",
+                    l.max_torque_nm,
+                    0.0,
+                    1.0e5,
+                    "0 to 1e5 N m",
+                )?;
                 if let Some(f) = l.break_force_n {
                     check_range(&lel, "break_force_n", f, 1.0, 1.0e9, "at least 1 N")?;
                 }
@@ -285,7 +400,9 @@ impl RobotModel {
     pub fn chassis_height_m(&self) -> f64 {
         self.wheels
             .iter()
-            .map(|w| w.radius_m - w.position_m[2])
+            .map(|w| {
+                w.radius_m + if w.cleats > 0 { w.cleat_height_m } else { 0.0 } - w.position_m[2]
+            })
             .fold(f64::MIN, f64::max)
     }
 }
@@ -324,6 +441,10 @@ pub(crate) struct Robot {
     /// The last (v, w) sent to the motors.
     pub command: (f64, f64),
 }
+
+/// Arm joint position servo: stiffness and damping (force-based).
+const ARM_STIFFNESS_NM_PER_RAD: f32 = 1.0e5;
+const ARM_DAMPING_NMS_PER_RAD: f32 = 100.0;
 
 /// The motors' velocity gain (a stiff velocity constraint, limited by the torque).
 const MOTOR_GAIN: f32 = 1000.0;
@@ -379,7 +500,7 @@ impl Robot {
                     .can_sleep(false),
             );
             let collider = physics.colliders.insert_with_parent(
-                ColliderBuilder::cylinder(w.width_m as f32 / 2.0, w.radius_m as f32)
+                wheel_shape(w)
                     .mass(w.mass_kg as f32)
                     .friction(d.wheel_friction as f32)
                     .friction_combine_rule(CoefficientCombineRule::Max)
@@ -388,7 +509,11 @@ impl Robot {
                 body,
                 &mut physics.bodies,
             );
-            let max_torque = if w.driven { d.max_wheel_torque_nm as f32 } else { 0.0 };
+            let max_torque = if w.driven {
+                d.max_wheel_torque_nm as f32
+            } else {
+                0.0
+            };
             let joint = RevoluteJointBuilder::new(Vec3::Y)
                 .local_anchor1(offset)
                 .local_anchor2(Vec3::ZERO)
@@ -439,7 +564,8 @@ impl Robot {
                     .local_anchor2(Vec3::ZERO)
                     .contacts_enabled(false)
                     .limits([l.min_deg.to_radians() as f32, l.max_deg.to_radians() as f32])
-                    .motor_position(angle, 2000.0, 100.0)
+                    .motor_model(MotorModel::ForceBased)
+                    .motor_position(angle, ARM_STIFFNESS_NM_PER_RAD, ARM_DAMPING_NMS_PER_RAD)
                     .motor_max_force(l.max_torque_nm as f32);
                 let joint = physics.impulse_joints.insert(parent, body, joint, true);
                 arm.push(ArmLinkBody {
@@ -477,7 +603,10 @@ impl Robot {
     /// the drive's limits; skid steering: wheel speed = v - w * y * skid_factor.
     pub(crate) fn drive(&mut self, physics: &mut PhysicsWorld, v: f64, w: f64) {
         let v = v.clamp(-self.drive.max_speed_mps, self.drive.max_speed_mps);
-        let w = w.clamp(-self.drive.max_yaw_rate_radps, self.drive.max_yaw_rate_radps);
+        let w = w.clamp(
+            -self.drive.max_yaw_rate_radps,
+            self.drive.max_yaw_rate_radps,
+        );
         if (v, w) == self.command {
             return;
         }
@@ -486,7 +615,8 @@ impl Robot {
             let speed = v - w * wheel.y_m * self.drive.skid_factor;
             let target = (speed / wheel.radius_m) as f32;
             if let Some(j) = physics.impulse_joints.get_mut(wheel.joint, true) {
-                j.data.set_motor_velocity(JointAxis::AngX, target, MOTOR_GAIN);
+                j.data
+                    .set_motor_velocity(JointAxis::AngX, target, MOTOR_GAIN);
             }
         }
     }

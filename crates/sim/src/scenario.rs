@@ -163,21 +163,49 @@ impl Scenario {
     /// [`crate::Simulation::new`]).
     pub fn validate(&self) -> Result<()> {
         let el = "scenario";
-        check_range(el, "time_limit_s", self.time_limit_s, 1.0e-3, 1.0e6, "a positive time of at most 1e6 s")?;
-        check_range(el, "trajectory_rate_hz", self.trajectory_rate_hz, 0.0, 1000.0, "0 to 1000")?;
+        check_range(
+            el,
+            "time_limit_s",
+            self.time_limit_s,
+            1.0e-3,
+            1.0e6,
+            "a positive time of at most 1e6 s",
+        )?;
+        check_range(
+            el,
+            "trajectory_rate_hz",
+            self.trajectory_rate_hz,
+            0.0,
+            1000.0,
+            "0 to 1000",
+        )?;
         self.start.validate()?;
         validate_commands(&self.velocity, &self.waypoints)?;
         self.events.validate()?;
         self.world.validate()?;
         self.controller.validate()?;
         let r = &self.rules;
-        check_range("rules", "open_door_by_deg", r.open_door_by_deg, 0.0, 180.0, "0 to 180")?;
+        check_range(
+            "rules",
+            "open_door_by_deg",
+            r.open_door_by_deg,
+            0.0,
+            180.0,
+            "0 to 180",
+        )?;
         if let Some(m) = r.max_wall_contact_s {
             check_range("rules", "max_wall_contact_s", m, 0.0, 1.0e6, "at least 0 s")?;
         }
         if let Some(g) = &r.reach {
             check_finite("rules.reach", "x_m, y_m", &[g.x_m, g.y_m])?;
-            check_range("rules.reach", "radius_m", g.radius_m, 1.0e-3, 1.0e4, "a positive radius")?;
+            check_range(
+                "rules.reach",
+                "radius_m",
+                g.radius_m,
+                1.0e-3,
+                1.0e4,
+                "a positive radius",
+            )?;
         }
         Ok(())
     }

@@ -317,7 +317,9 @@ impl WorldSpec {
                     .or_else(|| entities.iter().find(|e| e.name == free))
             })
             .or_else(|| {
-                let mut it = entities.iter().filter(|e| !e.label.is_empty() && e.label == r);
+                let mut it = entities
+                    .iter()
+                    .filter(|e| !e.label.is_empty() && e.label == r);
                 match (it.next(), it.next()) {
                     (Some(e), None) => Some(e),
                     _ => None,
@@ -343,7 +345,10 @@ impl WorldSpec {
         let mut classes: BTreeMap<u32, (EntityClass, String)> = BTreeMap::new();
         let mut claim = |id: u32, class: EntityClass, name: &str, element: &str| -> Result<()> {
             if id == 0 {
-                return Err(invalid(element, "entity id 0 is reserved for \"no entity\""));
+                return Err(invalid(
+                    element,
+                    "entity id 0 is reserved for \"no entity\"",
+                ));
             }
             match classes.get(&id) {
                 Some((c, n)) if *c != class || n != name => Err(invalid(
@@ -361,8 +366,14 @@ impl WorldSpec {
         for (i, f) in self.fixed.iter().enumerate() {
             let el = format!("fixed[{i}] ({})", fixed_names[i]);
             claim(f.entity, f.class, &fixed_names[i], &el)?;
-            if matches!(f.class, EntityClass::Door | EntityClass::FreeSpaceForDoor | EntityClass::Robot) {
-                return Err(invalid(&el, &format!("a fixed box cannot be a {}", f.class.name())));
+            if matches!(
+                f.class,
+                EntityClass::Door | EntityClass::FreeSpaceForDoor | EntityClass::Robot
+            ) {
+                return Err(invalid(
+                    &el,
+                    &format!("a fixed box cannot be a {}", f.class.name()),
+                ));
             }
             check_box(&el, &f.geometry)?;
         }
@@ -424,7 +435,11 @@ impl WorldSpec {
         Ok(())
     }
 
-    fn check_door(&self, d: &DoorSpec, classes: &BTreeMap<u32, (EntityClass, String)>) -> Result<()> {
+    fn check_door(
+        &self,
+        d: &DoorSpec,
+        classes: &BTreeMap<u32, (EntityClass, String)>,
+    ) -> Result<()> {
         let el = format!("door {}", d.name);
         if classes.get(&d.wall).map(|c| c.0) != Some(EntityClass::Wall) {
             return Err(SimError::DoorWithoutWall {
@@ -434,14 +449,63 @@ impl WorldSpec {
         }
         check_box(&el, &d.leaf)?;
         check_finite(&el, "hinge_m", &d.hinge_m)?;
-        check_range(&el, "min_deg", d.min_deg, -180.0, 180.0, "an angle in [-180, 180]")?;
-        check_range(&el, "max_deg", d.max_deg, d.min_deg, 180.0, "in [min_deg, 180]")?;
-        check_range(&el, "initial_deg", d.initial_deg, d.min_deg, d.max_deg, "within [min_deg, max_deg]")?;
-        check_range(&el, "mass_kg", d.mass_kg, 0.1, 10_000.0, "a leaf of 0.1 kg to 10 t")?;
-        check_range(&el, "damping_per_s", d.damping_per_s, 0.0, 1000.0, "in [0, 1000]")?;
-        check_range(&el, "hinge_friction_nm", d.hinge_friction_nm, 0.0, 1.0e5, "in [0, 1e5]")?;
+        check_range(
+            &el,
+            "min_deg",
+            d.min_deg,
+            -180.0,
+            180.0,
+            "an angle in [-180, 180]",
+        )?;
+        check_range(
+            &el,
+            "max_deg",
+            d.max_deg,
+            d.min_deg,
+            180.0,
+            "in [min_deg, 180]",
+        )?;
+        check_range(
+            &el,
+            "initial_deg",
+            d.initial_deg,
+            d.min_deg,
+            d.max_deg,
+            "within [min_deg, max_deg]",
+        )?;
+        check_range(
+            &el,
+            "mass_kg",
+            d.mass_kg,
+            0.1,
+            10_000.0,
+            "a leaf of 0.1 kg to 10 t",
+        )?;
+        check_range(
+            &el,
+            "damping_per_s",
+            d.damping_per_s,
+            0.0,
+            1000.0,
+            "in [0, 1000]",
+        )?;
+        check_range(
+            &el,
+            "hinge_friction_nm",
+            d.hinge_friction_nm,
+            0.0,
+            1.0e5,
+            "in [0, 1e5]",
+        )?;
         if let Some(f) = d.break_force_n {
-            check_range(&el, "break_force_n", f, 1.0, 1.0e9, "a force of at least 1 N")?;
+            check_range(
+                &el,
+                "break_force_n",
+                f,
+                1.0,
+                1.0e9,
+                "a force of at least 1 N",
+            )?;
         }
         // The hinge must sit at the hinged end of the closed leaf.
         let yaw = d.leaf.yaw_deg.to_radians();

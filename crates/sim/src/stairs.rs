@@ -35,7 +35,11 @@ impl StairsDetector {
         out: &mut Emitter,
     ) {
         for (ri, robot) in world.robots.iter().enumerate() {
-            let contacts = scan.wheels_on_stairs.get(ri).map(Vec::as_slice).unwrap_or(&[]);
+            let contacts = scan
+                .wheels_on_stairs
+                .get(ri)
+                .map(Vec::as_slice)
+                .unwrap_or(&[]);
             let on_floor = scan.wheels_on_floor.get(ri).cloned().unwrap_or_default();
             for stairs in &world.stairs {
                 let top = if stairs.has_landing {
@@ -43,7 +47,10 @@ impl StairsDetector {
                 } else {
                     stairs.steps.saturating_sub(1)
                 };
-                let mine: Vec<_> = contacts.iter().filter(|c| c.stairs == stairs.entity).collect();
+                let mine: Vec<_> = contacts
+                    .iter()
+                    .filter(|c| c.stairs == stairs.entity)
+                    .collect();
                 let standing: BTreeSet<u16> = mine
                     .iter()
                     .filter(|c| c.normal_z >= cfg.tread_normal_z)
@@ -57,7 +64,12 @@ impl StairsDetector {
                 if !climb.climbing && !climb.finished && !standing.is_empty() {
                     climb.climbing = true;
                     climb.highest = -1;
-                    out.emit(EventKind::StairsClimbingStarted, entity_refs(world, &ids), "", &[]);
+                    out.emit(
+                        EventKind::StairsClimbingStarted,
+                        entity_refs(world, &ids),
+                        "",
+                        &[],
+                    );
                 }
                 if climb.climbing {
                     let high = standing.iter().next_back().map(|&i| i as i32).unwrap_or(-1);
@@ -119,6 +131,9 @@ impl StairsDetector {
 
     /// The highest step reached by robot `ri` on staircase `stairs` (-1: none).
     pub(crate) fn highest(&self, ri: usize, stairs: u32) -> i32 {
-        self.climbs.get(&(ri, stairs)).map(|c| c.highest).unwrap_or(-1)
+        self.climbs
+            .get(&(ri, stairs))
+            .map(|c| c.highest)
+            .unwrap_or(-1)
     }
 }

@@ -29,6 +29,9 @@ pub struct WorldConfig {
     /// A contact closer than this counts as touching (m); rapier also reports predictive
     /// contacts up to 2 cm apart, which are not touches.
     pub touch_tolerance_m: f64,
+    /// Continuous collision detection (rapier's CCD substeps; 0 = off). Robots and doors move
+    /// slowly enough for speculative contacts; CCD costs much time with cleated wheels.
+    pub ccd_substeps: usize,
 }
 
 impl Default for WorldConfig {
@@ -38,7 +41,8 @@ impl Default for WorldConfig {
             solver_iterations: 4,
             gravity_mps2: 9.81,
             static_friction: 0.7,
-            touch_tolerance_m: 0.005,
+            touch_tolerance_m: 0.01,
+            ccd_substeps: 0,
         }
     }
 }
@@ -47,11 +51,54 @@ impl WorldConfig {
     /// Checks the settings.
     pub fn validate(&self) -> Result<()> {
         let el = "world config";
-        check_range(el, "dt_secs", self.dt_secs, 1.0e-4, 0.1, "a step of 0.1 ms to 100 ms")?;
-        check_range(el, "solver_iterations", self.solver_iterations as f64, 1.0, 64.0, "1 to 64")?;
-        check_range(el, "gravity_mps2", self.gravity_mps2, 0.0, 100.0, "0 to 100")?;
-        check_range(el, "static_friction", self.static_friction, 0.0, 10.0, "0 to 10")?;
-        check_range(el, "touch_tolerance_m", self.touch_tolerance_m, 0.0, 0.02, "0 to 0.02 m")?;
+        check_range(
+            el,
+            "dt_secs",
+            self.dt_secs,
+            1.0e-4,
+            0.1,
+            "a step of 0.1 ms to 100 ms",
+        )?;
+        check_range(
+            el,
+            "solver_iterations",
+            self.solver_iterations as f64,
+            1.0,
+            64.0,
+            "1 to 64",
+        )?;
+        check_range(
+            el,
+            "gravity_mps2",
+            self.gravity_mps2,
+            0.0,
+            100.0,
+            "0 to 100",
+        )?;
+        check_range(
+            el,
+            "static_friction",
+            self.static_friction,
+            0.0,
+            10.0,
+            "0 to 10",
+        )?;
+        check_range(
+            el,
+            "touch_tolerance_m",
+            self.touch_tolerance_m,
+            0.0,
+            0.02,
+            "0 to 0.02 m",
+        )?;
+        check_range(
+            el,
+            "ccd_substeps",
+            self.ccd_substeps as f64,
+            0.0,
+            16.0,
+            "0 (off) to 16",
+        )?;
         Ok(())
     }
 }
@@ -165,7 +212,11 @@ pub struct World {
 
 pub(crate) fn pose_of(b: &BoxSpec) -> Pose {
     Pose::from_parts(
-        Vec3::new(b.center_m[0] as f32, b.center_m[1] as f32, b.center_m[2] as f32),
+        Vec3::new(
+            b.center_m[0] as f32,
+            b.center_m[1] as f32,
+            b.center_m[2] as f32,
+        ),
         Quat::from_rotation_z(b.yaw_deg.to_radians() as f32),
     )
 }
@@ -184,6 +235,7 @@ impl World {
         physics.gravity = Vec3::new(0.0, 0.0, -config.gravity_mps2 as f32);
         physics.integration_parameters.dt = config.dt_secs as f32;
         physics.integration_parameters.num_solver_iterations = config.solver_iterations;
+        physics.integration_parameters.max_ccd_substeps = config.ccd_substeps;
         let ground = physics.bodies.insert(RigidBodyBuilder::fixed());
         let friction = config.static_friction as f32;
         let fixed_groups = groups(G_STATIC, G_ROBOT | G_DOOR);
@@ -275,7 +327,12 @@ impl World {
     }
 
     /// Puts a robot into the world; returns its index. Its entity id is the next free id.
-    pub fn add_robot(&mut self, model: &RobotModel, start: &StartPose, name: &str) -> Result<usize> {
+    pub fn add_robot(
+        &mut self,
+        model: &RobotModel,
+        start: &StartPose,
+        name: &str,
+    ) -> Result<usize> {
         model.validate()?;
         start.validate()?;
         let id = self.entities.keys().next_back().copied().unwrap_or(0) + 1;
@@ -343,7 +400,10 @@ impl World {
 
     /// The tag of a collider (static if it has none).
     pub(crate) fn tag(&self, c: ColliderHandle) -> Option<Tag> {
-        self.physics.colliders.get(c).map(|c| Tag::unpack(c.user_data))
+        self.physics
+            .colliders
+            .get(c)
+            .map(|c| Tag::unpack(c.user_data))
     }
 }
 

@@ -1,0 +1,138 @@
+//! Shared by the tests, the examples and the benchmark: survey poses chosen from a building,
+//! virtual scans from them, merged in the world frame with the true poses.
+#![allow(dead_code)]
+
+use cloud::PointCloud;
+use glam::Vec3;
+use scanner::{Building, BuildingGeometry, LaserConfig, ScanPose, VirtualLaser};
+
+/// The laser mount height used everywhere here (the scanner's default).
+pub const MOUNT_M: f64 = 0.5;
+
+/// A moderate laser for the tests: 271 beams x 151 rotation steps.
+pub fn test_laser() -> LaserConfig {
+    LaserConfig {
+        beams: 271,
+        rotation_steps: 151,
+        ..LaserConfig::default()
+    }
+}
+
+/// True if a laser at (x, y) would stand clear of every solid (30 cm around it).
+fn clear(g: &BuildingGeometry, x: f64, y: f64) -> bool {
+    let r = 0.3;
+    [(0.0, 0.0), (r, 0.0), (-r, 0.0), (0.0, r), (0.0, -r)]
+        .iter()
+        .all(|(dx, dy)| {
+            [0.1, MOUNT_M]
+                .iter()
+                .all(|&z| g.entity_containing(Vec3::new((x + dx) as f32, (y + dy) as f32, z as f32)).is_none())
+        })
+}
+
+/// Survey poses for a generated (or the default) building: along the corridor every ~2.5 m,
+/// and one inside each room behind an open, half-open or empty doorway. Falls back to the
+/// floor's centre for buildings without walls named "corridor north" / "corridor south".
+pub fn survey_poses(b: &Building, g: &BuildingGeometry) -> Vec<ScanPose> {
+    let north = b.walls.iter().find(|w| w.name == "corridor north");
+    let south = b.walls.iter().find(|w| w.name == "corridor south");
+    let (Some(n), Some(s)) = (north, south) else {
+        let f = &b.floor;
+        return vec![ScanPose {
+            x_m: (f.min_m[0] + f.max_m[0]) / 2.0,
+            y_m: (f.min_m[1] + f.max_m[1]) / 2.0,
+            yaw_deg: 0.0,
+        }];
+    };
+    let y_mid = (n.start_m[1] + s.start_m[1]) / 2.0;
+    let (x0, x1) = (n.start_m[0].min(n.end_m[0]) + 1.0, n.start_m[0].max(n.end_m[0]) - 1.0);
+    let k = ((x1 - x0) / 2.5).ceil().max(1.0) as usize;
+    let mut poses: Vec<ScanPose> = (0..=k)
+        .map(|i| ScanPose {
+            x_m: x0 + (x1 - x0) * i as f64 / k as f64,
+            y_m: y_mid,
+            yaw_deg: 0.0,
+        })
+        .filter(|p| clear(g, p.x_m, p.y_m))
+        .collect();
+    for (w, sign) in [(n, 1.0), (s, -1.0)] {
+        let dir = (w.end_m[0] - w.start_m[0]).signum();
+        for d in &w.doors {
+            let open = d.leaf.as_ref().is_none_or(|l| l.open_deg >= 30.0);
+            if !open {
+                continue;
+            }
+            // The room: between the partitions (or outer walls) either side of the door, from
+            // the corridor wall to the outer wall. Its centre, else near it.
+            let xc = w.start_m[0] + dir * (d.offset_m + d.width_m / 2.0);
+            let (room_x, depth) = room_centre(b, xc, w.start_m[1], sign);
+            'search: for dy in [0.0, 0.5, -0.5, 1.0, -1.0] {
+                for dx in [0.0, 0.6, -0.6, 1.2, -1.2] {
+                    let (x, y) = (room_x + dx, w.start_m[1] + sign * (depth / 2.0 + dy));
+                    if clear(g, x, y) {
+                        poses.push(ScanPose { x_m: x, y_m: y, yaw_deg: 0.0 });
+                        break 'search;
+                    }
+                }
+            }
+        }
+    }
+    poses
+}
+
+/// The x of the centre of the room behind a door at `x` in the corridor wall at `y`, on side
+/// `sign` (+1 north), and the room's depth from that wall: the nearest walls across x either
+/// side, and the nearest wall along x beyond.
+fn room_centre(b: &Building, x: f64, y: f64, sign: f64) -> (f64, f64) {
+    let probe = y + sign * 1.0;
+    let (mut west, mut east) = (f64::NEG_INFINITY, f64::INFINITY);
+    let mut far = f64::INFINITY;
+    for w in &b.walls {
+        let (x0, x1) = (w.start_m[0].min(w.end_m[0]), w.start_m[0].max(w.end_m[0]));
+        let (y0, y1) = (w.start_m[1].min(w.end_m[1]), w.start_m[1].max(w.end_m[1]));
+        if (x1 - x0) < 1e-6 && probe >= y0 && probe <= y1 {
+            if x0 < x && x0 > west {
+                west = x0;
+            }
+            if x0 > x && x0 < east {
+                east = x0;
+            }
+        }
+        if (y1 - y0) < 1e-6 && x >= x0 && x <= x1 && sign * (y0 - y) > 0.5 {
+            far = far.min(sign * (y0 - y));
+        }
+    }
+    let cx = if west.is_finite() && east.is_finite() { (west + east) / 2.0 } else { x };
+    (cx, if far.is_finite() { far } else { 3.0 })
+}
+
+/// Scans `b` from `poses` and merges the scans in the world frame (missing returns dropped,
+/// ground-truth labels kept), then voxel-downsamples to `voxel_m` (0 = keep every point).
+pub fn scan_building(b: &Building, poses: &[ScanPose], laser: &LaserConfig, voxel_m: f64) -> PointCloud {
+    let g = BuildingGeometry::new(b);
+    let laser = VirtualLaser::new(laser.clone()).expect("valid laser");
+    let mut merged = PointCloud::from_points(Vec::new());
+    let mut labels = Vec::new();
+    for (k, pose) in poses.iter().enumerate() {
+        let mut scan = laser.scan(&g, pose, k as u64);
+        scan.transform(&pose.world_from_scan(laser.config().mount_height_m));
+        let scan = scan.without_invalid();
+        merged.points.extend(scan.points);
+        labels.extend(scan.labels.unwrap_or_default());
+    }
+    merged.labels = Some(labels);
+    if voxel_m > 0.0 {
+        cloud::voxel_downsample(&merged, voxel_m).expect("valid voxel size")
+    } else {
+        merged
+    }
+}
+
+/// Generated building `seed`, its survey poses and the merged, downsampled test scan.
+pub fn generated(seed: u64, voxel_m: f64) -> (Building, PointCloud) {
+    let b = scanner::generate_building(seed, &scanner::GeneratorConfig::default()).expect("valid building");
+    let g = BuildingGeometry::new(&b);
+    let poses = survey_poses(&b, &g);
+    let cloud = scan_building(&b, &poses, &test_laser(), voxel_m);
+    (b, cloud)
+}

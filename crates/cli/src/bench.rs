@@ -62,22 +62,51 @@ pub fn run(c: BenchCommand) -> anyhow::Result<()> {
     };
     let mut cases = vec![("162,841-point scans", LaserConfig::default())];
     if !a.small_only {
-        cases.push(("1.6 M-point scans", LaserConfig { beams: 1623, rotation_steps: 1003, ..Default::default() }));
+        cases.push((
+            "1.6 M-point scans",
+            LaserConfig {
+                beams: 1623,
+                rotation_steps: 1003,
+                ..Default::default()
+            },
+        ));
     }
     let mut gpu = gpu;
     let mut rows = Vec::new();
-    println!("{:<22} {:>8} {:>10} {:>10} {:>9} {:>9} {:>9} {:>9} {:>8}", "case", "points", "cpu ms/it", "gpu ms/it", "upload", "search", "reduce", "download", "speedup");
+    println!(
+        "{:<22} {:>8} {:>10} {:>10} {:>9} {:>9} {:>9} {:>9} {:>8}",
+        "case",
+        "points",
+        "cpu ms/it",
+        "gpu ms/it",
+        "upload",
+        "search",
+        "reduce",
+        "download",
+        "speedup"
+    );
     for (name, laser) in cases {
         let (target, source) = pair(laser)?;
-        let cpu_ms = matches!(a.device, BenchDevice::Cpu | BenchDevice::Auto).then(|| cpu_ms_per_iteration(&target, &source, a.iterations)).transpose()?;
-        let gpu_split = gpu.as_mut().map(|g| gpu_ms_per_iteration(g, &target, &source, a.iterations, a.bucket)).transpose()?;
+        let cpu_ms = matches!(a.device, BenchDevice::Cpu | BenchDevice::Auto)
+            .then(|| cpu_ms_per_iteration(&target, &source, a.iterations))
+            .transpose()?;
+        let gpu_split = gpu
+            .as_mut()
+            .map(|g| gpu_ms_per_iteration(g, &target, &source, a.iterations, a.bucket))
+            .transpose()?;
         let gpu_ms = gpu_split.map(|s| s.upload_ms + s.search_ms + s.reduce_ms + s.download_ms);
         let speedup = cpu_ms.zip(gpu_ms).map(|(c, g)| c / g);
         let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.3}"));
         let s = gpu_split.unwrap_or_default();
         println!(
             "{name:<22} {:>8} {:>10} {:>10} {:>9.3} {:>9.3} {:>9.3} {:>9.3} {:>8}",
-            source.len(), f(cpu_ms), f(gpu_ms), s.upload_ms, s.search_ms, s.reduce_ms, s.download_ms,
+            source.len(),
+            f(cpu_ms),
+            f(gpu_ms),
+            s.upload_ms,
+            s.search_ms,
+            s.reduce_ms,
+            s.download_ms,
             speedup.map_or("-".into(), |x| format!("{x:.1}x"))
         );
         rows.push(serde_json::json!({
@@ -111,18 +140,49 @@ fn pair(laser: LaserConfig) -> anyhow::Result<(Vec<Vec3>, Vec<Vec3>)> {
     let b = Building::default_building()?;
     let g = BuildingGeometry::new(&b);
     let l = VirtualLaser::new(laser)?;
-    let t = l.scan(&g, &ScanPose { x_m: 6.5, y_m: 0.0, yaw_deg: 0.0 }, 0).without_invalid();
-    let s = l.scan(&g, &ScanPose { x_m: 7.3, y_m: 0.6, yaw_deg: 5.0 }, 1).without_invalid();
+    let t = l
+        .scan(
+            &g,
+            &ScanPose {
+                x_m: 6.5,
+                y_m: 0.0,
+                yaw_deg: 0.0,
+            },
+            0,
+        )
+        .without_invalid();
+    let s = l
+        .scan(
+            &g,
+            &ScanPose {
+                x_m: 7.3,
+                y_m: 0.6,
+                yaw_deg: 5.0,
+            },
+            1,
+        )
+        .without_invalid();
     Ok((t.points, s.points))
 }
 
 /// The truth of `pair` perturbed by 0.3 m / 5 degrees, as the starting transform.
 fn start() -> Mat4 {
-    let truth = Mat4::from_rotation_translation(Quat::from_rotation_z(5f32.to_radians()), Vec3::new(0.8, 0.6, 0.0));
-    truth * Mat4::from_rotation_translation(Quat::from_rotation_z(5f32.to_radians()), Vec3::new(0.25, 0.15, 0.05))
+    let truth = Mat4::from_rotation_translation(
+        Quat::from_rotation_z(5f32.to_radians()),
+        Vec3::new(0.8, 0.6, 0.0),
+    );
+    truth
+        * Mat4::from_rotation_translation(
+            Quat::from_rotation_z(5f32.to_radians()),
+            Vec3::new(0.25, 0.15, 0.05),
+        )
 }
 
-fn cpu_ms_per_iteration(target: &[Vec3], source: &[Vec3], iterations: usize) -> anyhow::Result<f64> {
+fn cpu_ms_per_iteration(
+    target: &[Vec3],
+    source: &[Vec3],
+    iterations: usize,
+) -> anyhow::Result<f64> {
     let config = IcpConfig {
         method: Method::PointToPoint,
         max_iterations: iterations,
@@ -144,7 +204,13 @@ fn cpu_ms_per_iteration(target: &[Vec3], source: &[Vec3], iterations: usize) -> 
     Ok(its.iter().map(|i| i.time_ms).sum::<f64>() / its.len().max(1) as f64)
 }
 
-fn gpu_ms_per_iteration(g: &mut gpu::GpuIcp, target: &[Vec3], source: &[Vec3], iterations: usize, bucket_m: f32) -> anyhow::Result<gpu::StageTimes> {
+fn gpu_ms_per_iteration(
+    g: &mut gpu::GpuIcp,
+    target: &[Vec3],
+    source: &[Vec3],
+    iterations: usize,
+    bucket_m: f32,
+) -> anyhow::Result<gpu::StageTimes> {
     g.set_target(target, None, bucket_m)?;
     let t0 = Instant::now();
     g.set_source(source)?;

@@ -56,15 +56,16 @@ fn main() -> ExitCode {
             return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
         }
     };
+    let default_config = cli.config.is_none();
     let result =
         config::SemsimConfig::load(cli.config.as_deref()).and_then(|cfg| match cli.command {
             Command::Demo(a) => demo::run(a, &cfg),
             Command::Convert(a) => convert::run(a),
             Command::Info(a) => info::run(a),
-            Command::Register(a) => register::run(a, &cfg),
+            Command::Register(a) => register::run(a, &cfg, default_config),
             Command::Scan(a) => scan::run(a, &cfg),
             Command::Building(c) => building_cmd::run(c, &cfg),
-        Command::Bench(c) => bench::run(c),
+            Command::Bench(c) => bench::run(c),
         });
     match result {
         Ok(()) => ExitCode::SUCCESS,

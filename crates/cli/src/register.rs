@@ -44,9 +44,14 @@ pub struct RegisterArgs {
 }
 
 /// Runs `semsim register`.
-pub fn run(a: RegisterArgs, cfg: &SemsimConfig) -> anyhow::Result<()> {
+pub fn run(a: RegisterArgs, cfg: &SemsimConfig, cfg_is_default: bool) -> anyhow::Result<()> {
     let mut cfg = cfg.clone();
     if let Some(m) = a.method {
+        // Without a configuration file, `--method p2p` means the paper's setting (full resolution,
+        // fixed 0.5 m gate); the other methods keep the defaults. A file's settings always win.
+        if m == Method::PointToPoint && cfg_is_default {
+            cfg.registration.icp = registration::IcpConfig::point_to_point();
+        }
         cfg.registration.icp.method = m;
     }
     if a.sequence {

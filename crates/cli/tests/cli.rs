@@ -37,7 +37,7 @@ fn demo_writes_scans_ground_truth_odometry_and_config() {
             cfg.to_str().expect("utf8"),
         ])
         .ok();
-    assert!(out.contains("8 scans"), "{out}");
+    assert!(out.contains("9 scans"), "{out}");
     let files = d.listing("demo");
     for f in [
         "building.toml",
@@ -46,7 +46,7 @@ fn demo_writes_scans_ground_truth_odometry_and_config() {
         "odometry.txt",
         "poses.txt",
         "scan000.pcd",
-        "scan007.pcd",
+        "scan008.pcd",
     ] {
         assert!(files.contains(&f.to_string()), "{f} missing: {files:?}");
     }
@@ -56,12 +56,12 @@ fn demo_writes_scans_ground_truth_odometry_and_config() {
     assert!(scan.labels.is_some());
     let truth = cloud::read_poses(&d.join("demo/poses.txt")).expect("poses");
     let odo = cloud::read_poses(&d.join("demo/odometry.txt")).expect("odometry");
-    assert_eq!(truth.len(), 8);
+    assert_eq!(truth.len(), 9);
     assert!(truth[0]
         .world_from_scan
         .abs_diff_eq(odo[0].world_from_scan, 1e-9));
     let drift =
-        (truth[7].world_from_scan.translation - odo[7].world_from_scan.translation).length();
+        (truth[8].world_from_scan.translation - odo[8].world_from_scan.translation).length();
     assert!(drift > 0.02 && drift < 3.0, "odometry drift {drift}");
     // The written configuration is the one used, and can be passed back.
     let used = std::fs::read_to_string(d.join("demo/config.toml")).expect("config");
@@ -235,4 +235,134 @@ fn scan_poses_must_be_sane() {
     let cfg = d.write("typo.toml", "[lasr]\nbeams = 10\n");
     d.run(&["demo", "--config", cfg.to_str().expect("utf8")])
         .bad_input(&["typo.toml", "lasr"]);
+}
+
+#[test]
+fn register_pair_prints_one_json_object_near_the_truth() {
+    let d = Dir::new();
+    let cfg = d.small_config();
+    d.run(&[
+        "demo",
+        "--out",
+        "demo",
+        "--config",
+        cfg.to_str().expect("utf8"),
+    ])
+    .ok();
+    let out = d
+        .run(&[
+            "register",
+            "demo/scan002.pcd",
+            "demo/scan001.pcd",
+            "--guess",
+            "2.4,-0.1,0,0,0,2",
+            "--json",
+            "--plot",
+            "rmse.svg",
+        ])
+        .ok();
+    let v: serde_json::Value = serde_json::from_str(out.trim()).expect("exactly one JSON object");
+    for key in [
+        "transform",
+        "iterations",
+        "rmse_m",
+        "fitness",
+        "ms_per_iteration",
+        "total_ms",
+    ] {
+        assert!(v.get(key).is_some(), "{key} missing: {out}");
+    }
+    let m: Vec<f64> = v["transform"]
+        .as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_f64().expect("number"))
+        .collect();
+    assert_eq!(m.len(), 16);
+    let truth = cloud::read_poses(&d.join("demo/poses.txt")).expect("poses");
+    let t = truth[1].world_from_scan.inverse() * truth[2].world_from_scan;
+    assert!(
+        (m[3] - t.translation.x).abs() < 0.01 && (m[7] - t.translation.y).abs() < 0.01,
+        "{m:?} vs {t:?}"
+    );
+    assert!(std::fs::read_to_string(d.join("rmse.svg"))
+        .expect("plot")
+        .contains("<svg"));
+}
+
+#[test]
+fn register_rejects_bad_input_and_reports_non_convergence() {
+    let d = Dir::new();
+    let cfg = d.small_config();
+    d.run(&[
+        "demo",
+        "--out",
+        "demo",
+        "--config",
+        cfg.to_str().expect("utf8"),
+    ])
+    .ok();
+    d.write("g15.txt", "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0");
+    d.run(&[
+        "register",
+        "demo/scan001.pcd",
+        "demo/scan000.pcd",
+        "--guess",
+        "g15.txt",
+    ])
+    .bad_input(&["g15.txt", "16 numbers", "found 15"]);
+    d.write("empty.xyz", "# nothing\n");
+    d.run(&["register", "empty.xyz", "demo/scan000.pcd"])
+        .bad_input(&["source"]);
+    d.write("nan.xyz", "1 2 3\nnan 1 1\n");
+    d.run(&["register", "nan.xyz", "demo/scan000.pcd"])
+        .bad_input(&["nan.xyz"]);
+    d.run(&[
+        "register",
+        "demo/scan001.pcd",
+        "demo/scan000.pcd",
+        "--guess",
+        "100,0,0,0,0,0",
+    ])
+    .bad_input(&["overlap"]);
+    let hard = d.write(
+        "hard.toml",
+        "[registration.icp]\nmax_iterations = 2\nmethod = \"point_to_point\"\n",
+    );
+    let r = d.run(&[
+        "register",
+        "demo/scan004.pcd",
+        "demo/scan000.pcd",
+        "--config",
+        hard.to_str().expect("utf8"),
+    ]);
+    assert_eq!(r.code(), 1, "{}{}", r.stdout(), r.stderr());
+    assert!(
+        r.stderr().contains("did not converge") && !r.stdout().contains("target_from_source"),
+        "{}",
+        r.stderr()
+    );
+}
+
+#[test]
+fn register_sequence_of_the_3dtk_corridor_uses_its_pose_files() {
+    let Some(real) = util::real_data() else {
+        return;
+    };
+    let d = Dir::new();
+    let corridor = real.join("3dtk-corridor");
+    let out = d
+        .run(&[
+            "register",
+            "--sequence",
+            corridor.to_str().expect("utf8"),
+            "--out",
+            "reg",
+        ])
+        .ok();
+    assert!(out.contains("scan002"), "{out}");
+    let poses = cloud::read_poses(&d.join("reg/poses.txt")).expect("poses");
+    assert_eq!(poses.len(), 3);
+    let map = cloud::read_cloud(&d.join("reg/map.pcd")).expect("map");
+    assert!(map.len() > 10_000);
 }

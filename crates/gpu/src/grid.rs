@@ -79,7 +79,9 @@ impl HostGrid {
         let cell_of = |p: Vec3| {
             let g = (p - origin) / bucket_size_m;
             let c = g.floor();
-            let f = ((g - c) * sub as f32).floor().clamp(Vec3::ZERO, Vec3::splat(sub as f32 - 1.0));
+            let f = ((g - c) * sub as f32)
+                .floor()
+                .clamp(Vec3::ZERO, Vec3::splat(sub as f32 - 1.0));
             let key = c.x as u32 + dims[0] * (c.y as u32 + dims[1] * c.z as u32);
             (key, f.x as u32 + sub * (f.y as u32 + sub * f.z as u32))
         };
@@ -94,7 +96,9 @@ impl HostGrid {
             .collect();
         let total = id_of.len() as u64 * sub3 as u64;
         if total > 50_000_000 {
-            return Err(GpuError::TooLarge(format!("{total} sub-cells; use larger buckets")));
+            return Err(GpuError::TooLarge(format!(
+                "{total} sub-cells; use larger buckets"
+            )));
         }
         let mut counts = vec![0u32; total as usize];
         for (id, subcell) in &slots_of {

@@ -44,6 +44,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let out = build_semantic_map(&cloud, &config)?;
     let timings: Vec<String> = out.timings.iter().map(|t| format!("{} {:.1}", t.stage, t.ms)).collect();
     eprintln!("map in {:.1} ms: {}", out.total_ms(), timings.join(", "));
+    if let Ok(win) = std::env::var("SEMSIM_BOX") {
+        let v: Vec<f32> = win.split(',').map(|x| x.parse().unwrap_or(0.0)).collect();
+        let mut hist = std::collections::BTreeMap::<(i32, u32, u8), usize>::new();
+        for (p, l) in cloud.points.iter().zip(cloud.labels.as_deref().unwrap_or_default()) {
+            if p.x >= v[0] && p.x <= v[1] && p.y >= v[2] && p.y <= v[3] && p.z > 0.1 && p.z < 2.3 {
+                *hist.entry(((p.x * 50.0).floor() as i32, l.entity, l.class.code())).or_default() += 1;
+            }
+        }
+        for ((x, e, c), n) in hist {
+            eprintln!("box x {:.2} entity {e} class {c}: {n}", x as f32 / 50.0);
+        }
+    }
     if let Ok(win) = std::env::var("SEMSIM_SEGS") {
         let v: Vec<f64> = win.split(',').map(|x| x.parse().unwrap_or(0.0)).collect();
         let inside = |p: [f64; 2]| p[0] >= v[0] && p[0] <= v[1] && p[1] >= v[2] && p[1] <= v[3];

@@ -4,12 +4,14 @@
 //! Without `observed`, every element of the building is expected. With `observed` (the
 //! registered cloud carrying the virtual laser's ground-truth labels), only what the scans saw:
 //!
-//! - a wall is expected piecewise: its labelled points, projected on its centre line, split
-//!   where they leave a gap over `piece_gap_m` (1.5 m, wider than any door, so a door does not
-//!   split a wall but an unvisited room between two visited ones does); each piece with at least
-//!   `min_points` (50) points and `min_length_m` (0.5 m) is one expected wall, whose extent is
-//!   the observed one (min to max of its points along the centre line). A wall seen only in
-//!   part is thus compared with the part that was seen;
+//! - a wall is expected piecewise: its labelled points, projected on its centre line, in 10 cm
+//!   stretches; a stretch with fewer than `min_bin_points` (5) points was only glimpsed and
+//!   does not count. The counted stretches split where they leave a gap over `piece_gap_m`
+//!   (1.5 m, wider than any door, so a door does not split a wall but an unvisited room between
+//!   two visited ones does); each piece with at least `min_points` (50) points and
+//!   `min_length_m` (0.5 m) is one expected wall, whose extent is the observed one (min to max
+//!   of its points along the centre line). A wall seen only in part is thus compared with the
+//!   part that was seen;
 //! - a door opening is expected if its lintel and leaf together carry at least
 //!   `min_door_points` (20) points (the opening itself has no surface);
 //! - a staircase, the floor and the ceiling if they carry at least `min_points` points.
@@ -20,8 +22,10 @@
 //! centre line, and along-line intersection over union at least `wall_min_iou`. Door openings:
 //! centres within `door_max_distance_m`. Staircases: footprint centres within
 //! `stairs_max_distance_m`. Floor and ceiling: the entity's height within `max_height_error_m`.
-//! Endpoint errors are distances between the detected centre-line ends and the expected piece's
-//! ends on the true centre line.
+//! Endpoint errors: the distance of each detected centre-line end from the stretch of the true
+//! centre line between the observed piece's end and the wall's true end (a map may carry a wall
+//! on behind what hid it from the scans, which is right; stopping short of what was seen, or
+//! running past the wall's end, is not).
 
 use crate::map::{EntityClass, RelationType, SemanticMap, SwingSide};
 use crate::points::{undirected_angle_deg, Line2};
@@ -41,6 +45,8 @@ pub struct EvalConfig {
     pub min_length_m: f64,
     /// Gaps in a wall's labelled points wider than this split it into pieces.
     pub piece_gap_m: f64,
+    /// Least labelled points in a 10 cm stretch of a wall for it to count as observed.
+    pub min_bin_points: usize,
     /// Least labelled points (lintel and leaf) of an expected door opening.
     pub min_door_points: usize,
     /// Largest angle between matched walls.
@@ -63,6 +69,7 @@ impl Default for EvalConfig {
             min_points: 50,
             min_length_m: 0.5,
             piece_gap_m: 1.5,
+            min_bin_points: 5,
             min_door_points: 20,
             wall_max_angle_deg: 5.0,
             wall_max_offset_m: 0.15,
@@ -109,7 +116,7 @@ pub struct WallMatch {
     pub piece_m: [f64; 2],
     /// The map entity.
     pub entity: u32,
-    /// Distance of each detected end from the piece's end.
+    /// Distance of each detected end from the stretch between the piece's end and the wall's.
     pub endpoint_errors_m: [f64; 2],
     /// Distance of the detected midpoint from the true centre line.
     pub offset_m: f64,
@@ -232,6 +239,7 @@ pub fn evaluate_with(map: &SemanticMap, building: &Building, observed: Option<&P
         name: String,
         line: Line2,
         range: (f64, f64),
+        full: (f64, f64),
         thickness: f64,
     }
     let mut pieces = Vec::new();
@@ -249,20 +257,28 @@ pub fn evaluate_with(map: &SemanticMap, building: &Building, observed: Option<&P
                 .map(|v| v.iter().map(|p| line.coords(p.truncate()).0).collect())
                 .unwrap_or_default();
             s.sort_by(f64::total_cmp);
-            let mut runs: Vec<(f64, f64, usize)> = Vec::new();
+            // 10 cm bins seen by fewer than `min_bin_points` points (a glimpse) are not observed.
+            let mut bins: std::collections::BTreeMap<i64, (f64, f64, usize)> = Default::default();
             for v in s {
+                let b = bins.entry((v / 0.1).floor() as i64).or_insert((v, v, 0));
+                b.0 = b.0.min(v);
+                b.1 = b.1.max(v);
+                b.2 += 1;
+            }
+            let mut runs: Vec<(f64, f64, usize)> = Vec::new();
+            for (lo, hi, n) in bins.into_values().filter(|b| b.2 >= c.min_bin_points) {
                 match runs.last_mut() {
-                    Some(r) if v - r.1 <= c.piece_gap_m => {
-                        r.1 = v;
-                        r.2 += 1;
+                    Some(r) if lo - r.1 <= c.piece_gap_m => {
+                        r.1 = hi;
+                        r.2 += n;
                     }
-                    _ => runs.push((v, v, 1)),
+                    _ => runs.push((lo, hi, n)),
                 }
             }
             runs.into_iter().filter(|r| r.2 >= c.min_points && r.1 - r.0 >= c.min_length_m).map(|r| (r.0, r.1)).collect()
         };
         for range in ranges {
-            pieces.push(Piece { name: name.clone(), line, range, thickness: w.thickness_m });
+            pieces.push(Piece { name: name.clone(), line, range, full: (0.0, a.distance(b)), thickness: w.thickness_m });
         }
     }
     let walls: Vec<_> = map.of_class(EntityClass::Wall).filter_map(|e| e.wall.as_ref().map(|w| (e.id, w))).collect();
@@ -295,12 +311,20 @@ pub fn evaluate_with(map: &SemanticMap, building: &Building, observed: Option<&P
         used_p[pi] = true;
         used_w[wi] = true;
         let (p, (id, w)) = (&pieces[pi], &walls[wi]);
-        let (e0, e1) = (p.line.at(p.range.0), p.line.at(p.range.1));
+        // An end is right anywhere from the observed end out to the wall's true end (the map
+        // may carry a wall on behind what hid it): its error is its distance from that stretch.
+        let near_end = |q: DVec2, from: f64, to: f64| {
+            let (s, d) = p.line.coords(q);
+            let (lo, hi) = (from.min(to), from.max(to));
+            (s - s.clamp(lo, hi)).hypot(d)
+        };
         let (a, b) = (DVec2::from_array(w.segment_m[0]), DVec2::from_array(w.segment_m[1]));
-        let errs = if a.distance(e0) + b.distance(e1) <= a.distance(e1) + b.distance(e0) {
-            [a.distance(e0), b.distance(e1)]
+        let start_end = |q: DVec2| near_end(q, p.range.0, p.full.0.min(p.range.0));
+        let end_end = |q: DVec2| near_end(q, p.range.1, p.full.1.max(p.range.1));
+        let errs = if start_end(a) + end_end(b) <= start_end(b) + end_end(a) {
+            [start_end(a), end_end(b)]
         } else {
-            [a.distance(e1), b.distance(e0)]
+            [start_end(b), end_end(a)]
         };
         errors.extend(errs);
         ev.wall_matches.push(WallMatch {

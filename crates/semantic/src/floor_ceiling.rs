@@ -35,7 +35,7 @@ pub struct FloorCeilingConfig {
     pub bin_m: f64,
     /// A peak must hold this fraction of the strongest bin.
     pub peak_fraction: f64,
-    /// ... and this multiple of the median non-empty bin (a flat histogram has no floor).
+    /// ... and this multiple of the median bin (a flat histogram, a lone wall, has no floor).
     pub min_peak_to_median: f64,
     /// Least height of the ceiling above the floor.
     pub min_room_height_m: f64,
@@ -243,8 +243,8 @@ pub(crate) fn find_levels(
         .map(|i| h[i.saturating_sub(1)..(i + 2).min(bins)].iter().sum())
         .collect();
     let max = s.iter().copied().max().unwrap_or(0);
-    let mut nonzero: Vec<f64> = s.iter().filter(|&&v| v > 0).map(|&v| v as f64).collect();
-    let med = crate::points::median(&mut nonzero).unwrap_or(0.0);
+    let mut all: Vec<f64> = s.iter().map(|&v| v as f64).collect();
+    let med = crate::points::median(&mut all).unwrap_or(0.0);
     let threshold = (c.peak_fraction * max as f64).max(c.min_peak_to_median * med);
     let peaks: Vec<usize> = (0..bins)
         .filter(|&i| {

@@ -163,8 +163,38 @@ impl CvRng {
     }
 }
 
+/// OpenCV's `cvRound` for floats: round half to even.
+#[inline(always)]
 fn cv_round(v: f32) -> i64 {
     v.round_ties_even() as i64
+}
+
+/// `cvRound` for `|v| < 2^22`: adding and subtracting 1.5 * 2^23 rounds in the default mode
+/// (to nearest, ties to even) in two instructions, where `round_ties_even` is a library call on
+/// baseline x86-64.
+#[inline(always)]
+fn cv_round_small(v: f32) -> i32 {
+    const MAGIC: f32 = 12_582_912.0;
+    ((v + MAGIC) - MAGIC) as i32
+}
+
+/// Adds `delta` to the accumulator cells of every line through `(x, y)`; returns the largest
+/// resulting count above `floor` and its angle index.
+#[inline(always)]
+fn vote(accum: &mut [i32], trig: &[f32], numrho: usize, half: i32, small: bool, x: f32, y: f32, delta: i32, floor: i32) -> (i32, usize) {
+    let (mut max_val, mut max_n) = (floor, 0);
+    let last = numrho as i32 - 1;
+    for (n, (row, t)) in accum.chunks_exact_mut(numrho).zip(trig.chunks_exact(2)).enumerate() {
+        let v = x * t[0] + y * t[1];
+        let r = if small { cv_round_small(v) } else { cv_round(v).clamp(i32::MIN as i64, i32::MAX as i64) as i32 };
+        let cell = &mut row[(r + half).clamp(0, last) as usize];
+        *cell += delta;
+        if max_val < *cell {
+            max_val = *cell;
+            max_n = n;
+        }
+    }
+    (max_val, max_n)
 }
 
 /// Finds line segments in a binary image (non-zero = set) with the progressive probabilistic
@@ -200,11 +230,9 @@ pub(crate) fn ppht(mut mask: Vec<u8>, width: usize, height: usize, p: &HoughPara
         trig[2 * n] = (a.cos() * irho as f64) as f32;
         trig[2 * n + 1] = (a.sin() * irho as f64) as f32;
     }
-    let half = ((numrho - 1) / 2) as i64;
-    let rho_index = |n: usize, x: i64, y: i64| -> usize {
-        let r = cv_round(x as f32 * trig[2 * n] + y as f32 * trig[2 * n + 1]) + half;
-        r.clamp(0, numrho as i64 - 1) as usize
-    };
+    let half = ((numrho - 1) / 2).min(i32::MAX as usize) as i32;
+    // |x cos + y sin| / rho never exceeds (width + height) / rho: the fast rounding holds below 2^22.
+    let small = ((width + height) as f32 * irho.abs()) < 4_000_000.0;
     let mut accum = vec![0i32; numangle * numrho];
     let mut nzloc: Vec<(i64, i64)> = Vec::new();
     for y in 0..height {
@@ -226,16 +254,7 @@ pub(crate) fn ppht(mut mask: Vec<u8>, width: usize, height: usize, p: &HoughPara
         if mask[(i * w + j) as usize] == 0 {
             continue;
         }
-        let mut max_val = threshold - 1;
-        let mut max_n = 0;
-        for n in 0..numangle {
-            let cell = &mut accum[n * numrho + rho_index(n, j, i)];
-            *cell += 1;
-            if max_val < *cell {
-                max_val = *cell;
-                max_n = n;
-            }
-        }
+        let (max_val, max_n) = vote(&mut accum, &trig, numrho, half, small, j as f32, i as f32, 1, threshold - 1);
         if p.unvote == Unvote::Matas {
             mask[(i * w + j) as usize] = 2;
         }
@@ -303,9 +322,7 @@ pub(crate) fn ppht(mut mask: Vec<u8>, width: usize, height: usize, p: &HoughPara
                     Unvote::Matas => *m == 2,
                 };
                 if unvote {
-                    for n in 0..numangle {
-                        accum[n * numrho + rho_index(n, j1, i1)] -= 1;
-                    }
+                    vote(&mut accum, &trig, numrho, half, small, j1 as f32, i1 as f32, -1, i32::MAX);
                 }
                 *m = 0;
                 if (j1, i1) == *end {

@@ -16,7 +16,7 @@ pub struct NoiseFilterConfig {
 
 impl Default for NoiseFilterConfig {
     fn default() -> Self {
-        NoiseFilterConfig { min_neighbours: 1 }
+        NoiseFilterConfig { min_neighbours: 0 }
     }
 }
 

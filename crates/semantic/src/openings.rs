@@ -113,6 +113,10 @@ pub(crate) fn find_openings(wi: usize, w: &WallFit, sc: &Scene, c: &OpeningConfi
     let sigma = w.free_side;
     let reach = half_t + if two_sided { 0.0 } else { c.behind_m } + face_tol;
     let top = w.z_range.1;
+    // A closed leaf is recessed from the faces by half the wall less half the leaf: at door
+    // level, only points nearer the face than half that recess block a bin.
+    let block_tol = if two_sided { face_tol.min(((half_t - 0.02) / 2.0).max(0.01)) } else { face_tol };
+    let mut blocking = vec![0u16; n];
     sc.index.for_each_near_line(sc.points, &w.line, 0.0, w.length, reach, |i, s, d| {
         let z = sc.points[i].z as f64;
         let b = ((s / c.bin_m) as usize).min(n - 1);
@@ -120,8 +124,10 @@ pub(crate) fn find_openings(wi: usize, w: &WallFit, sc: &Scene, c: &OpeningConfi
         let on_face = w.faces.iter().any(|f| (d - f).abs() <= face_tol);
         if on_face {
             if z >= lvl0 && z <= lvl1 {
-                bin.blocked = true;
-                bin.face_s = (bin.face_s.0.min(s), bin.face_s.1.max(s));
+                if w.faces.iter().any(|f| (d - f).abs() <= block_tol) {
+                    blocking[b] = blocking[b].saturating_add(1);
+                    bin.face_s = (bin.face_s.0.min(s), bin.face_s.1.max(s));
+                }
             } else if z > lvl1 && z < top - 0.02 {
                 bin.lintel = true;
                 bin.lintel_points += 1;
@@ -144,6 +150,10 @@ pub(crate) fn find_openings(wi: usize, w: &WallFit, sc: &Scene, c: &OpeningConfi
             bin.evidence = true;
         }
     });
+    // A bin is blocked by three face points at door level (one is noise).
+    for (bin, &k) in bins.iter_mut().zip(&blocking) {
+        bin.blocked = k >= 3;
+    }
     // Runs of open bins; slivers of blocked bins up to max_pier inside them are ignored.
     let pier = (c.max_pier_m / c.bin_m).round() as usize;
     let mut runs: Vec<(usize, usize)> = Vec::new(); // [a, b) open-bin runs

@@ -130,6 +130,55 @@ impl MapOutput {
     }
 }
 
+/// Drops the wall prerequisites that are door leaves found in an opening (an open leaf stands
+/// as tall as a wall in the projection band when the door is nearly as high as the ceiling):
+/// those within 10 degrees of the leaf's direction, both ends within 15 cm of its line and no
+/// longer than the opening plus 30 cm. Openings are re-indexed.
+#[allow(clippy::type_complexity)]
+fn drop_leaf_walls(
+    walls: Vec<crate::walls::WallFit>,
+    openings: Vec<crate::openings::Opening>,
+    leaves: Vec<Option<crate::doors::Leaf>>,
+) -> (Vec<crate::walls::WallFit>, Vec<crate::openings::Opening>, Vec<Option<crate::doors::Leaf>>) {
+    let mut drop = vec![false; walls.len()];
+    for (o, leaf) in openings.iter().zip(&leaves) {
+        let Some(leaf) = leaf else { continue };
+        let w = &walls[o.wall];
+        let (hinge, into) = if leaf.hinge_start { (w.line.at(o.s0), w.line.dir) } else { (w.line.at(o.s1), -w.line.dir) };
+        let left = leaf.swing_left == leaf.hinge_start;
+        let dir = DVec2::from_angle(leaf.open_deg.to_radians() * if left { 1.0 } else { -1.0 }).rotate(into);
+        let line = crate::points::Line2 { origin: hinge, dir };
+        let width = o.s1 - o.s0;
+        for (k, v) in walls.iter().enumerate() {
+            let near = [v.start(), v.end()].iter().all(|p| line.coords(*p).1.abs() <= 0.15);
+            if k != o.wall && near && crate::points::undirected_angle_deg(v.line.dir, dir) <= 10.0 && v.length <= width + 0.3 {
+                drop[k] = true;
+            }
+        }
+    }
+    if !drop.iter().any(|&d| d) {
+        return (walls, openings, leaves);
+    }
+    let mut new_index = vec![usize::MAX; walls.len()];
+    let mut kept = Vec::new();
+    for (k, w) in walls.into_iter().enumerate() {
+        if !drop[k] {
+            new_index[k] = kept.len();
+            kept.push(w);
+        }
+    }
+    let (openings, leaves): (Vec<_>, Vec<_>) = openings
+        .into_iter()
+        .zip(leaves)
+        .filter(|(o, _)| new_index[o.wall] != usize::MAX)
+        .map(|(mut o, l)| {
+            o.wall = new_index[o.wall];
+            (o, l)
+        })
+        .unzip();
+    (kept, openings, leaves)
+}
+
 struct Clock {
     t: Instant,
     times: Vec<StageTime>,
@@ -226,6 +275,7 @@ pub fn build_semantic_map(cloud: &PointCloud, config: &SemanticConfig) -> Result
         .par_iter()
         .map(|o| find_leaf(o, &walls[o.wall], &scene, &config.doors, face_tol))
         .collect();
+    let (walls, openings, leaves) = drop_leaf_walls(walls, openings, leaves);
     clock.lap("openings");
     let stairs = find_stairs(&scene, &frame, &walls, &config.stairs, pc.max_pixels);
     clock.lap("stairs");

@@ -82,12 +82,12 @@ impl Default for ProjectionConfig {
         ProjectionConfig {
             resolution_m: 0.05,
             band: HeightBand::BelowCeiling {
-                from_m: 0.25,
-                to_m: 0.04,
+                from_m: 0.6,
+                to_m: 0.15,
             },
             value: ProjectionValue::Occupancy,
             slice_m: 0.05,
-            threshold: 0.3,
+            threshold: 0.05,
             extent_quantile: 0.0005,
             margin_px: 8,
             max_pixels: 25_000_000,

@@ -5,17 +5,21 @@
 //! across it at equal spacing) and side faces with a stepped top edge. Both show in a height
 //! map (`cell_m` pixels): each pixel's highest point between the floor and `max_height_m`, wall
 //! slabs left out. Pixels within two pixels of each other form blobs (sparse scans leave gaps).
-//! A blob is a staircase if the heights of its pixels pile up at whole multiples of one rise
-//! above the floor (`min_steps` levels at least; a level is a peak of the height histogram
-//! over a 5 cm window) and the levels climb steadily in one direction:
+//! For each blob and each candidate direction of ascent (the walls' directions and normals, and
+//! the blob's own axes), the profile along the direction is examined:
 //!
-//! - rise: slope of the level heights over their index (least squares);
-//! - direction: slope of the level centroids over the index, snapped to a wall's direction or
-//!   normal within `snap_direction_deg`;
-//! - run: slope of the front edges over the index (front edge k: the nearest point along the
-//!   direction that stands higher than half a rise under level k); start: the first front edge;
+//! - levels: the highest point per 1 cm along the direction, kept as a running maximum from
+//!   the low end, plateaus at the tops of the steps; the plateaus (histogram peaks) must sit at
+//!   whole multiples of one rise above the floor, `min_steps` of them at least. The top level's
+//!   index is the step count `n`;
+//! - rise: the top level's height over `n` (the floor is at 0, and the top level, the landing,
+//!   is the best sampled surface);
+//! - run and start: the stair model `top(s) = rise * min(n, floor((s - s0) / run) + 1)` fitted
+//!   by grid search to the profile (see `profile`);
 //! - width: the extent across the direction (1 % to 99 % of the points); landing: the top
-//!   level's depth beyond one run. The step count is the top level's index.
+//!   level's depth beyond one run.
+//!
+//! The direction with the most levels supported (then the best fit) wins.
 
 use crate::error::{check_range, Result};
 use crate::points::{linear_fit, quantile};
@@ -222,7 +226,7 @@ pub(crate) fn find_stairs(sc: &Scene, image: &ImageFrame, walls: &[WallFit], c: 
             .filter_map(|&dir| profile(&pts, dir, c))
             .max_by(|a, b| a.score.total_cmp(&b.score));
         if let Some(p) = best {
-            out.push(finish(&pts, p, c));
+            out.push(finish(&pts, p));
         }
     }
     out
@@ -232,7 +236,6 @@ pub(crate) fn find_stairs(sc: &Scene, image: &ImageFrame, walls: &[WallFit], c: 
 struct Profile {
     dir: DVec2,
     rise: f64,
-    offset: f64,
     run: f64,
     /// Along-coordinate of the first front edge.
     front1: f64,
@@ -241,30 +244,32 @@ struct Profile {
     score: f64,
 }
 
-/// Fits a staircase profile to points `(xy, height above floor)` climbing along `dir`.
+/// Fits a staircase profile to points `(xy, height above floor)` climbing along `dir` (see the
+/// module docs for levels and rise).
 ///
-/// The upper envelope of the points along `dir` (highest point per 1 cm bin) climbs one level
-/// per step; its running maximum (from the low end) plateaus at the level tops, so the peaks of
-/// the running maximum's histogram are the levels, at whole multiples of the rise (a little
-/// lower: the laser samples an edge a few centimetres under it). Each envelope bin then belongs
-/// to the level nearest its height. The rise is refined by a least-squares fit of each level's
-/// top (its second highest bin) over the index; the run by one of the levels' middles (median
-/// bin, unbiased by the sampling at either edge) over the index, the top level (with the
-/// landing) left out.
+/// The run and start: the model is violated by a 1 cm bin whose highest point stands more
+/// than 2.5 cm above it (with 1.5 cm of slack along the direction at an edge) and supported by
+/// one at most 3.5 cm under it; a bin sampled far under its top (the laser missed the edge)
+/// neither supports nor violates. Each level's support counts up to 5 bins, so that the long
+/// top level cannot outweigh the steps. Every `(run, s0)` on the grid (2 mm, 5 mm) with the best
+/// `support - 3 violations` explains the data equally well (a front edge can lie anywhere
+/// between the last sample of the level below and the first of its own): their centroid is the
+/// fit, unbiased by the sampling either side of an edge.
 fn profile(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<Profile> {
     let bin = 0.01;
     let mut s: Vec<f64> = pts.iter().map(|(q, _)| q.dot(dir)).collect();
     let s_lo = quantile(&mut s.clone(), 0.005)? - 0.05;
     let s_hi = quantile(&mut s, 0.995)? + 0.05;
     let nb = (((s_hi - s_lo) / bin).ceil() as usize).clamp(1, 100_000);
-    let mut env = vec![f64::NEG_INFINITY; nb];
+    let mut highest_in = vec![f64::NEG_INFINITY; nb];
     for (q, z) in pts {
         let v = (q.dot(dir) - s_lo) / bin;
         if v >= 0.0 && (v as usize) < nb {
-            env[v as usize] = env[v as usize].max(*z);
+            highest_in[v as usize] = highest_in[v as usize].max(*z);
         }
     }
-    let env: Vec<(f64, f64)> = env
+    // (along, highest point)
+    let env: Vec<(f64, f64)> = highest_in
         .iter()
         .enumerate()
         .filter(|(_, z)| z.is_finite())
@@ -273,7 +278,6 @@ fn profile(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<Profile
     if env.len() < 10 {
         return None;
     }
-    // Running maximum and its plateaus.
     let mut running = f64::NEG_INFINITY;
     let maxima: Vec<f64> = env
         .iter()
@@ -282,55 +286,84 @@ fn profile(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<Profile
             running
         })
         .collect();
-    let (rise, offset) = level_grid(&maxima, c)?;
-    let n = ((running - offset) / rise).round().max(0.0) as u32;
-    // Levels: envelope bins nearest each multiple of the rise.
-    let mut levels: Vec<Vec<(f64, f64)>> = vec![Vec::new(); n as usize + 1];
-    for &(s, z) in &env {
-        let k = ((z - offset) / rise).round();
-        if k >= 1.0 && k <= n as f64 && (z - offset - k * rise).abs() <= 0.45 * rise {
-            levels[k as usize].push((s, z));
-        }
-    }
-    let mut tops = Vec::new();
-    let mut mids = Vec::new();
-    for (k, bins) in levels.iter().enumerate().skip(1) {
-        if bins.len() < 2 {
-            continue;
-        }
-        let mut z: Vec<f64> = bins.iter().map(|b| b.1).collect();
-        z.sort_by(|x, y| y.total_cmp(x));
-        tops.push((k as f64, z[1]));
-        if (k as u32) < n {
-            let mut ss: Vec<f64> = bins.iter().map(|b| b.0).collect();
-            mids.push((k as f64, crate::points::median(&mut ss)?));
-        }
-    }
-    let found = tops.len() as u32;
-    if n < c.min_steps || (found as f64) < 0.6 * n as f64 || mids.len() < 2 {
+    let (rise0, offset) = level_grid(&maxima, c)?;
+    let mut highest: Vec<f64> = env.iter().map(|e| e.1).collect();
+    highest.sort_by(|x, y| y.total_cmp(x));
+    let top_height = *highest.get(1)?;
+    let n = ((top_height - offset) / rise0).round();
+    if n < c.min_steps as f64 {
         return None;
     }
-    let (_, rise) = linear_fit(&tops).filter(|(_, r)| *r >= c.rise_m[0] && *r <= c.rise_m[1])?;
-    let (a, run) = linear_fit(&mids)?;
-    if std::env::var_os("SEMSIM_DEBUG").is_some() {
-        eprintln!("profile {dir:?}: rise {rise:.3} run {run:.3} n {n} tops {tops:?} mids {mids:?}");
-    }
-    if run < c.run_m[0] || run > c.run_m[1] {
+    let rise = top_height / n;
+    if rise < c.rise_m[0] || rise > c.rise_m[1] {
         return None;
     }
-    let residual = mids.iter().map(|(k, m)| (m - a - run * k).abs()).sum::<f64>() / mids.len() as f64;
-    if residual > 0.25 * run {
+    let n = n as u32;
+    let nf = n as f64;
+    let level = |s: f64, run: f64, s0: f64| if s < s0 { 0.0 } else { (((s - s0) / run).floor() + 1.0).min(nf) };
+    let score = |run: f64, s0: f64| -> f64 {
+        let mut v = 0.0;
+        let mut support = [0u8; 64];
+        for &(s, z) in &env {
+            let k = level(s, run, s0);
+            if z > rise * level(s + 0.015, run, s0) + 0.025 {
+                v -= 3.0;
+            } else if k > 0.0 && z >= rise * k - 0.035 {
+                let slot = &mut support[(k as usize).min(63)];
+                *slot = slot.saturating_add(1);
+            }
+        }
+        v + support.iter().map(|&n| f64::from(n.min(5))).sum::<f64>()
+    };
+    // The first step starts at most a run before the first point (its front may be unseen)
+    // and before the first point half a rise up.
+    let first = env.iter().find(|e| e.1 >= 0.5 * rise)?.0;
+    let s_start = env.first()?.0 - c.run_m[1];
+    let mut best = f64::NEG_INFINITY;
+    let mut optimal: Vec<(f64, f64)> = Vec::new();
+    let mut run = c.run_m[0];
+    while run <= c.run_m[1] + 1e-9 {
+        let mut s0 = s_start;
+        while s0 <= first + 0.05 {
+            let v = score(run, s0);
+            if v > best + 1e-9 {
+                best = v;
+                optimal.clear();
+            }
+            if (v - best).abs() <= 1e-9 {
+                optimal.push((run, s0));
+            }
+            s0 += 0.005;
+        }
+        run += 0.002;
+    }
+    let m = optimal.len().max(1) as f64;
+    let run = optimal.iter().map(|o| o.0).sum::<f64>() / m;
+    let s0 = optimal.iter().map(|o| o.1).sum::<f64>() / m;
+    let found = {
+        let mut ks: Vec<u32> = env
+            .iter()
+            .filter(|e| {
+                let top = rise * level(e.0, run, s0);
+                top > 0.0 && e.1 >= top - 0.035 && e.1 <= top + 0.025
+            })
+            .map(|e| level(e.0, run, s0) as u32)
+            .collect();
+        ks.sort_unstable();
+        ks.dedup();
+        ks.len() as u32
+    };
+    if (found as f64) < 0.6 * nf || best <= 0.0 || optimal.is_empty() {
         return None;
     }
     Some(Profile {
         dir,
         rise,
-        offset: 0.0,
         run,
-        front1: a + run / 2.0,
+        front1: s0,
         steps: n,
         found,
-        score: found as f64 - residual / run,
+        score: found as f64 + best / (5.0 * nf + 1.0),
     })
 }
 
@@ -387,14 +420,13 @@ fn level_grid(heights: &[f64], c: &StairsConfig) -> Option<(f64, f64)> {
     best.map(|b| (b.1, b.2))
 }
 
-fn finish(pts: &[(DVec2, f64)], p: Profile, c: &StairsConfig) -> Staircase {
-    let _ = c;
+fn finish(pts: &[(DVec2, f64)], p: Profile) -> Staircase {
     let dir = p.dir;
     let mut ts: Vec<f64> = pts.iter().map(|(q, _)| dir.perp_dot(*q)).collect();
     let t0 = quantile(&mut ts, 0.01).unwrap_or(0.0);
     let t1 = quantile(&mut ts, 0.99).unwrap_or(0.0);
     let width = t1 - t0;
-    let top_h = p.offset + (p.steps as f64 - 0.5) * p.rise;
+    let top_h = (p.steps as f64 - 0.5) * p.rise;
     let mut far: Vec<f64> = pts.iter().filter(|(_, z)| *z >= top_h).map(|(q, _)| q.dot(dir)).collect();
     let far = quantile(&mut far, 0.99).unwrap_or(p.front1);
     let top_depth = far - (p.front1 + p.run * (p.steps as f64 - 1.0));
@@ -402,12 +434,12 @@ fn finish(pts: &[(DVec2, f64)], p: Profile, c: &StairsConfig) -> Staircase {
     let start = dir * p.front1 + dir.perp() * ((t0 + t1) / 2.0);
     let rules = vec![
         format!(
-            "{} of {} levels: the nearest point along {:.1} deg above each height jumps {:.3} m every {:.3} m of height (the paper's parallel lines at equal spacing, each step above the previous)",
+            "{} of {} levels at multiples of a {:.3} m rise, climbing along {:.1} deg, their edges {:.3} m apart (the paper's parallel lines at equal spacing, each step above the previous)",
             p.found,
             p.steps,
+            p.rise,
             dir.y.atan2(dir.x).to_degrees(),
-            p.run,
-            p.rise
+            p.run
         ),
         format!("step count {} from the top level; {width:.2} m wide", p.steps),
     ];

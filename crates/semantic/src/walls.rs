@@ -21,9 +21,8 @@
 //!    (`max_top_below_ceiling_m`) is no wall (a beam, a pipe, a door leaf, a cupboard).
 //!
 //! Duplicates (the same wall found twice) merge into the longer one. Collinear walls join
-//! across a junction with a crossing wall (`junction_gap_m`) or across a stretch the scans did
-//! not see (`occlusion_gap_m`, nothing seen through it): a wall runs on behind partitions and
-//! furniture.
+//! across a stretch of up to `max_join_gap_m` through which nothing was seen: a wall runs on
+//! behind the partitions that meet it and the furniture that hid it.
 
 use crate::error::{check_range, Result};
 use crate::merge::Segment;
@@ -56,12 +55,10 @@ pub struct WallConfig {
     /// A wall must come down to this height above the floor.
     pub max_bottom_above_floor_m: f64,
     /// ... and reach up to this depth under the ceiling along 30 % of its length at least (a
-    /// door leaf or a cupboard does not).
+    /// cupboard does not; a prerequisite that turns out to be a door leaf is dropped later).
     pub max_top_below_ceiling_m: f64,
-    /// Collinear walls this far apart are one wall if a crossing wall stands in the gap.
-    pub junction_gap_m: f64,
     /// Collinear walls this far apart are one wall if nothing was seen through the gap.
-    pub occlusion_gap_m: f64,
+    pub max_join_gap_m: f64,
     /// Walls whose lines are this near (and directions within `merge.max_angle_deg`) and that
     /// overlap are one wall.
     pub duplicate_offset_m: f64,
@@ -79,10 +76,9 @@ impl Default for WallConfig {
             min_face_points: 30,
             max_gap_m: 0.35,
             snap_m: 0.15,
-            max_bottom_above_floor_m: 0.6,
-            max_top_below_ceiling_m: 0.15,
-            junction_gap_m: 1.2,
-            occlusion_gap_m: 1.5,
+            max_bottom_above_floor_m: 1.5,
+            max_top_below_ceiling_m: 0.3,
+            max_join_gap_m: 2.0,
             duplicate_offset_m: 0.15,
         }
     }
@@ -100,8 +96,7 @@ impl WallConfig {
         check_range("walls.snap_m", self.snap_m, 0.0, 10.0, "within 0..10 m")?;
         check_range("walls.max_bottom_above_floor_m", self.max_bottom_above_floor_m, 0.0, 100.0, "within 0..100 m")?;
         check_range("walls.max_top_below_ceiling_m", self.max_top_below_ceiling_m, 0.0, 100.0, "within 0..100 m")?;
-        check_range("walls.junction_gap_m", self.junction_gap_m, 0.0, 100.0, "within 0..100 m")?;
-        check_range("walls.occlusion_gap_m", self.occlusion_gap_m, 0.0, 100.0, "within 0..100 m")?;
+        check_range("walls.max_join_gap_m", self.max_join_gap_m, 0.0, 100.0, "within 0..100 m")?;
         check_range("walls.duplicate_offset_m", self.duplicate_offset_m, 0.0, 10.0, "within 0..10 m")
     }
 }
@@ -200,10 +195,10 @@ pub(crate) fn identify_walls(segments: &[Segment], sc: &Scene, c: &WallConfig, m
     kept
 }
 
-/// Joins collinear walls across a gap: a wall runs on behind the partitions that meet it
-/// (a crossing wall in a gap up to `junction_gap_m`) and behind whatever hid it from the
-/// scans (a gap up to `occlusion_gap_m` through which nothing was seen: no floor within the
-/// wall's footprint, nothing behind a one-sided wall's face).
+/// Joins collinear walls across a gap of up to `max_join_gap_m` through which the scans saw
+/// nothing (no floor within a two-sided wall's footprint, nothing behind a one-sided wall's
+/// face): a wall runs on behind the partitions that meet it and behind whatever hid it, while
+/// a real gap (a corridor between two rooms' walls) shows its floor.
 fn merge_through_gaps(walls: &mut Vec<WallFit>, sc: &Scene, c: &WallConfig, max_angle_deg: f64) {
     loop {
         let mut join = None;
@@ -222,43 +217,24 @@ fn merge_through_gaps(walls: &mut Vec<WallFit>, sc: &Scene, c: &WallConfig, max_
                 if d0.abs() > tol || d1.abs() > tol {
                     continue;
                 }
-                // b must start after a ends, within the junction gap.
+                // b must start after a ends, within the gap.
                 let (lo, hi) = (s0.min(s1), s0.max(s1));
                 let gap = lo - a.length;
-                if !(gap > 0.0 && gap <= c.junction_gap_m.max(c.occlusion_gap_m)) {
-                    continue;
-                }
-                let (g0, g1) = (a.line.at(a.length), a.line.at(lo));
-                let crossed = walls.iter().enumerate().any(|(k, w)| {
-                    if k == i || k == j || undirected_angle_deg(w.line.dir, a.line.dir) < 60.0 {
-                        return false;
-                    }
-                    // Where w's line meets a's, within the gap and within w's extent.
-                    let (sa, da) = w.line.coords(g0);
-                    let (sb, db) = w.line.coords(g1);
-                    if da.signum() == db.signum() && da.abs().min(db.abs()) > w.thickness / 2.0 + 0.1 {
-                        return false;
-                    }
-                    let t = da / (da - db);
-                    let s = if t.is_finite() { sa + (sb - sa) * t } else { sa };
-                    s >= -(a.thickness / 2.0 + 0.2) && s <= w.length + a.thickness / 2.0 + 0.2
-                });
-                if (crossed && gap <= c.junction_gap_m) || (gap <= c.occlusion_gap_m && !seen_through(a, a.length, lo, sc)) {
-                    join = Some((i, j, hi));
+                if gap > 0.0 && gap <= c.max_join_gap_m && !seen_through(a, a.length, lo, sc) {
+                    join = Some((i, j, hi, gap));
                     break 'search;
                 }
             }
         }
-        let Some((i, j, hi)) = join else {
+        let Some((i, j, hi, gap)) = join else {
             return;
         };
         let b = walls.remove(j);
         let a = &mut walls[if j < i { i - 1 } else { i }];
-        let gained = hi - a.length;
         a.coverage = (a.coverage * a.length + b.coverage * b.length) / hi.max(1e-9);
         a.length = hi;
         a.support += b.support;
-        a.rules.push(format!("joined with a collinear piece {gained:.2} m on, across a wall junction"));
+        a.rules.push(format!("joined with a collinear piece across {gap:.2} m through which nothing was seen"));
     }
 }
 
@@ -435,17 +411,15 @@ fn find_extent(line: &Line2, faces: &[f64], a: f64, b: f64, sc: &Scene, c: &Wall
         });
         // A crossing surface hides the face points at its own heights only (a cupboard in
         // front of a wall leaves the wall above it).
+        // Noise spreads a crossing surface into the neighbouring bins: they are hidden too.
         let hidden = |k: usize, z: f64| {
-            let x = &across[k];
-            x.0.count_ones() >= 5 && z >= x.1 - 0.1 && z <= x.2 + 0.1
+            (k.saturating_sub(1)..(k + 2).min(nb)).any(|j| {
+                let x = &across[j];
+                x.0.count_ones() >= 5 && z >= x.1 - 0.1 && z <= x.2 + 0.1
+            })
         };
         let mut s_vals: Vec<f64> = face_pts.iter().filter(|(k, _, z)| !hidden(*k, *z)).map(|p| p.1).collect();
         s_vals.sort_by(f64::total_cmp);
-        if std::env::var_os("SEMSIM_DEBUG_EXTENT").is_some() && line.origin.x.abs() < 0.3 && line.dir.x.abs() < 0.1 {
-            let gaps: Vec<(f64, f64)> = s_vals.windows(2).filter(|w| w[1] - w[0] > 0.15).map(|w| (w[0], w[1])).collect();
-            let hid: Vec<f64> = face_pts.iter().filter(|(k, _, z)| hidden(*k, *z)).map(|p| (p.1 * 100.0).round() / 100.0).collect();
-            eprintln!("extent dbg a {a:.2} b {b:.2} r0 {r0:.2} r1 {r1:.2} n {} first {:?} last {:?} gaps {gaps:?} hidden {hid:?}", s_vals.len(), s_vals.first(), s_vals.last());
-        }
         let (lo, hi) = extent(&s_vals, a, b, c.max_gap_m)?;
         let grow_lo = lo <= r0 + c.max_gap_m;
         let grow_hi = hi >= r1 - c.max_gap_m;
@@ -455,21 +429,18 @@ fn find_extent(line: &Line2, faces: &[f64], a: f64, b: f64, sc: &Scene, c: &Wall
             .filter(|(_, m)| m.0.count_ones() >= 5)
             .map(|(k, m)| (r0 + k as f64 * bin, r0 + (k + 1) as f64 * bin, m.1 - 0.1, m.2 + 0.1))
             .collect();
-        // An end just past a wall-high crossing surface is that corner's residue (noise
-        // spreads the surface): the wall ends at the surface.
-        let wall_high = |x: &&(f64, f64, f64, f64)| x.3 - x.2 >= 1.5;
-        let lo = crossing
-            .iter()
-            .filter(wall_high)
-            .filter(|x| x.0 >= lo - 0.01 && x.0 <= lo + 0.15)
-            .map(|x| (x.0 + x.1) / 2.0)
-            .fold(lo, f64::max);
-        let hi = crossing
-            .iter()
-            .filter(wall_high)
-            .filter(|x| x.1 <= hi + 0.01 && x.1 >= hi - 0.15)
-            .map(|x| (x.0 + x.1) / 2.0)
-            .fold(hi, f64::min);
+        // An end next to a wall-high crossing surface (the hidden bins keep it a few
+        // centimetres off) is a corner: the wall ends at the surface.
+        let snap = |end: f64| {
+            crossing
+                .iter()
+                .filter(|x| x.3 - x.2 >= 1.5)
+                .map(|x| (x.0 + x.1) / 2.0)
+                .filter(|m| (m - end).abs() <= 0.15)
+                .min_by(|p, q| (p - end).abs().total_cmp(&(q - end).abs()))
+                .unwrap_or(end)
+        };
+        let (lo, hi) = (snap(lo), snap(hi));
         found = Some((lo, hi, crossing));
         if !grow_lo && !grow_hi {
             break;
@@ -534,19 +505,12 @@ fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
             }
         }
     });
-    let debug = std::env::var_os("SEMSIM_DEBUG_WALLS").is_some();
-    if debug {
-        eprintln!("wall cand {:?}->{:?} faces {faces:?} extent {lo:.2}..{hi:.2} of {len0:.2}, {} face pts, {} crossing bins", seg.a_m, seg.b_m, zs.len(), crossing.len());
-    }
     if zs.len() < c.min_face_points {
         return None;
     }
     let support = zs.len() as u64;
     let bottom = quantile(&mut zs, 0.01)?;
     let top = quantile(&mut zs, 0.995)?;
-    if debug {
-        eprintln!("  z {bottom:.2}..{top:.2}");
-    }
     let top_coverage = top_bins.iter().filter(|&&b| b).count() as f64 / top_bins.len() as f64;
     if bottom > sc.floor + c.max_bottom_above_floor_m || top < sc.ceiling - c.max_top_below_ceiling_m || top_coverage < 0.3 {
         return None;

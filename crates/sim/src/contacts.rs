@@ -1,5 +1,5 @@
 //! Contacts: which robot touches which entity after each step (from rapier's contact pairs,
-//! counting only points closer than the touch tolerance), and the collision detector that turns
+//! counting only contacts that exchanged an impulse in the step), and the collision detector that turns
 //! that into started / continued / stopped events and wall touches. Rapier has no "continued"
 //! event; ours comes at a fixed rate per touching pair.
 //!
@@ -36,7 +36,7 @@ pub(crate) struct ContactScan {
 }
 
 pub(crate) fn scan(world: &World) -> ContactScan {
-    let tol = world.config.touch_tolerance_m as f32;
+    let min_impulse = world.config.touch_impulse_ns as f32;
     let np = &world.physics.narrow_phase;
     let mut out = ContactScan::default();
     for (ri, robot) in world.robots.iter().enumerate() {
@@ -60,8 +60,8 @@ pub(crate) fn scan(world: &World) -> ContactScan {
                     continue;
                 }
                 let mut touching = None;
-                for m in pair.manifolds() {
-                    if m.points.iter().any(|p| p.dist <= tol) {
+                for m in pair.solver_manifolds() {
+                    if m.points.iter().map(|p| p.data.impulse).sum::<f32>() > min_impulse {
                         // data.normal points from collider1 to collider2.
                         touching = Some(flip * m.data.normal.z as f64);
                         break;

@@ -205,6 +205,8 @@ pub struct EventConfig {
     pub stuck_after_s: f64,
     /// A step tread is stood on when the contact normal's z is above this.
     pub tread_normal_z: f64,
+    /// A climb is aborted when all touching wheels have been on the floor this long (s).
+    pub stairs_abort_s: f64,
 }
 
 impl Default for EventConfig {
@@ -220,6 +222,7 @@ impl Default for EventConfig {
             stuck_distance_m: 0.05,
             stuck_after_s: 3.0,
             tread_normal_z: 0.7,
+            stairs_abort_s: 1.0,
         }
     }
 }

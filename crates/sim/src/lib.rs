@@ -3,7 +3,8 @@
 //!
 //! * [`WorldSpec`] is the input: fixed boxes (floor, ceiling, walls, lintels, furniture), doors
 //!   on hinges, door free-space sensors and staircases, each tagged with its entity (id, class,
-//!   name). [`WorldSpec::from_building`] makes one from a ground-truth [`scanner::Building`].
+//!   name). [`WorldSpec::from_building`] makes one from a ground-truth [`scanner::Building`],
+//!   `WorldSpec::from_semantic_map` (feature `semantic`) from a semantic map built from scans.
 //! * [`RobotModel`]s are data (TOML): chassis, wheels with skid-steering velocity motors, an
 //!   optional arm with breakable joints. Built in: `pioneer3at` and `inspection` (climbs stairs).
 //! * A [`Scenario`] (TOML) says which robot starts where, what it is told (timed velocities,
@@ -47,6 +48,8 @@
 //! assert!(!outcome.verdict.passed); // it pushed against the wall for seconds
 //! ```
 
+#![warn(missing_docs)]
+
 mod checkpoint;
 mod contacts;
 mod controller;
@@ -56,13 +59,18 @@ mod events;
 mod import;
 mod joints;
 mod judge;
+mod model;
 mod motion;
 mod report;
 mod robot;
 mod scenario;
+#[cfg(feature = "semantic")]
+mod semantic_import;
 mod simulation;
 mod spec;
 mod stairs;
+mod tags;
+mod validate;
 mod world;
 
 pub use controller::{ControllerConfig, VelocityCommand, Waypoint};
@@ -70,14 +78,14 @@ pub use error::{Result, SimError};
 pub use events::{events_to_jsonl, EntityRef, Event, EventConfig, EventKind};
 pub use import::ImportConfig;
 pub use judge::{RuleResult, Verdict};
+pub use model::{
+    ArmAxis, ArmModel, ChassisModel, DriveModel, LinkModel, RobotModel, StartPose, WheelModel,
+};
 pub use report::{
     report_markdown, trajectory_to_csv, write_events_jsonl, write_outputs, write_report_md,
     write_trajectory_csv, ReportConfig,
 };
-pub use robot::{
-    ArmAxis, ArmModel, ChassisModel, DriveModel, LinkModel, RobotModel, RobotPose, StartPose,
-    WheelModel,
-};
+pub use robot::RobotPose;
 pub use scenario::{ReachGoal, Rules, Scenario};
 pub use simulation::{run_scenario, Outcome, Simulation, TrajectoryPoint};
 pub use spec::{

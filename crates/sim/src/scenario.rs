@@ -5,7 +5,7 @@
 use crate::controller::{validate_commands, ControllerConfig, VelocityCommand, Waypoint};
 use crate::error::{check_finite, check_range, read_text, Result, SimError};
 use crate::events::EventConfig;
-use crate::robot::{RobotModel, StartPose};
+use crate::model::{RobotModel, StartPose};
 use crate::world::WorldConfig;
 use serde::{Deserialize, Serialize};
 use std::path::Path;

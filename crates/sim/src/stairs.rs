@@ -2,7 +2,7 @@
 //! stands on a tread; a step is reached when a wheel stands on it (lower steps skipped over are
 //! reported too, in order); climbing finishes when every touching wheel stands on the top (the
 //! landing, or the top step without one); it is aborted when all touching wheels are back on
-//! the floor first.
+//! the floor first (for `stairs_abort_s`; wheels bounce off the steps).
 
 use crate::contacts::ContactScan;
 use crate::doors::entity_refs;
@@ -18,6 +18,8 @@ struct Climb {
     finished: bool,
     /// The highest step index reached (-1: none).
     highest: i32,
+    /// Since when the climbing robot's wheels have all been on the floor.
+    off_since_s: Option<f64>,
 }
 
 /// Climbing state per (robot index, stairs entity).
@@ -112,13 +114,20 @@ impl StairsDetector {
                             &[("step", top as f64)],
                         );
                     } else if mine.is_empty() && !on_floor.is_empty() {
-                        climb.climbing = false;
-                        out.emit(
-                            EventKind::StairsClimbingAborted,
-                            entity_refs(world, &ids),
-                            "",
-                            &[("step", climb.highest as f64)],
-                        );
+                        // Back on the floor (for a while: wheels bounce off the steps).
+                        let since = *climb.off_since_s.get_or_insert(out.time_s);
+                        if out.time_s - since + 1e-9 >= cfg.stairs_abort_s {
+                            climb.climbing = false;
+                            climb.off_since_s = None;
+                            out.emit(
+                                EventKind::StairsClimbingAborted,
+                                entity_refs(world, &ids),
+                                "",
+                                &[("step", climb.highest as f64)],
+                            );
+                        }
+                    } else {
+                        climb.off_since_s = None;
                     }
                 } else if climb.finished && mine.is_empty() && !on_floor.is_empty() {
                     // Back on the floor after finishing: a new climb may start.

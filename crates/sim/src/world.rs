@@ -4,12 +4,13 @@
 
 use crate::doors::{spawn_door, DoorBody};
 use crate::error::{check_range, Result};
-use crate::robot::{Robot, RobotModel, StartPose};
+use crate::model::{RobotModel, StartPose};
+use crate::robot::Robot;
 use crate::spec::{BoxSpec, EntityClass, EntityInfo, WorldSpec};
+pub(crate) use crate::tags::{groups, Part, Tag, G_DOOR, G_ROBOT, G_SENSOR, G_STATIC};
 use glam::{Quat, Vec3};
 use rapier3d::prelude::{
-    ColliderBuilder, ColliderHandle, Group, InteractionGroups, InteractionTestMode, PhysicsWorld,
-    Pose, RigidBodyBuilder, RigidBodyHandle,
+    ColliderBuilder, ColliderHandle, PhysicsWorld, Pose, RigidBodyBuilder, RigidBodyHandle,
 };
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -26,9 +27,10 @@ pub struct WorldConfig {
     pub gravity_mps2: f64,
     /// Friction coefficient of fixed geometry and doors.
     pub static_friction: f64,
-    /// A contact closer than this counts as touching (m); rapier also reports predictive
-    /// contacts up to 2 cm apart, which are not touches.
-    pub touch_tolerance_m: f64,
+    /// A contact pair touches when its solver impulse in the last step exceeds this (N s):
+    /// rapier also keeps predictive contacts up to 2 cm apart, and with contact recycling
+    /// their distances may be stale, so force exchanged is the reliable sign of a touch.
+    pub touch_impulse_ns: f64,
     /// Continuous collision detection (rapier's CCD substeps; 0 = off). Robots and doors move
     /// slowly enough for speculative contacts; CCD costs much time with cleated wheels.
     pub ccd_substeps: usize,
@@ -41,7 +43,7 @@ impl Default for WorldConfig {
             solver_iterations: 4,
             gravity_mps2: 9.81,
             static_friction: 0.7,
-            touch_tolerance_m: 0.01,
+            touch_impulse_ns: 1.0e-4,
             ccd_substeps: 0,
         }
     }
@@ -85,11 +87,11 @@ impl WorldConfig {
         )?;
         check_range(
             el,
-            "touch_tolerance_m",
-            self.touch_tolerance_m,
+            "touch_impulse_ns",
+            self.touch_impulse_ns,
             0.0,
-            0.02,
-            "0 to 0.02 m",
+            100.0,
+            "0 to 100 N s",
         )?;
         check_range(
             el,
@@ -101,79 +103,6 @@ impl WorldConfig {
         )?;
         Ok(())
     }
-}
-
-/// What part of an entity a collider is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Part {
-    /// A fixed box (floor, ceiling, wall, lintel, furniture).
-    Static,
-    /// A door leaf.
-    Door,
-    /// A free-space sensor.
-    FreeSpace,
-    /// A stair step (index = step index).
-    Step,
-    /// A stair landing.
-    Landing,
-    /// A robot's chassis.
-    Chassis,
-    /// A robot's wheel (index = wheel index).
-    Wheel,
-    /// A robot's arm link (index = link index).
-    ArmLink,
-}
-
-const PARTS: [Part; 8] = [
-    Part::Static,
-    Part::Door,
-    Part::FreeSpace,
-    Part::Step,
-    Part::Landing,
-    Part::Chassis,
-    Part::Wheel,
-    Part::ArmLink,
-];
-
-/// The decoded user data of a collider.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct Tag {
-    pub entity: u32,
-    pub class: EntityClass,
-    pub part: Part,
-    pub index: u16,
-}
-
-impl Tag {
-    pub(crate) fn pack(self) -> u128 {
-        let part = PARTS.iter().position(|p| *p == self.part).unwrap_or(0) as u128;
-        self.entity as u128
-            | (self.class.code() as u128) << 32
-            | part << 40
-            | (self.index as u128) << 48
-    }
-
-    pub(crate) fn unpack(data: u128) -> Tag {
-        Tag {
-            entity: data as u32,
-            class: EntityClass::from_code((data >> 32) as u8),
-            part: PARTS
-                .get(((data >> 40) & 0xff) as usize)
-                .copied()
-                .unwrap_or(Part::Static),
-            index: (data >> 48) as u16,
-        }
-    }
-}
-
-/// Collision groups: fixed geometry, door leaves, robots, sensors.
-pub(crate) const G_STATIC: Group = Group::GROUP_1;
-pub(crate) const G_DOOR: Group = Group::GROUP_2;
-pub(crate) const G_ROBOT: Group = Group::GROUP_3;
-pub(crate) const G_SENSOR: Group = Group::GROUP_4;
-
-pub(crate) fn groups(member: Group, filter: Group) -> InteractionGroups {
-    InteractionGroups::new(member, filter, InteractionTestMode::And)
 }
 
 /// A door's free-space sensor in the world.
@@ -404,21 +333,5 @@ impl World {
             .colliders
             .get(c)
             .map(|c| Tag::unpack(c.user_data))
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn tags_round_trip() {
-        let t = Tag {
-            entity: 123_456,
-            class: EntityClass::Stairs,
-            part: Part::Landing,
-            index: 6,
-        };
-        assert_eq!(Tag::unpack(t.pack()), t);
     }
 }

@@ -30,6 +30,11 @@ fn resume_from_checkpoint_gives_identical_results() {
     assert!((resumed.time_s() - 5.0).abs() < 1e-9);
     resumed.run();
 
+    // Something happens after the split: the robot reaches the stair room's door.
+    assert!(straight
+        .events()
+        .iter()
+        .any(|e| e.time_s > 5.0 && e.kind == sim::EventKind::CollisionStarted));
     assert_eq!(resumed.steps(), straight.steps());
     assert_eq!(
         events_to_jsonl(resumed.events()),

@@ -15,7 +15,7 @@ fn the_default_scenario_passes() {
     let o = sim::run_scenario(&spec, &sc, &model).unwrap();
     let t = timeline(&o);
     assert!(o.verdict.passed, "{:#?}\n{t}", o.verdict);
-    assert_eq!(o.verdict.rules.len(), 5);
+    assert_eq!(o.verdict.rules.len(), 6);
     // The robot pushed the stair room's door and went through its opening into the room.
     assert!(has(&o, CollisionStarted, "walls[4].doors[2].leaf"), "{t}");
     assert!(

@@ -288,3 +288,62 @@ fn driving_off_a_ledge_tips_the_robot() {
         o.verdict
     );
 }
+
+#[test]
+fn ramming_a_wall_with_the_arm_out_breaks_an_arm_joint() {
+    let spec = common::world(&room(EAST_WALL));
+    let sc = sim::Scenario::from_toml_str(
+        r#"
+        robot = "inspection"
+        time_limit_s = 5.0
+        start = { x_m = 2.5, y_m = 0.0, yaw_deg = 0.0 }
+        [[velocity]]
+        from_s = 0.2
+        to_s = 5.0
+        linear_mps = 0.8
+        [rules]
+        no_broken_joint = true
+        "#,
+        "arm test",
+    )
+    .unwrap();
+    // Unfold the arm straight ahead at about 0.4 m height.
+    let mut model = sim::RobotModel::builtin("inspection").unwrap();
+    let arm = model.arm.as_mut().unwrap();
+    arm.links[0].angle_deg = 0.0;
+    arm.links[1].angle_deg = 0.0;
+    arm.links[2].angle_deg = 0.0;
+    let o = sim::run_scenario(&spec, &sc, &model).unwrap();
+    let t = timeline(&o);
+    let broken = of(&o, JointBroken);
+    assert!(!broken.is_empty(), "{t}");
+    assert!(broken[0].detail.starts_with("arm joint"), "{t}");
+    assert_eq!(broken[0].entities[0].name, "robot");
+    // The arm touched the wall before the chassis could.
+    assert!(has(&o, WallTouched, "walls[3]"), "{t}");
+    assert!(!o.verdict.passed);
+}
+
+#[test]
+fn pushing_against_a_wall_for_long_is_being_stuck() {
+    let spec = common::world(&room(EAST_WALL));
+    let o = run(
+        &spec,
+        r#"
+        robot = "pioneer3at"
+        time_limit_s = 10.0
+        start = { x_m = 5.0, y_m = 0.0, yaw_deg = 0.0 }
+        [[velocity]]
+        from_s = 0.2
+        to_s = 10.0
+        linear_mps = 0.5
+        [rules]
+        no_stuck = true
+        "#,
+    );
+    let t = timeline(&o);
+    let stuck = of(&o, RobotStuck);
+    assert_eq!(stuck.len(), 1, "{t}");
+    assert!(stuck[0].time_s > 3.0 && stuck[0].time_s < 5.0, "{t}");
+    assert!(!o.verdict.passed && o.verdict.rules[0].reason.starts_with("stuck at"));
+}

@@ -31,7 +31,8 @@ fn clear(g: &BuildingGeometry, x: f64, y: f64) -> bool {
 }
 
 /// Survey poses for a generated (or the default) building: along the corridor every ~2.5 m,
-/// and one inside each room behind an open, half-open or empty doorway. Falls back to the
+/// and one inside each room behind an open, half-open or empty doorway (at the room's centre,
+/// or 1.5 m beside the middle of a staircase in the room). Falls back to the
 /// floor's centre for buildings without walls named "corridor north" / "corridor south".
 pub fn survey_poses(b: &Building, g: &BuildingGeometry) -> Vec<ScanPose> {
     let north = b.walls.iter().find(|w| w.name == "corridor north");
@@ -66,9 +67,24 @@ pub fn survey_poses(b: &Building, g: &BuildingGeometry) -> Vec<ScanPose> {
             // the corridor wall to the outer wall. Its centre, else near it.
             let xc = w.start_m[0] + dir * (d.offset_m + d.width_m / 2.0);
             let (room_x, depth) = room_centre(b, xc, w.start_m[1], sign);
+            let mut centre = (room_x, w.start_m[1] + sign * depth / 2.0);
+            // A room with a staircase is scanned from beside the staircase's middle instead,
+            // 1.5 m off its side towards the room's centre (a surveyor scans stairs closely).
+            for st in &b.stairs {
+                let d = (st.direction_deg.to_radians().cos(), st.direction_deg.to_radians().sin());
+                let half = (st.steps as f64 * st.run_m + st.landing_m) / 2.0;
+                let mid = (st.start_m[0] + d.0 * half, st.start_m[1] + d.1 * half);
+                let inside = !b.walls.iter().any(|w| segments_cross([centre.0, centre.1], [mid.0, mid.1], w.start_m, w.end_m));
+                if inside {
+                    let n = (-d.1, d.0);
+                    let toward = if (centre.0 - mid.0) * n.0 + (centre.1 - mid.1) * n.1 >= 0.0 { 1.0 } else { -1.0 };
+                    let off = st.width_m / 2.0 + 1.5;
+                    centre = (mid.0 + toward * n.0 * off, mid.1 + toward * n.1 * off);
+                }
+            }
             'search: for dy in [0.0, 0.5, -0.5, 1.0, -1.0] {
                 for dx in [0.0, 0.6, -0.6, 1.2, -1.2] {
-                    let (x, y) = (room_x + dx, w.start_m[1] + sign * (depth / 2.0 + dy));
+                    let (x, y) = (centre.0 + dx, centre.1 + sign * dy);
                     if clear(g, x, y) {
                         poses.push(ScanPose { x_m: x, y_m: y, yaw_deg: 0.0 });
                         break 'search;
@@ -78,6 +94,13 @@ pub fn survey_poses(b: &Building, g: &BuildingGeometry) -> Vec<ScanPose> {
         }
     }
     poses
+}
+
+fn segments_cross(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
+    let orient = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+    let (o1, o2) = (orient(a, b, c), orient(a, b, d));
+    let (o3, o4) = (orient(c, d, a), orient(c, d, b));
+    o1 * o2 < 0.0 && o3 * o4 < 0.0
 }
 
 /// The x of the centre of the room behind a door at `x` in the corridor wall at `y`, on side
@@ -126,6 +149,25 @@ pub fn scan_building(b: &Building, poses: &[ScanPose], laser: &LaserConfig, voxe
     } else {
         merged
     }
+}
+
+/// The 3DTK corridor (`../shared/data/real/3dtk-corridor` beside the checkout), its three scans
+/// placed with the last pose of their `.frames` (3DTK's 2009 registration), "no echo" readings
+/// (over 30 m from the scanner) dropped. `None` if the folder is absent.
+pub fn threedtk_corridor() -> Option<PointCloud> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/real/3dtk-corridor");
+    if !dir.is_dir() {
+        return None;
+    }
+    let mut merged = PointCloud::from_points(Vec::new());
+    for k in 0..3 {
+        let scan = cloud::io::threedtk::read_3d(&dir.join(format!("scan{k:03}.3d"))).expect("readable scan");
+        let frames = cloud::io::threedtk::read_frames_3dtk(&dir.join(format!("frames_2009/scan{k:03}.frames"))).expect("readable frames");
+        let world_from_scan = *frames.last().expect("a frame");
+        let t = glam::Affine3A::from_mat4(glam::DMat4::from(world_from_scan).as_mat4());
+        merged.points.extend(scan.points.iter().filter(|p| p.is_finite() && p.length() < 30.0).map(|p| t.transform_point3(*p)));
+    }
+    Some(merged)
 }
 
 /// Generated building `seed`, its survey poses and the merged, downsampled test scan.

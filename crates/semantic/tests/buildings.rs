@@ -1,0 +1,86 @@
+//! The semantic map of 10 generated buildings, scanned from survey poses (along the corridor
+//! every ~2.5 m and one inside each room behind an open or empty doorway) with a 271 x 151
+//! virtual laser, merged with the true poses and voxel-downsampled to 3 cm, against the
+//! buildings' ground truth (only what the scans saw is expected: see `semantic::evaluate`).
+
+mod common;
+
+use semantic::{build_semantic_map, evaluate, ClassScore, EntityClass, SemanticConfig};
+
+const SEEDS: [u64; 10] = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10];
+
+fn pooled(scores: &[ClassScore]) -> ClassScore {
+    let (e, d, m) = scores.iter().fold((0, 0, 0), |a, s| (a.0 + s.expected, a.1 + s.detected, a.2 + s.matched));
+    let p = m as f64 / d.max(1) as f64;
+    let r = m as f64 / e.max(1) as f64;
+    ClassScore { expected: e, detected: d, matched: m, precision: p, recall: r, f1: 2.0 * p * r / (p + r).max(1e-12) }
+}
+
+#[test]
+fn ten_generated_buildings_meet_the_criteria() {
+    let mut walls = Vec::new();
+    let mut openings = Vec::new();
+    let mut endpoint_errors = Vec::new();
+    let mut stairs_found = 0;
+    let mut stairs_expected = 0;
+    for seed in SEEDS {
+        let (building, cloud) = common::generated(seed, 0.03);
+        let out = build_semantic_map(&cloud, &SemanticConfig::default()).expect("map");
+        let ev = evaluate(&out.map, &building, Some(&cloud));
+        eprintln!(
+            "seed {seed:2}: {} points, map {:.0} ms; walls F1 {:.3} ({}/{}/{}), openings F1 {:.3} ({}/{}/{}), leaves F1 {:.3}, \
+             endpoint error {:.3} m (max {:.3}), floor {:+.3} ceiling {:+.3} m, stairs {:?}",
+            cloud.len(),
+            out.total_ms(),
+            ev.walls.f1,
+            ev.walls.matched,
+            ev.walls.detected,
+            ev.walls.expected,
+            ev.door_openings.f1,
+            ev.door_openings.matched,
+            ev.door_openings.detected,
+            ev.door_openings.expected,
+            ev.doors.f1,
+            ev.wall_endpoint_error_mean_m,
+            ev.wall_endpoint_error_max_m,
+            ev.floor_height_error_m.unwrap_or(f64::NAN),
+            ev.ceiling_height_error_m.unwrap_or(f64::NAN),
+            ev.stairs_matches
+                .iter()
+                .map(|s| format!("{}/{} steps, rise {:+.3}, run {:+.3}", s.steps, s.steps_truth, s.rise_error_m, s.run_error_m))
+                .collect::<Vec<_>>()
+        );
+        if !ev.missed.is_empty() || !ev.spurious.is_empty() {
+            eprintln!("         missed {:?}, spurious {:?}", ev.missed, ev.spurious);
+        }
+        // Floor and ceiling: found every time.
+        assert_eq!(ev.floor.matched, 1, "seed {seed}: floor");
+        assert_eq!(ev.ceiling.matched, 1, "seed {seed}: ceiling");
+        assert_eq!(out.map.of_class(EntityClass::Floor).count(), 1);
+        // Staircases that the scans saw: found, exact step count, rise and run within 2 cm.
+        stairs_expected += ev.stairs.expected;
+        for s in &ev.stairs_matches {
+            assert_eq!(s.steps, s.steps_truth, "seed {seed}: step count");
+            assert!(s.rise_error_m.abs() <= 0.02, "seed {seed}: rise error {}", s.rise_error_m);
+            assert!(s.run_error_m.abs() <= 0.02, "seed {seed}: run error {}", s.run_error_m);
+            stairs_found += 1;
+        }
+        walls.push(ev.walls);
+        openings.push(ev.door_openings);
+        endpoint_errors.extend(ev.wall_matches.iter().flat_map(|m| m.endpoint_errors_m));
+    }
+    let w = pooled(&walls);
+    let o = pooled(&openings);
+    let mean = endpoint_errors.iter().sum::<f64>() / endpoint_errors.len() as f64;
+    eprintln!(
+        "pooled: walls P {:.3} R {:.3} F1 {:.3}; door openings P {:.3} R {:.3} F1 {:.3}; mean wall endpoint error {:.3} m over {} ends; stairs {stairs_found}/{stairs_expected}",
+        w.precision, w.recall, w.f1, o.precision, o.recall, o.f1, mean, endpoint_errors.len()
+    );
+    assert!(w.f1 >= 0.95, "wall F1 {:.3}", w.f1);
+    assert!(o.f1 >= 0.9, "door-opening F1 {:.3}", o.f1);
+    assert!(mean <= 0.05, "mean wall endpoint error {mean:.3} m");
+    assert_eq!(stairs_found, stairs_expected, "staircases found");
+    for (seed, s) in SEEDS.iter().zip(&walls) {
+        assert!(s.f1 >= 0.85, "seed {seed}: wall F1 {:.3}", s.f1);
+    }
+}

@@ -1,0 +1,58 @@
+//! 3DTK's 2009 corridor (three real scans, placed with 3DTK's registration): floor, ceiling,
+//! both corridor walls and door openings along them. Skips with a message where the data
+//! folder (`../shared/data/real/3dtk-corridor` beside the checkout) is absent.
+
+mod common;
+
+use glam::DVec2;
+use semantic::{build_semantic_map, EntityClass, RelationType, SemanticConfig};
+
+#[test]
+fn threedtk_corridor_has_floor_ceiling_two_walls_and_doors() {
+    let Some(cloud) = common::threedtk_corridor() else {
+        eprintln!("skipping: 3DTK corridor data not found (../shared/data/real/3dtk-corridor)");
+        return;
+    };
+    let out = build_semantic_map(&cloud, &SemanticConfig::default()).expect("map");
+    // The world frame is scan000's, pitched about 3 degrees: levelled.
+    assert!(out.tilt_deg > 1.5 && out.tilt_deg < 4.5, "tilt {}", out.tilt_deg);
+    let (floor, ceiling) = (out.floor_z_m.expect("floor"), out.ceiling_z_m.expect("ceiling"));
+    assert!((2.0..3.0).contains(&(ceiling - floor)), "room height {}", ceiling - floor);
+    assert_eq!(out.map.of_class(EntityClass::Floor).count(), 1);
+    assert_eq!(out.map.of_class(EntityClass::Ceiling).count(), 1);
+    // The corridor: two long walls, nearly parallel, 2 to 3 m apart, each with door openings.
+    let walls: Vec<_> = out
+        .map
+        .of_class(EntityClass::Wall)
+        .filter_map(|e| e.wall.as_ref().map(|w| (e.id, DVec2::from_array(w.segment_m[0]), DVec2::from_array(w.segment_m[1]))))
+        .filter(|(_, a, b)| a.distance(*b) >= 5.0)
+        .collect();
+    let openings = |id: u32| {
+        out.map
+            .relations_of(RelationType::AvailableInside)
+            .filter(|r| r.b == id && out.map.entity(r.a).is_some_and(|e| e.class == EntityClass::FreeSpaceForDoor))
+            .count()
+    };
+    let mut corridor = None;
+    for (i, (ia, a0, a1)) in walls.iter().enumerate() {
+        for (ib, b0, b1) in &walls[i + 1..] {
+            let (da, db) = ((*a1 - *a0).normalize(), (*b1 - *b0).normalize());
+            let angle = da.dot(db).abs().min(1.0).acos().to_degrees();
+            let mid = (*b0 + *b1) / 2.0;
+            let gap = (mid - *a0).perp_dot(da).abs();
+            if angle < 5.0 && (2.0..3.0).contains(&gap) {
+                corridor = Some((*ia, *ib, angle, gap));
+            }
+        }
+    }
+    let (a, b, angle, gap) = corridor.expect("two long parallel walls 2-3 m apart");
+    eprintln!(
+        "corridor walls {a} and {b}: {angle:.1} deg apart, {gap:.2} m wide; {} and {} door openings; {} walls, {} openings, {} doors in all",
+        openings(a),
+        openings(b),
+        out.map.of_class(EntityClass::Wall).count(),
+        out.map.of_class(EntityClass::FreeSpaceForDoor).count(),
+        out.map.of_class(EntityClass::Door).count()
+    );
+    assert!(openings(a) >= 1 && openings(b) >= 1, "door openings along both corridor walls");
+}

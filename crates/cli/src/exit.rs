@@ -34,6 +34,9 @@ pub fn code_for(e: &anyhow::Error) -> u8 {
                 _ => 2,
             };
         }
+        if cause.is::<sim::SimError>() {
+            return 2;
+        }
         if let Some(s) = cause.downcast_ref::<scanner::ScannerError>() {
             return match s {
                 scanner::ScannerError::Cloud(c) if !c.is_bad_input() => 1,

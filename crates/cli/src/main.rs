@@ -12,6 +12,7 @@ mod info;
 mod plot;
 mod register;
 mod scan;
+mod simulate;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -40,6 +41,8 @@ enum Command {
     Register(register::RegisterArgs),
     /// Scan a building with the virtual 3D laser from one or more poses.
     Scan(scan::ScanArgs),
+    /// Run a scenario in a physics world of the building and judge it (exit 0 pass, 1 fail).
+    Simulate(simulate::SimulateArgs),
     /// Benchmarks that print and save figures (ICP on CPU and GPU).
     #[command(subcommand)]
     Bench(bench::BenchCommand),
@@ -66,6 +69,7 @@ fn main() -> ExitCode {
             Command::Scan(a) => scan::run(a, &cfg),
             Command::Building(c) => building_cmd::run(c, &cfg),
             Command::Bench(c) => bench::run(c),
+            Command::Simulate(a) => simulate::run(a),
         });
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -50,7 +50,13 @@ pub fn run(a: DemoArgs, cfg: &SemsimConfig) -> anyhow::Result<()> {
     println!("simulation of the default scenario (world from the building description):");
     let scenario = sim::Scenario::default_scenario()?;
     let text = sim::Scenario::default_scenario_toml();
-    let passed = crate::simulate::simulate(&building, &scenario, text, std::path::Path::new("."), &a.out.join("simulation"))?;
+    let passed = crate::simulate::simulate(
+        &building,
+        &scenario,
+        text,
+        std::path::Path::new("."),
+        &a.out.join("simulation"),
+    )?;
     println!("verdict: {}", if passed { "PASSED" } else { "FAILED" });
     println!("done in {:.1} s", t0.elapsed().as_secs_f64());
     Ok(())

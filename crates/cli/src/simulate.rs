@@ -36,9 +36,17 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
     let (scenario, text, base) = match &a.scenario {
         Some(p) => {
             let text = std::fs::read_to_string(p).map_err(|e| cloud::CloudError::io(p, e))?;
-            (Scenario::load(p)?, text, p.parent().map(Path::to_path_buf).unwrap_or_default())
+            (
+                Scenario::load(p)?,
+                text,
+                p.parent().map(Path::to_path_buf).unwrap_or_default(),
+            )
         }
-        None => (Scenario::default_scenario()?, Scenario::default_scenario_toml().to_string(), PathBuf::from(".")),
+        None => (
+            Scenario::default_scenario()?,
+            Scenario::default_scenario_toml().to_string(),
+            PathBuf::from("."),
+        ),
     };
     let building = match (&a.building, scenario.building.as_str()) {
         (Some(p), _) => Building::load(p)?,
@@ -47,13 +55,22 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
     };
     let passed = simulate(&building, &scenario, &text, &base, &a.out)?;
     if !passed {
-        anyhow::bail!("verdict: FAILED (see {})", a.out.join("report.md").display());
+        anyhow::bail!(
+            "verdict: FAILED (see {})",
+            a.out.join("report.md").display()
+        );
     }
     Ok(())
 }
 
 /// Simulates, writes the outputs and the scenario beside them, prints the timeline and verdict.
-pub fn simulate(building: &Building, scenario: &Scenario, scenario_text: &str, base: &Path, out: &Path) -> anyhow::Result<bool> {
+pub fn simulate(
+    building: &Building,
+    scenario: &Scenario,
+    scenario_text: &str,
+    base: &Path,
+    out: &Path,
+) -> anyhow::Result<bool> {
     let spec = WorldSpec::from_building(building)?;
     let model = scenario.robot_model(base)?;
     std::fs::create_dir_all(out).map_err(|e| cloud::CloudError::io(out, e))?;
@@ -62,6 +79,9 @@ pub fn simulate(building: &Building, scenario: &Scenario, scenario_text: &str, b
     cloud::write_bytes_atomically(&out.join("scenario.toml"), scenario_text.as_bytes())?;
     let report = sim::report_markdown(&outcome, &ReportConfig::default());
     println!("{report}");
-    println!("wrote {}/events.jsonl, trajectory.csv, report.md, scenario.toml", out.display());
+    println!(
+        "wrote {}/events.jsonl, trajectory.csv, report.md, scenario.toml",
+        out.display()
+    );
     Ok(outcome.verdict.passed)
 }

@@ -372,13 +372,23 @@ fn simulate_default_scenario_passes_deterministically_and_rejects_bad_input() {
     let d = Dir::new();
     let out = d.run(&["simulate", "--out", "a"]).ok();
     assert!(out.contains("PASSED"), "{out}");
-    d.run(&["simulate", "--out", "b", "--scenario", "a/scenario.toml"]).ok();
+    d.run(&["simulate", "--out", "b", "--scenario", "a/scenario.toml"])
+        .ok();
     let a = std::fs::read(d.join("a/events.jsonl")).expect("events");
     assert!(!a.is_empty());
-    assert_eq!(a, std::fs::read(d.join("b/events.jsonl")).expect("events"), "events differ between runs");
+    assert_eq!(
+        a,
+        std::fs::read(d.join("b/events.jsonl")).expect("events"),
+        "events differ between runs"
+    );
     let text = std::fs::read_to_string(d.join("a/scenario.toml")).expect("scenario");
     d.write("bad.toml", text.replace("stairs[0]", "stairs[9]"));
-    d.run(&["simulate", "--out", "c", "--scenario", "bad.toml"]).bad_input(&["stairs[9]"]);
-    d.write("neg.toml", text.replace("time_limit_s = 60.0", "time_limit_s = -1.0"));
-    d.run(&["simulate", "--out", "c", "--scenario", "neg.toml"]).bad_input(&["time_limit_s"]);
+    d.run(&["simulate", "--out", "c", "--scenario", "bad.toml"])
+        .bad_input(&["stairs[9]"]);
+    d.write(
+        "neg.toml",
+        text.replace("time_limit_s = 60.0", "time_limit_s = -1.0"),
+    );
+    d.run(&["simulate", "--out", "c", "--scenario", "neg.toml"])
+        .bad_input(&["time_limit_s"]);
 }

@@ -317,7 +317,7 @@ fn relative(all: &[DAffine3], _k: usize, p: &DAffine3) -> DAffine3 {
 /// Translation (m) and rotation (deg) difference between two poses.
 pub fn pose_error(a: &DAffine3, b: &DAffine3) -> (f64, f64) {
     let d = a.inverse() * *b;
-    let angle = DQuat::from_mat3(&d.matrix3.into())
+    let angle = DQuat::from_mat3(&d.matrix3)
         .angle_between(DQuat::IDENTITY)
         .to_degrees();
     (d.translation.length(), angle)

@@ -10,9 +10,18 @@ use std::time::Instant;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let path = args.first().ok_or("usage: hough IMAGE.png [--repeat N] ...")?;
-    let value = |name: &str| args.iter().position(|a| a == name).and_then(|i| args.get(i + 1));
-    let repeat: usize = value("--repeat").map(|v| v.parse()).transpose()?.unwrap_or(20);
+    let path = args
+        .first()
+        .ok_or("usage: hough IMAGE.png [--repeat N] ...")?;
+    let value = |name: &str| {
+        args.iter()
+            .position(|a| a == name)
+            .and_then(|i| args.get(i + 1))
+    };
+    let repeat: usize = value("--repeat")
+        .map(|v| v.parse())
+        .transpose()?
+        .unwrap_or(20);
     let mut p = HoughParams::default();
     if let Some(v) = value("--threshold") {
         p.threshold = v.parse()?;

@@ -8,15 +8,27 @@
 mod common;
 
 use scanner::{Building, BuildingGeometry, LaserConfig};
-use semantic::{build_semantic_map, evaluate, evaluate_labels, render_segments, render_top_view, SemanticConfig};
+use semantic::{
+    build_semantic_map, evaluate, evaluate_labels, render_segments, render_top_view, SemanticConfig,
+};
 use std::path::PathBuf;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let which = args.first().map(String::as_str).unwrap_or("default");
     let full = args.iter().any(|a| a == "--full");
-    let out_dir = args.iter().position(|a| a == "--out").and_then(|i| args.get(i + 1)).map(PathBuf::from);
-    let voxel = args.iter().position(|a| a == "--voxel").and_then(|i| args.get(i + 1)).map(|v| v.parse()).transpose()?.unwrap_or(0.03);
+    let out_dir = args
+        .iter()
+        .position(|a| a == "--out")
+        .and_then(|i| args.get(i + 1))
+        .map(PathBuf::from);
+    let voxel = args
+        .iter()
+        .position(|a| a == "--voxel")
+        .and_then(|i| args.get(i + 1))
+        .map(|v| v.parse())
+        .transpose()?
+        .unwrap_or(0.03);
     let b: Building = if which == "default" {
         Building::default_building()?
     } else {
@@ -24,32 +36,64 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let g = BuildingGeometry::new(&b);
     let poses = common::survey_poses(&b, &g);
-    let laser = if full { LaserConfig::default() } else { common::test_laser() };
+    let laser = if full {
+        LaserConfig::default()
+    } else {
+        common::test_laser()
+    };
     for s in &b.stairs {
         eprintln!("truth stairs: start {:?} dir {} steps {} rise {:.3} run {:.3} width {:.2} landing {:.2}", s.start_m, s.direction_deg, s.steps, s.rise_m, s.run_m, s.width_m, s.landing_m);
     }
     if std::env::var_os("SEMSIM_WALLS").is_some() {
         for (i, w) in b.walls.iter().enumerate() {
-            eprintln!("truth walls[{i}] {:?} -> {:?} t {:.3} doors {}", w.start_m, w.end_m, w.thickness_m, w.doors.len());
+            eprintln!(
+                "truth walls[{i}] {:?} -> {:?} t {:.3} doors {}",
+                w.start_m,
+                w.end_m,
+                w.thickness_m,
+                w.doors.len()
+            );
         }
     }
-    eprintln!("poses: {:?}", poses.iter().map(|p| (p.x_m, p.y_m)).collect::<Vec<_>>());
+    eprintln!(
+        "poses: {:?}",
+        poses.iter().map(|p| (p.x_m, p.y_m)).collect::<Vec<_>>()
+    );
     let t = std::time::Instant::now();
     let cloud = common::scan_building(&b, &poses, &laser, voxel);
-    eprintln!("{} poses, {} points after {voxel} m voxels, scanned in {:.2} s", poses.len(), cloud.len(), t.elapsed().as_secs_f64());
-    let config: SemanticConfig = match args.iter().position(|a| a == "--config").and_then(|i| args.get(i + 1)) {
+    eprintln!(
+        "{} poses, {} points after {voxel} m voxels, scanned in {:.2} s",
+        poses.len(),
+        cloud.len(),
+        t.elapsed().as_secs_f64()
+    );
+    let config: SemanticConfig = match args
+        .iter()
+        .position(|a| a == "--config")
+        .and_then(|i| args.get(i + 1))
+    {
         Some(path) => serde_json::from_str(&std::fs::read_to_string(path)?)?,
         None => SemanticConfig::default(),
     };
     let out = build_semantic_map(&cloud, &config)?;
-    let timings: Vec<String> = out.timings.iter().map(|t| format!("{} {:.1}", t.stage, t.ms)).collect();
+    let timings: Vec<String> = out
+        .timings
+        .iter()
+        .map(|t| format!("{} {:.1}", t.stage, t.ms))
+        .collect();
     eprintln!("map in {:.1} ms: {}", out.total_ms(), timings.join(", "));
     if let Ok(win) = std::env::var("SEMSIM_BOX") {
         let v: Vec<f32> = win.split(',').map(|x| x.parse().unwrap_or(0.0)).collect();
         let mut hist = std::collections::BTreeMap::<(i32, u32, u8), usize>::new();
-        for (p, l) in cloud.points.iter().zip(cloud.labels.as_deref().unwrap_or_default()) {
+        for (p, l) in cloud
+            .points
+            .iter()
+            .zip(cloud.labels.as_deref().unwrap_or_default())
+        {
             if p.x >= v[0] && p.x <= v[1] && p.y >= v[2] && p.y <= v[3] && p.z > 0.1 && p.z < 2.3 {
-                *hist.entry(((p.x * 50.0).floor() as i32, l.entity, l.class.code())).or_default() += 1;
+                *hist
+                    .entry(((p.x * 50.0).floor() as i32, l.entity, l.class.code()))
+                    .or_default() += 1;
             }
         }
         for ((x, e, c), n) in hist {
@@ -88,8 +132,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let o = glam::DVec2::from_array(st.start_m);
         let len = st.steps as f64 * st.run_m + st.landing_m;
         let (sx, sz) = (200.0, 200.0); // pixels per metre
-        let mut img = image::RgbImage::from_pixel(((len + 1.0) * sx) as u32, (1.6 * sz) as u32, image::Rgb([255, 255, 255]));
-        for (p, l) in cloud.points.iter().zip(cloud.labels.as_deref().unwrap_or_default()) {
+        let mut img = image::RgbImage::from_pixel(
+            ((len + 1.0) * sx) as u32,
+            (1.6 * sz) as u32,
+            image::Rgb([255, 255, 255]),
+        );
+        for (p, l) in cloud
+            .points
+            .iter()
+            .zip(cloud.labels.as_deref().unwrap_or_default())
+        {
             let q = glam::DVec2::new(p.x as f64, p.y as f64) - o;
             let (a, t) = (q.dot(d), d.perp_dot(q));
             if t.abs() > st.width_m / 2.0 + 0.3 || a < -0.5 || a > len + 0.5 || p.z < 0.02 {
@@ -97,12 +149,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             }
             let (x, y) = (((a + 0.5) * sx) as i64, ((1.6 - p.z as f64) * sz) as i64);
             if x >= 0 && y >= 0 && (x as u32) < img.width() && (y as u32) < img.height() {
-                let c = if l.class == cloud::SurfaceClass::Stairs { [200, 100, 0] } else { [0, 0, 200] };
+                let c = if l.class == cloud::SurfaceClass::Stairs {
+                    [200, 100, 0]
+                } else {
+                    [0, 0, 200]
+                };
                 img.put_pixel(x as u32, y as u32, image::Rgb(c));
             }
         }
         for k in 0..=st.steps {
-            let (x, y) = (((k as f64 * st.run_m + 0.5) * sx) as u32, ((1.6 - k as f64 * st.rise_m) * sz) as u32);
+            let (x, y) = (
+                ((k as f64 * st.run_m + 0.5) * sx) as u32,
+                ((1.6 - k as f64 * st.rise_m) * sz) as u32,
+            );
             for dx in 0..(st.run_m * sx) as u32 {
                 if x + dx < img.width() && y < img.height() {
                     img.put_pixel(x + dx, y, image::Rgb([0, 180, 0]));
@@ -117,9 +176,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         out.filtered.save(dir.join("filtered.png"))?;
         out.dilated.save(dir.join("dilated.png"))?;
         out.skeleton.save(dir.join("skeleton.png"))?;
-        render_segments(&out.skeleton, &out.frame, &out.merged_segments, [255, 0, 0]).save(dir.join("segments.png"))?;
+        render_segments(&out.skeleton, &out.frame, &out.merged_segments, [255, 0, 0])
+            .save(dir.join("segments.png"))?;
         render_top_view(&out.map, &out.frame).save(dir.join("top_view.png"))?;
-        semantic::render_labels(&cloud, &out.labels, &out.map, &out.frame).save(dir.join("labels.png"))?;
+        semantic::render_labels(&cloud, &out.labels, &out.map, &out.frame)
+            .save(dir.join("labels.png"))?;
         out.map.save(&dir.join("map.json"))?;
     }
     Ok(())

@@ -24,7 +24,13 @@ impl Default for DilationConfig {
 
 impl DilationConfig {
     pub(crate) fn validate(&self) -> Result<()> {
-        check_range("dilation.radius_m", self.radius_m, 0.0, 10.0, "within 0..10 m")
+        check_range(
+            "dilation.radius_m",
+            self.radius_m,
+            0.0,
+            10.0,
+            "within 0..10 m",
+        )
     }
 
     /// The radius in pixels at `resolution_m`.

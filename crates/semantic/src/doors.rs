@@ -46,12 +46,48 @@ impl Default for DoorConfig {
 
 impl DoorConfig {
     pub(crate) fn validate(&self) -> Result<()> {
-        check_range("doors.leaf_level_m[0]", self.leaf_level_m[0], 0.0, 10.0, "within 0..10 m")?;
-        check_range("doors.leaf_level_m[1]", self.leaf_level_m[1] - self.leaf_level_m[0], 0.05, 10.0, "at least 0.05 m above leaf_level_m[0]")?;
-        check_range("doors.angle_bin_deg", self.angle_bin_deg, 0.1, 45.0, "within 0.1..45 deg")?;
-        check_range("doors.min_open_deg", self.min_open_deg, 0.0, 90.0, "within 0..90 deg")?;
-        check_range("doors.min_coverage", self.min_coverage, 0.0, 1.0, "within 0..1")?;
-        check_range("doors.leaf_thickness_m", self.leaf_thickness_m, 1e-3, 1.0, "within 0.001..1 m")
+        check_range(
+            "doors.leaf_level_m[0]",
+            self.leaf_level_m[0],
+            0.0,
+            10.0,
+            "within 0..10 m",
+        )?;
+        check_range(
+            "doors.leaf_level_m[1]",
+            self.leaf_level_m[1] - self.leaf_level_m[0],
+            0.05,
+            10.0,
+            "at least 0.05 m above leaf_level_m[0]",
+        )?;
+        check_range(
+            "doors.angle_bin_deg",
+            self.angle_bin_deg,
+            0.1,
+            45.0,
+            "within 0.1..45 deg",
+        )?;
+        check_range(
+            "doors.min_open_deg",
+            self.min_open_deg,
+            0.0,
+            90.0,
+            "within 0..90 deg",
+        )?;
+        check_range(
+            "doors.min_coverage",
+            self.min_coverage,
+            0.0,
+            1.0,
+            "within 0..1",
+        )?;
+        check_range(
+            "doors.leaf_thickness_m",
+            self.leaf_thickness_m,
+            1e-3,
+            1.0,
+            "within 0.001..1 m",
+        )
     }
 }
 
@@ -67,7 +103,13 @@ pub(crate) struct Leaf {
 }
 
 /// Looks for the leaf of opening `o` in wall `w`.
-pub(crate) fn find_leaf(o: &Opening, w: &WallFit, sc: &Scene, c: &DoorConfig, face_tol: f64) -> Option<Leaf> {
+pub(crate) fn find_leaf(
+    o: &Opening,
+    w: &WallFit,
+    sc: &Scene,
+    c: &DoorConfig,
+    face_tol: f64,
+) -> Option<Leaf> {
     let width = o.s1 - o.s0;
     let half_t = w.thickness / 2.0;
     let r_min = (half_t + 0.04).max(0.12);
@@ -76,18 +118,25 @@ pub(crate) fn find_leaf(o: &Opening, w: &WallFit, sc: &Scene, c: &DoorConfig, fa
     }
     let (z0, z1) = (sc.floor + c.leaf_level_m[0], sc.floor + c.leaf_level_m[1]);
     let mut pts: Vec<(DVec2, f64, f64)> = Vec::new(); // (xy, s, d)
-    sc.index.for_each_near_line(sc.points, &w.line, o.s0 - width - 0.1, o.s1 + width + 0.1, width + 0.1, |i, s, d| {
-        let p = sc.points[i];
-        let z = p.z as f64;
-        if z < z0 || z > z1 {
-            return;
-        }
-        // Leave out the wall itself beside the opening, and its jambs.
-        if d.abs() <= half_t + face_tol && (s < o.s0 + 0.03 || s > o.s1 - 0.03) {
-            return;
-        }
-        pts.push((DVec2::new(p.x as f64, p.y as f64), s, d));
-    });
+    sc.upright.for_each_near_line(
+        sc.points,
+        &w.line,
+        o.s0 - width - 0.1,
+        o.s1 + width + 0.1,
+        width + 0.1,
+        |i, s, d| {
+            let p = sc.points[i];
+            let z = p.z as f64;
+            if z < z0 || z > z1 {
+                return;
+            }
+            // Leave out the wall itself beside the opening, and its jambs.
+            if d.abs() <= half_t + face_tol && (s < o.s0 + 0.03 || s > o.s1 - 0.03) {
+                return;
+            }
+            pts.push((DVec2::new(p.x as f64, p.y as f64), s, d));
+        },
+    );
     let r_bins = (((width - r_min) / 0.05).ceil() as usize).clamp(1, 64);
     let n_ang = (360.0 / c.angle_bin_deg).ceil() as usize;
     let mut best: Option<(f64, usize, bool, usize)> = None; // coverage, points, hinge_start, angle bin
@@ -119,7 +168,9 @@ pub(crate) fn find_leaf(o: &Opening, w: &WallFit, sc: &Scene, c: &DoorConfig, fa
             let m = nb.iter().fold(0u64, |m, &k| m | masks[k]);
             let cov = m.count_ones() as f64 / r_bins as f64;
             let n: usize = nb.iter().map(|&k| counts[k]).sum();
-            if best.is_none_or(|(bc, bn, _, _)| cov > bc + 1e-9 || ((cov - bc).abs() <= 1e-9 && n > bn)) {
+            if best.is_none_or(|(bc, bn, _, _)| {
+                cov > bc + 1e-9 || ((cov - bc).abs() <= 1e-9 && n > bn)
+            }) {
                 best = Some((cov, n, hinge_start, b));
             }
         }

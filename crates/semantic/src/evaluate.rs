@@ -100,10 +100,31 @@ pub struct ClassScore {
 
 impl ClassScore {
     fn new(expected: usize, detected: usize, matched: usize) -> ClassScore {
-        let ratio = |a: usize, b: usize| if b == 0 { if expected == 0 && detected == 0 { 1.0 } else { 0.0 } } else { a as f64 / b as f64 };
+        let ratio = |a: usize, b: usize| {
+            if b == 0 {
+                if expected == 0 && detected == 0 {
+                    1.0
+                } else {
+                    0.0
+                }
+            } else {
+                a as f64 / b as f64
+            }
+        };
         let (precision, recall) = (ratio(matched, detected), ratio(matched, expected));
-        let f1 = if precision + recall > 0.0 { 2.0 * precision * recall / (precision + recall) } else { 0.0 };
-        ClassScore { expected, detected, matched, precision, recall, f1 }
+        let f1 = if precision + recall > 0.0 {
+            2.0 * precision * recall / (precision + recall)
+        } else {
+            0.0
+        };
+        ClassScore {
+            expected,
+            detected,
+            matched,
+            precision,
+            recall,
+            f1,
+        }
     }
 }
 
@@ -210,28 +231,48 @@ pub struct Evaluation {
 }
 
 /// Evaluates `map` against `building` with the default thresholds (see the module docs).
-pub fn evaluate(map: &SemanticMap, building: &Building, observed: Option<&PointCloud>) -> Evaluation {
+pub fn evaluate(
+    map: &SemanticMap,
+    building: &Building,
+    observed: Option<&PointCloud>,
+) -> Evaluation {
     evaluate_with(map, building, observed, &EvalConfig::default())
 }
 
 /// Evaluates `map` against `building` with the given thresholds.
-pub fn evaluate_with(map: &SemanticMap, building: &Building, observed: Option<&PointCloud>, c: &EvalConfig) -> Evaluation {
+pub fn evaluate_with(
+    map: &SemanticMap,
+    building: &Building,
+    observed: Option<&PointCloud>,
+    c: &EvalConfig,
+) -> Evaluation {
     let map_from_input: DAffine3 = map.input_from_map().inverse();
     let to_map = |x: f64, y: f64, z: f64| map_from_input.transform_point3(DVec3::new(x, y, z));
     let geometry = BuildingGeometry::new(building);
-    let id_of: HashMap<&str, u32> = geometry.entities().iter().map(|e| (e.name.as_str(), e.id)).collect();
+    let id_of: HashMap<&str, u32> = geometry
+        .entities()
+        .iter()
+        .map(|e| (e.name.as_str(), e.id))
+        .collect();
     // Observed points per true entity, in the map frame.
     let mut seen: HashMap<u32, Vec<DVec3>> = HashMap::new();
     if let Some(cloud) = observed {
         if let Some(labels) = &cloud.labels {
             for (p, l) in cloud.points.iter().zip(labels) {
                 if p.is_finite() && l.entity != 0 {
-                    seen.entry(l.entity).or_default().push(to_map(p.x as f64, p.y as f64, p.z as f64));
+                    seen.entry(l.entity)
+                        .or_default()
+                        .push(to_map(p.x as f64, p.y as f64, p.z as f64));
                 }
             }
         }
     }
-    let count = |name: &str| -> usize { id_of.get(name).and_then(|id| seen.get(id)).map_or(0, |v| v.len()) };
+    let count = |name: &str| -> usize {
+        id_of
+            .get(name)
+            .and_then(|id| seen.get(id))
+            .map_or(0, |v| v.len())
+    };
     let mut ev = Evaluation::default();
 
     // Walls.
@@ -275,17 +316,32 @@ pub fn evaluate_with(map: &SemanticMap, building: &Building, observed: Option<&P
                     _ => runs.push((lo, hi, n)),
                 }
             }
-            runs.into_iter().filter(|r| r.2 >= c.min_points && r.1 - r.0 >= c.min_length_m).map(|r| (r.0, r.1)).collect()
+            runs.into_iter()
+                .filter(|r| r.2 >= c.min_points && r.1 - r.0 >= c.min_length_m)
+                .map(|r| (r.0, r.1))
+                .collect()
         };
         for range in ranges {
-            pieces.push(Piece { name: name.clone(), line, range, full: (0.0, a.distance(b)), thickness: w.thickness_m });
+            pieces.push(Piece {
+                name: name.clone(),
+                line,
+                range,
+                full: (0.0, a.distance(b)),
+                thickness: w.thickness_m,
+            });
         }
     }
-    let walls: Vec<_> = map.of_class(EntityClass::Wall).filter_map(|e| e.wall.as_ref().map(|w| (e.id, w))).collect();
+    let walls: Vec<_> = map
+        .of_class(EntityClass::Wall)
+        .filter_map(|e| e.wall.as_ref().map(|w| (e.id, w)))
+        .collect();
     let mut cands = Vec::new();
     for (pi, p) in pieces.iter().enumerate() {
         for (wi, (_, w)) in walls.iter().enumerate() {
-            let (a, b) = (DVec2::from_array(w.segment_m[0]), DVec2::from_array(w.segment_m[1]));
+            let (a, b) = (
+                DVec2::from_array(w.segment_m[0]),
+                DVec2::from_array(w.segment_m[1]),
+            );
             let angle = undirected_angle_deg(b - a, p.line.dir);
             let offset = p.line.coords((a + b) / 2.0).1.abs();
             if angle > c.wall_max_angle_deg || offset > p.thickness / 2.0 + c.wall_max_offset_m {
@@ -318,7 +374,10 @@ pub fn evaluate_with(map: &SemanticMap, building: &Building, observed: Option<&P
             let (lo, hi) = (from.min(to), from.max(to));
             (s - s.clamp(lo, hi)).hypot(d)
         };
-        let (a, b) = (DVec2::from_array(w.segment_m[0]), DVec2::from_array(w.segment_m[1]));
+        let (a, b) = (
+            DVec2::from_array(w.segment_m[0]),
+            DVec2::from_array(w.segment_m[1]),
+        );
         let start_end = |q: DVec2| near_end(q, p.range.0, p.full.0.min(p.range.0));
         let end_end = |q: DVec2| near_end(q, p.range.1, p.full.1.max(p.range.1));
         let errs = if start_end(a) + end_end(b) <= start_end(b) + end_end(a) {
@@ -339,7 +398,8 @@ pub fn evaluate_with(map: &SemanticMap, building: &Building, observed: Option<&P
     }
     for (pi, p) in pieces.iter().enumerate() {
         if !used_p[pi] {
-            ev.missed.push(format!("{} [{:.2}, {:.2}] m", p.name, p.range.0, p.range.1));
+            ev.missed
+                .push(format!("{} [{:.2}, {:.2}] m", p.name, p.range.0, p.range.1));
         }
     }
     for (wi, (id, _)) in walls.iter().enumerate() {
@@ -373,23 +433,41 @@ pub fn evaluate_with(map: &SemanticMap, building: &Building, observed: Option<&P
                 continue;
             }
             let leaf = d.leaf.as_ref().map(|l| {
-                let hinge = line.at(if l.hinge == Hinge::Start { d.offset_m } else { d.offset_m + d.width_m });
-                let side = if l.swing == Swing::Left { line.normal() } else { -line.normal() };
+                let hinge = line.at(if l.hinge == Hinge::Start {
+                    d.offset_m
+                } else {
+                    d.offset_m + d.width_m
+                });
+                let side = if l.swing == Swing::Left {
+                    line.normal()
+                } else {
+                    -line.normal()
+                };
                 (hinge, side, l.open_deg)
             });
-            doors.push(TrueDoor { name, center: line.at(d.offset_m + d.width_m / 2.0), width: d.width_m, height: d.height_m, leaf });
+            doors.push(TrueDoor {
+                name,
+                center: line.at(d.offset_m + d.width_m / 2.0),
+                width: d.width_m,
+                height: d.height_m,
+                leaf,
+            });
         }
     }
     let free: Vec<_> = map.of_class(EntityClass::FreeSpaceForDoor).collect();
     let leaf_of: HashMap<u32, u32> = map
         .relations_of(RelationType::AvailableInside)
-        .filter(|r| map.entity(r.a).is_some_and(|e| e.class == EntityClass::Door))
+        .filter(|r| {
+            map.entity(r.a)
+                .is_some_and(|e| e.class == EntityClass::Door)
+        })
         .map(|r| (r.b, r.a))
         .collect();
     let mut cands = Vec::new();
     for (ti, t) in doors.iter().enumerate() {
         for (fi, f) in free.iter().enumerate() {
-            let dist = DVec2::new(f.geometry.center_m[0], f.geometry.center_m[1]).distance(t.center);
+            let dist =
+                DVec2::new(f.geometry.center_m[0], f.geometry.center_m[1]).distance(t.center);
             if dist <= c.door_max_distance_m {
                 cands.push((dist, ti, fi));
             }
@@ -413,7 +491,11 @@ pub fn evaluate_with(map: &SemanticMap, building: &Building, observed: Option<&P
                 let h = DVec2::new(info.hinge_m[0], info.hinge_m[1]);
                 hinge_ok = Some(h.distance(hinge) < t.width / 2.0);
                 let dir = DVec2::from_angle(door.geometry.yaw_deg.to_radians());
-                let n = if info.swing == SwingSide::Left { dir.perp() } else { -dir.perp() };
+                let n = if info.swing == SwingSide::Left {
+                    dir.perp()
+                } else {
+                    -dir.perp()
+                };
                 swing_ok = Some(n.dot(side) > 0.0);
                 angle_err = Some(info.observed_open_deg - open);
             }
@@ -444,10 +526,17 @@ pub fn evaluate_with(map: &SemanticMap, building: &Building, observed: Option<&P
     }
     ev.door_openings = ClassScore::new(doors.len(), free.len(), ev.door_matches.len());
     let true_leaves = doors.iter().filter(|d| d.leaf.is_some()).count();
-    ev.doors = ClassScore::new(true_leaves, map.of_class(EntityClass::Door).count(), leaves_matched);
+    ev.doors = ClassScore::new(
+        true_leaves,
+        map.of_class(EntityClass::Door).count(),
+        leaves_matched,
+    );
 
     // Stairs.
-    let stairs: Vec<_> = map.of_class(EntityClass::Stairs).filter_map(|e| e.stairs.as_ref().map(|s| (e, s))).collect();
+    let stairs: Vec<_> = map
+        .of_class(EntityClass::Stairs)
+        .filter_map(|e| e.stairs.as_ref().map(|s| (e, s)))
+        .collect();
     let mut expected = 0;
     let mut used_s = vec![false; stairs.len()];
     for (k, s) in building.stairs.iter().enumerate() {
@@ -458,13 +547,19 @@ pub fn evaluate_with(map: &SemanticMap, building: &Building, observed: Option<&P
         expected += 1;
         let dir = DVec2::from_angle(s.direction_deg.to_radians());
         let start = to_map(s.start_m[0], s.start_m[1], 0.0).truncate();
-        let dir_map = (to_map(s.start_m[0] + dir.x, s.start_m[1] + dir.y, 0.0).truncate() - start).normalize_or_zero();
+        let dir_map = (to_map(s.start_m[0] + dir.x, s.start_m[1] + dir.y, 0.0).truncate() - start)
+            .normalize_or_zero();
         let centre = start + dir_map * (s.steps as f64 * s.run_m + s.landing_m) / 2.0;
         let best = stairs
             .iter()
             .enumerate()
             .filter(|(i, _)| !used_s[*i])
-            .map(|(i, (e, _))| (i, DVec2::new(e.geometry.center_m[0], e.geometry.center_m[1]).distance(centre)))
+            .map(|(i, (e, _))| {
+                (
+                    i,
+                    DVec2::new(e.geometry.center_m[0], e.geometry.center_m[1]).distance(centre),
+                )
+            })
             .filter(|(_, d)| *d <= c.stairs_max_distance_m)
             .min_by(|a, b| a.1.total_cmp(&b.1));
         let Some((i, _)) = best else {
@@ -481,7 +576,10 @@ pub fn evaluate_with(map: &SemanticMap, building: &Building, observed: Option<&P
             rise_error_m: d.rise_m - s.rise_m,
             run_error_m: d.run_m - s.run_m,
             width_error_m: d.width_m - s.width_m,
-            direction_error_deg: DVec2::from_angle(d.direction_deg.to_radians()).angle_to(dir_map).abs().to_degrees(),
+            direction_error_deg: DVec2::from_angle(d.direction_deg.to_radians())
+                .angle_to(dir_map)
+                .abs()
+                .to_degrees(),
             start_error_m: DVec2::new(d.start_m[0], d.start_m[1]).distance(start),
         });
     }
@@ -494,7 +592,10 @@ pub fn evaluate_with(map: &SemanticMap, building: &Building, observed: Option<&P
 
     // Floor and ceiling.
     let f = &building.floor;
-    let (cx, cy) = ((f.min_m[0] + f.max_m[0]) / 2.0, (f.min_m[1] + f.max_m[1]) / 2.0);
+    let (cx, cy) = (
+        (f.min_m[0] + f.max_m[0]) / 2.0,
+        (f.min_m[1] + f.max_m[1]) / 2.0,
+    );
     for (class, name, z) in [
         (EntityClass::Floor, "floor", 0.0),
         (EntityClass::Ceiling, "ceiling", building.ceiling.height_m),
@@ -539,7 +640,13 @@ pub struct LabelEvaluation {
 /// Compares predicted per-point classes with the truth (same order, e.g. `MapOutput::labels`
 /// and the input cloud's ground-truth labels). Furniture counts as unknown.
 pub fn evaluate_labels(predicted: &[Label], truth: &[Label]) -> LabelEvaluation {
-    let norm = |c: SurfaceClass| if c == SurfaceClass::Furniture { SurfaceClass::Unknown } else { c };
+    let norm = |c: SurfaceClass| {
+        if c == SurfaceClass::Furniture {
+            SurfaceClass::Unknown
+        } else {
+            c
+        }
+    };
     let mut tally: HashMap<SurfaceClass, (usize, usize, usize)> = HashMap::new();
     let mut agree = 0;
     let n = predicted.len().min(truth.len());
@@ -554,8 +661,16 @@ pub fn evaluate_labels(predicted: &[Label], truth: &[Label]) -> LabelEvaluation 
     }
     let mut classes: Vec<(String, ClassScore)> = SurfaceClass::ALL
         .iter()
-        .filter_map(|c| tally.get(c).map(|&(e, d, m)| (c.name().to_string(), ClassScore::new(e, d, m))))
+        .filter_map(|c| {
+            tally
+                .get(c)
+                .map(|&(e, d, m)| (c.name().to_string(), ClassScore::new(e, d, m)))
+        })
         .collect();
     classes.sort_by(|a, b| a.0.cmp(&b.0));
-    LabelEvaluation { points: n, accuracy: if n == 0 { 1.0 } else { agree as f64 / n as f64 }, classes }
+    LabelEvaluation {
+        points: n,
+        accuracy: if n == 0 { 1.0 } else { agree as f64 / n as f64 },
+        classes,
+    }
 }

@@ -3,8 +3,9 @@
 //! A registered cloud's frame need not be level (3DTK's corridor is pitched about 3 degrees),
 //! so the floor plane is fitted first: the cloud is cut into XY cells, each cell's lowest
 //! points (robustly, the third lowest z) estimate the floor there, and a RANSAC plane over the
-//! cells (tilt at most `max_tilt_deg`) is refined by least squares over its inliers. The map
-//! frame is the input frame rotated so that this plane is horizontal.
+//! cells (tilt at most `max_tilt_deg`) is refined by least squares over its inliers, then over
+//! all the points near it (the floor itself). The map frame is the input frame rotated so that
+//! this plane is horizontal.
 //!
 //! Heights then come from a histogram of z in the map frame: horizontal surfaces are sharp
 //! peaks. The floor is the lowest peak holding at least `peak_fraction` of the strongest bin,
@@ -15,7 +16,6 @@ use crate::error::{check_range, Result};
 use crate::points::{quantile, MapPoints};
 use glam::{DAffine3, DQuat, DVec3, Vec3};
 use serde::{Deserialize, Serialize};
-use std::collections::HashMap;
 
 /// Configuration of levelling and floor/ceiling detection.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -65,16 +65,76 @@ impl Default for FloorCeilingConfig {
 
 impl FloorCeilingConfig {
     pub(crate) fn validate(&self) -> Result<()> {
-        check_range("floor_ceiling.level_cell_m", self.level_cell_m, 0.05, 100.0, "within 0.05..100 m")?;
-        check_range("floor_ceiling.max_tilt_deg", self.max_tilt_deg, 0.0, 45.0, "within 0..45 deg")?;
-        check_range("floor_ceiling.min_tilt_deg", self.min_tilt_deg, 0.0, 45.0, "within 0..45 deg")?;
-        check_range("floor_ceiling.plane_tolerance_m", self.plane_tolerance_m, 1e-4, 1.0, "within 0.0001..1 m")?;
-        check_range("floor_ceiling.bin_m", self.bin_m, 1e-3, 1.0, "within 0.001..1 m")?;
-        check_range("floor_ceiling.peak_fraction", self.peak_fraction, 0.0, 1.0, "within 0..1")?;
-        check_range("floor_ceiling.min_peak_to_median", self.min_peak_to_median, 0.0, 1e6, "non-negative")?;
-        check_range("floor_ceiling.min_room_height_m", self.min_room_height_m, 0.1, 100.0, "within 0.1..100 m")?;
-        check_range("floor_ceiling.surface_tolerance_m", self.surface_tolerance_m, 1e-3, 1.0, "within 0.001..1 m")?;
-        check_range("floor_ceiling.slab_thickness_m", self.slab_thickness_m, 1e-3, 10.0, "within 0.001..10 m")
+        check_range(
+            "floor_ceiling.level_cell_m",
+            self.level_cell_m,
+            0.05,
+            100.0,
+            "within 0.05..100 m",
+        )?;
+        check_range(
+            "floor_ceiling.max_tilt_deg",
+            self.max_tilt_deg,
+            0.0,
+            45.0,
+            "within 0..45 deg",
+        )?;
+        check_range(
+            "floor_ceiling.min_tilt_deg",
+            self.min_tilt_deg,
+            0.0,
+            45.0,
+            "within 0..45 deg",
+        )?;
+        check_range(
+            "floor_ceiling.plane_tolerance_m",
+            self.plane_tolerance_m,
+            1e-4,
+            1.0,
+            "within 0.0001..1 m",
+        )?;
+        check_range(
+            "floor_ceiling.bin_m",
+            self.bin_m,
+            1e-3,
+            1.0,
+            "within 0.001..1 m",
+        )?;
+        check_range(
+            "floor_ceiling.peak_fraction",
+            self.peak_fraction,
+            0.0,
+            1.0,
+            "within 0..1",
+        )?;
+        check_range(
+            "floor_ceiling.min_peak_to_median",
+            self.min_peak_to_median,
+            0.0,
+            1e6,
+            "non-negative",
+        )?;
+        check_range(
+            "floor_ceiling.min_room_height_m",
+            self.min_room_height_m,
+            0.1,
+            100.0,
+            "within 0.1..100 m",
+        )?;
+        check_range(
+            "floor_ceiling.surface_tolerance_m",
+            self.surface_tolerance_m,
+            1e-3,
+            1.0,
+            "within 0.001..1 m",
+        )?;
+        check_range(
+            "floor_ceiling.slab_thickness_m",
+            self.slab_thickness_m,
+            1e-3,
+            10.0,
+            "within 0.001..10 m",
+        )
     }
 }
 
@@ -98,16 +158,28 @@ pub(crate) fn level_transform(points: &[Vec3], c: &FloorCeilingConfig) -> (DAffi
     if !c.level {
         return (DAffine3::IDENTITY, 0.0);
     }
-    // Third-lowest z per cell: robust against a couple of stray points below the floor.
-    let mut cells: HashMap<(i64, i64), ([f32; 3], u32, f64, f64)> = HashMap::new();
+    // Third-lowest z per cell (robust against a couple of stray points below the floor), over
+    // the cloud's robust XY extent (0.1 % to 99.9 %), at most 2048 cells a side.
+    let mut xs: Vec<f64> = points.iter().map(|p| p.x as f64).collect();
+    let mut ys: Vec<f64> = points.iter().map(|p| p.y as f64).collect();
+    let (Some(x0), Some(x1), Some(y0), Some(y1)) = (
+        quantile(&mut xs, 0.001),
+        quantile(&mut xs, 0.999),
+        quantile(&mut ys, 0.001),
+        quantile(&mut ys, 0.999),
+    ) else {
+        return (DAffine3::IDENTITY, 0.0);
+    };
+    let cell = c.level_cell_m.max((x1 - x0).max(y1 - y0) / 2048.0);
+    let cols = ((x1 - x0) / cell) as usize + 1;
+    let rows = ((y1 - y0) / cell) as usize + 1;
+    let mut cells = vec![([f32::INFINITY; 3], 0u32, 0.0f64, 0.0f64); cols * rows];
     for p in points {
-        let key = (
-            (p.x as f64 / c.level_cell_m).floor() as i64,
-            (p.y as f64 / c.level_cell_m).floor() as i64,
-        );
-        let e = cells
-            .entry(key)
-            .or_insert(([f32::INFINITY; 3], 0, 0.0, 0.0));
+        let (u, v) = ((p.x as f64 - x0) / cell, (p.y as f64 - y0) / cell);
+        if !(u >= 0.0 && v >= 0.0 && (u as usize) < cols && (v as usize) < rows) {
+            continue;
+        }
+        let e = &mut cells[v as usize * cols + u as usize];
         e.1 += 1;
         e.2 += p.x as f64;
         e.3 += p.y as f64;
@@ -117,12 +189,11 @@ pub(crate) fn level_transform(points: &[Vec3], c: &FloorCeilingConfig) -> (DAffi
             e.0.sort_by(f32::total_cmp);
         }
     }
-    let mut samples: Vec<DVec3> = cells
-        .values()
+    let samples: Vec<DVec3> = cells
+        .iter()
         .filter(|e| e.1 >= 10)
         .map(|e| DVec3::new(e.2 / e.1 as f64, e.3 / e.1 as f64, e.0[2] as f64))
         .collect();
-    samples.sort_by(|a, b| (a.x, a.y).partial_cmp(&(b.x, b.y)).unwrap_or(std::cmp::Ordering::Equal));
     if samples.len() < 10 {
         return (DAffine3::IDENTITY, 0.0);
     }
@@ -162,6 +233,36 @@ pub(crate) fn level_transform(points: &[Vec3], c: &FloorCeilingConfig) -> (DAffi
             plane = p;
         }
     }
+    // Refine the slope on the floor points themselves: the plane that puts the most of them
+    // within 1 cm (a sharp floor), searched around the fit, coarse then fine.
+    let step = (points.len() / 100_000).max(1);
+    let near: Vec<DVec3> = points
+        .iter()
+        .step_by(step)
+        .map(|p| p.as_dvec3())
+        .filter(|p| (p.z - eval(plane, *p)).abs() < 0.1)
+        .collect();
+    if near.len() >= 100 {
+        for (span, d) in [(0.01, 0.002), (0.002, 0.0004)] {
+            let (a0, b0) = (plane[0], plane[1]);
+            let mut best = (sharpness(&near, a0, b0), a0, b0);
+            let k = (span / d) as i32;
+            for i in -k..=k {
+                for j in -k..=k {
+                    let (a, b) = (a0 + i as f64 * d, b0 + j as f64 * d);
+                    if a.hypot(b) > max_slope {
+                        continue;
+                    }
+                    let v = sharpness(&near, a, b);
+                    if v.0 > best.0 .0 {
+                        best = (v, a, b);
+                    }
+                }
+            }
+            let ((_, c), a, b) = best;
+            plane = [a, b, c];
+        }
+    }
     let normal = DVec3::new(-plane[0], -plane[1], 1.0).normalize();
     let tilt_deg = normal.angle_between(DVec3::Z).to_degrees();
     if tilt_deg < c.min_tilt_deg || tilt_deg > c.max_tilt_deg {
@@ -171,6 +272,24 @@ pub(crate) fn level_transform(points: &[Vec3], c: &FloorCeilingConfig) -> (DAffi
         DAffine3::from_quat(DQuat::from_rotation_arc(normal, DVec3::Z)),
         tilt_deg,
     )
+}
+
+/// How many of `pts` lie within 1 cm of the best plane of slopes `(a, b)`, and its offset:
+/// the residuals `z - a x - b y` in 1 cm bins, the best pair of neighbouring bins.
+fn sharpness(pts: &[DVec3], a: f64, b: f64) -> (usize, f64) {
+    let r: Vec<f64> = pts.iter().map(|p| p.z - a * p.x - b * p.y).collect();
+    let lo = r.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = r.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let n = (((hi - lo) / 0.01) as usize + 2).min(1_000_000);
+    let mut h = vec![0usize; n];
+    for v in &r {
+        h[(((v - lo) / 0.01) as usize).min(n - 1)] += 1;
+    }
+    let (i, count) = (0..n - 1)
+        .map(|i| (i, h[i] + h[i + 1]))
+        .max_by_key(|x| x.1)
+        .unwrap_or((0, 0));
+    (count, lo + (i + 1) as f64 * 0.01)
 }
 
 fn eval(p: [f64; 3], s: DVec3) -> f64 {
@@ -288,7 +407,12 @@ pub(crate) fn find_levels(
 
 /// The XY extent of the points within `tol` of height `z`, in a frame turned by `yaw`:
 /// robust (0.2 % and 99.8 % quantiles) min and max of the rotated coordinates.
-pub(crate) fn slab_extent(points: &[Vec3], z: f64, tol: f64, yaw: f64) -> Option<([f64; 2], [f64; 2])> {
+pub(crate) fn slab_extent(
+    points: &[Vec3],
+    z: f64,
+    tol: f64,
+    yaw: f64,
+) -> Option<([f64; 2], [f64; 2])> {
     let (s, co) = yaw.sin_cos();
     let mut u = Vec::new();
     let mut v = Vec::new();
@@ -334,7 +458,10 @@ mod tests {
         let (t, tilt) = level_transform(&pts, &c);
         assert!((tilt - 3.0).abs() < 0.1, "tilt {tilt}");
         let mp = MapPoints {
-            points: pts.iter().map(|p| t.transform_point3(p.as_dvec3()).as_vec3()).collect(),
+            points: pts
+                .iter()
+                .map(|p| t.transform_point3(p.as_dvec3()).as_vec3())
+                .collect(),
             input_index: (0..pts.len() as u32).collect(),
         };
         let l = find_levels(&mp, t, tilt, &c);

@@ -39,13 +39,31 @@ impl Default for LabelConfig {
 
 impl LabelConfig {
     pub(crate) fn validate(&self) -> Result<()> {
-        check_range("labels.surface_tolerance_m", self.surface_tolerance_m, 0.0, 1.0, "within 0..1 m")?;
-        check_range("labels.tolerance_m", self.tolerance_m, 0.0, 1.0, "within 0..1 m")
+        check_range(
+            "labels.surface_tolerance_m",
+            self.surface_tolerance_m,
+            0.0,
+            1.0,
+            "within 0..1 m",
+        )?;
+        check_range(
+            "labels.tolerance_m",
+            self.tolerance_m,
+            0.0,
+            1.0,
+            "within 0..1 m",
+        )
     }
 }
 
 /// Labels the map points (same order as `points`).
-pub(crate) fn label_points(points: &[Vec3], index: &XyIndex, d: &Detections, ids: &Ids, c: &LabelConfig) -> Vec<Label> {
+pub(crate) fn label_points(
+    points: &[Vec3],
+    index: &XyIndex,
+    d: &Detections,
+    ids: &Ids,
+    c: &LabelConfig,
+) -> Vec<Label> {
     let mut labels = vec![Label::default(); points.len()];
     let tol = c.tolerance_m;
     let set = |l: &mut Label, entity: u32, class: SurfaceClass| {
@@ -67,25 +85,37 @@ pub(crate) fn label_points(points: &[Vec3], index: &XyIndex, d: &Detections, ids
         }
     }
     for (wi, w) in d.walls.iter().enumerate() {
-        let openings: Vec<(usize, &crate::openings::Opening)> = d.openings.iter().enumerate().filter(|(_, o)| o.wall == wi).collect();
-        index.for_each_near_line(points, &w.line, -tol, w.length + tol, w.thickness / 2.0 + tol, |i, s, _| {
-            let z = points[i].z as f64;
-            if z < w.z_range.0 - tol || z > w.z_range.1 + tol {
-                return;
-            }
-            let mut entity = (ids.walls[wi], SurfaceClass::Wall);
-            for &(k, o) in &openings {
-                if s > o.s0 + tol && s < o.s1 - tol {
-                    let lintel = ids.openings[k].1;
-                    entity = if z >= o.top_z - tol && lintel != 0 {
-                        (lintel, SurfaceClass::WallAboveDoor)
-                    } else {
-                        (0, SurfaceClass::Unknown)
-                    };
+        let openings: Vec<(usize, &crate::openings::Opening)> = d
+            .openings
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| o.wall == wi)
+            .collect();
+        index.for_each_near_line(
+            points,
+            &w.line,
+            -tol,
+            w.length + tol,
+            w.thickness / 2.0 + tol,
+            |i, s, _| {
+                let z = points[i].z as f64;
+                if z < w.z_range.0 - tol || z > w.z_range.1 + tol {
+                    return;
                 }
-            }
-            set(&mut labels[i], entity.0, entity.1);
-        });
+                let mut entity = (ids.walls[wi], SurfaceClass::Wall);
+                for &(k, o) in &openings {
+                    if s > o.s0 + tol && s < o.s1 - tol {
+                        let lintel = ids.openings[k].1;
+                        entity = if z >= o.top_z - tol && lintel != 0 {
+                            (lintel, SurfaceClass::WallAboveDoor)
+                        } else {
+                            (0, SurfaceClass::Unknown)
+                        };
+                    }
+                }
+                set(&mut labels[i], entity.0, entity.1);
+            },
+        );
     }
     for (k, (o, leaf)) in d.openings.iter().zip(&d.leaves).enumerate() {
         let Some(leaf) = leaf else { continue };
@@ -101,25 +131,42 @@ pub(crate) fn label_points(points: &[Vec3], index: &XyIndex, d: &Detections, ids
         let a = leaf.open_deg.to_radians() * if left_of_into { 1.0 } else { -1.0 };
         let dir = DVec2::from_angle(a).rotate(into);
         let line = crate::points::Line2 { origin: hinge, dir };
-        index.for_each_near_line(points, &line, -tol, width + tol, d.leaf_thickness / 2.0 + tol, |i, _, _| {
-            let z = points[i].z as f64;
-            if z > w.z_range.0 + tol && z <= o.top_z + tol {
-                set(&mut labels[i], ids.openings[k].2, SurfaceClass::Door);
-            }
-        });
+        index.for_each_near_line(
+            points,
+            &line,
+            -tol,
+            width + tol,
+            d.leaf_thickness / 2.0 + tol,
+            |i, _, _| {
+                let z = points[i].z as f64;
+                if z > w.z_range.0 + tol && z <= o.top_z + tol {
+                    set(&mut labels[i], ids.openings[k].2, SurfaceClass::Door);
+                }
+            },
+        );
     }
     let floor = d.levels.floor_ref_m;
     for (s, &id) in d.stairs.iter().zip(&ids.stairs) {
         for k in 1..=s.steps + u32::from(s.landing > 0.0) {
             let (a, b) = s.step_range(k);
             let top = floor + s.rise * k.min(s.steps) as f64;
-            let line = crate::points::Line2 { origin: s.start, dir: s.dir };
-            index.for_each_near_line(points, &line, a - tol, b + tol, s.width / 2.0 + tol, |i, _, _| {
-                let z = points[i].z as f64;
-                if z > floor + tol && z <= top + tol {
-                    set(&mut labels[i], id, SurfaceClass::Stairs);
-                }
-            });
+            let line = crate::points::Line2 {
+                origin: s.start,
+                dir: s.dir,
+            };
+            index.for_each_near_line(
+                points,
+                &line,
+                a - tol,
+                b + tol,
+                s.width / 2.0 + tol,
+                |i, _, _| {
+                    let z = points[i].z as f64;
+                    if z > floor + tol && z <= top + tol {
+                        set(&mut labels[i], id, SurfaceClass::Stairs);
+                    }
+                },
+            );
         }
     }
     labels

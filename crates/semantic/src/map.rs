@@ -70,7 +70,10 @@ impl OrientedBox {
     }
 
     fn is_finite(&self) -> bool {
-        self.center_m.iter().chain(&self.size_m).all(|v| v.is_finite())
+        self.center_m
+            .iter()
+            .chain(&self.size_m)
+            .all(|v| v.is_finite())
             && self.yaw_deg.is_finite()
             && self.size_m.iter().all(|v| *v >= 0.0)
     }
@@ -526,7 +529,10 @@ fn check_entity(e: &Entity) -> std::result::Result<(), String> {
         if present {
             Ok(())
         } else {
-            Err(format!("a {} entity needs its `{what}` section", e.class.name()))
+            Err(format!(
+                "a {} entity needs its `{what}` section",
+                e.class.name()
+            ))
         }
     };
     match e.class {

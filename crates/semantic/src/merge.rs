@@ -34,9 +34,27 @@ impl Default for MergeConfig {
 
 impl MergeConfig {
     pub(crate) fn validate(&self) -> Result<()> {
-        check_range("merge.max_angle_deg", self.max_angle_deg, 0.0, 45.0, "within 0..45 deg")?;
-        check_range("merge.max_offset_m", self.max_offset_m, 0.0, 100.0, "within 0..100 m")?;
-        check_range("merge.max_gap_m", self.max_gap_m, 0.0, 1e4, "within 0..10 km")
+        check_range(
+            "merge.max_angle_deg",
+            self.max_angle_deg,
+            0.0,
+            45.0,
+            "within 0..45 deg",
+        )?;
+        check_range(
+            "merge.max_offset_m",
+            self.max_offset_m,
+            0.0,
+            100.0,
+            "within 0..100 m",
+        )?;
+        check_range(
+            "merge.max_gap_m",
+            self.max_gap_m,
+            0.0,
+            1e4,
+            "within 0..10 km",
+        )
     }
 }
 
@@ -95,8 +113,13 @@ pub(crate) fn merge_segments(segments: &[Segment], c: &MergeConfig) -> Vec<Segme
                 }
             }
         }
-        let keep: Vec<usize> = (0..groups.len()).filter(|&i| !groups[i].is_empty()).collect();
-        groups = keep.iter().map(|&i| std::mem::take(&mut groups[i])).collect();
+        let keep: Vec<usize> = (0..groups.len())
+            .filter(|&i| !groups[i].is_empty())
+            .collect();
+        groups = keep
+            .iter()
+            .map(|&i| std::mem::take(&mut groups[i]))
+            .collect();
         current = keep.iter().map(|&i| current[i]).collect();
         if !merged {
             break;

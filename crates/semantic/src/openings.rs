@@ -60,15 +60,69 @@ impl Default for OpeningConfig {
 
 impl OpeningConfig {
     pub(crate) fn validate(&self) -> Result<()> {
-        check_range("openings.bin_m", self.bin_m, 0.005, 1.0, "within 0.005..1 m")?;
-        check_range("openings.door_level_m[0]", self.door_level_m[0], 0.0, 10.0, "within 0..10 m")?;
-        check_range("openings.door_level_m[1]", self.door_level_m[1] - self.door_level_m[0], 0.05, 10.0, "at least 0.05 m above door_level_m[0]")?;
-        check_range("openings.min_width_m", self.min_width_m, 0.05, 100.0, "within 0.05..100 m")?;
-        check_range("openings.max_width_m", self.max_width_m, self.min_width_m, 100.0, "at least min_width_m")?;
-        check_range("openings.max_pier_m", self.max_pier_m, 0.0, 10.0, "within 0..10 m")?;
-        check_range("openings.min_lintel_coverage", self.min_lintel_coverage, 0.0, 1.0, "within 0..1")?;
-        check_range("openings.min_evidence", self.min_evidence, 0.0, 1.0, "within 0..1")?;
-        check_range("openings.behind_m", self.behind_m, 0.0, 100.0, "within 0..100 m")
+        check_range(
+            "openings.bin_m",
+            self.bin_m,
+            0.005,
+            1.0,
+            "within 0.005..1 m",
+        )?;
+        check_range(
+            "openings.door_level_m[0]",
+            self.door_level_m[0],
+            0.0,
+            10.0,
+            "within 0..10 m",
+        )?;
+        check_range(
+            "openings.door_level_m[1]",
+            self.door_level_m[1] - self.door_level_m[0],
+            0.05,
+            10.0,
+            "at least 0.05 m above door_level_m[0]",
+        )?;
+        check_range(
+            "openings.min_width_m",
+            self.min_width_m,
+            0.05,
+            100.0,
+            "within 0.05..100 m",
+        )?;
+        check_range(
+            "openings.max_width_m",
+            self.max_width_m,
+            self.min_width_m,
+            100.0,
+            "at least min_width_m",
+        )?;
+        check_range(
+            "openings.max_pier_m",
+            self.max_pier_m,
+            0.0,
+            10.0,
+            "within 0..10 m",
+        )?;
+        check_range(
+            "openings.min_lintel_coverage",
+            self.min_lintel_coverage,
+            0.0,
+            1.0,
+            "within 0..1",
+        )?;
+        check_range(
+            "openings.min_evidence",
+            self.min_evidence,
+            0.0,
+            1.0,
+            "within 0..1",
+        )?;
+        check_range(
+            "openings.behind_m",
+            self.behind_m,
+            0.0,
+            100.0,
+            "within 0..100 m",
+        )
     }
 }
 
@@ -97,7 +151,13 @@ struct Bin {
 }
 
 /// The openings of wall `wi`.
-pub(crate) fn find_openings(wi: usize, w: &WallFit, sc: &Scene, c: &OpeningConfig, face_tol: f64) -> Vec<Opening> {
+pub(crate) fn find_openings(
+    wi: usize,
+    w: &WallFit,
+    sc: &Scene,
+    c: &OpeningConfig,
+    face_tol: f64,
+) -> Vec<Opening> {
     let n = ((w.length / c.bin_m).ceil() as usize).clamp(1, 10_000_000);
     let mut bins = vec![
         Bin {
@@ -115,41 +175,46 @@ pub(crate) fn find_openings(wi: usize, w: &WallFit, sc: &Scene, c: &OpeningConfi
     let top = w.z_range.1;
     // A closed leaf is recessed from the faces by half the wall less half the leaf: at door
     // level, only points nearer the face than half that recess block a bin.
-    let block_tol = if two_sided { face_tol.min(((half_t - 0.02) / 2.0).max(0.01)) } else { face_tol };
+    let block_tol = if two_sided {
+        face_tol.min(((half_t - 0.02) / 2.0).max(0.01))
+    } else {
+        face_tol
+    };
     let mut blocking = vec![0u16; n];
-    sc.index.for_each_near_line(sc.points, &w.line, 0.0, w.length, reach, |i, s, d| {
-        let z = sc.points[i].z as f64;
-        let b = ((s / c.bin_m) as usize).min(n - 1);
-        let bin = &mut bins[b];
-        let on_face = w.faces.iter().any(|f| (d - f).abs() <= face_tol);
-        if on_face {
-            if z >= lvl0 && z <= lvl1 {
-                if w.faces.iter().any(|f| (d - f).abs() <= block_tol) {
-                    blocking[b] = blocking[b].saturating_add(1);
-                    bin.face_s = (bin.face_s.0.min(s), bin.face_s.1.max(s));
+    sc.index
+        .for_each_near_line(sc.points, &w.line, 0.0, w.length, reach, |i, s, d| {
+            let z = sc.points[i].z as f64;
+            let b = ((s / c.bin_m) as usize).min(n - 1);
+            let bin = &mut bins[b];
+            let on_face = w.faces.iter().any(|f| (d - f).abs() <= face_tol);
+            if on_face {
+                if z >= lvl0 && z <= lvl1 {
+                    if w.faces.iter().any(|f| (d - f).abs() <= block_tol) {
+                        blocking[b] = blocking[b].saturating_add(1);
+                        bin.face_s = (bin.face_s.0.min(s), bin.face_s.1.max(s));
+                    }
+                } else if z > lvl1 && z < top - 0.02 {
+                    bin.lintel = true;
+                    bin.lintel_points += 1;
                 }
-            } else if z > lvl1 && z < top - 0.02 {
-                bin.lintel = true;
-                bin.lintel_points += 1;
+                if z > sc.floor + 0.1 {
+                    bin.lintel_low_z = bin.lintel_low_z.min(z);
+                }
+                return;
             }
-            if z > sc.floor + 0.1 {
-                bin.lintel_low_z = bin.lintel_low_z.min(z);
+            let floor_pt = (z - sc.floor).abs() <= 0.04;
+            let inside = d.abs() < half_t - face_tol;
+            let seen_through = if two_sided {
+                inside && (floor_pt || (z >= lvl0 && z <= lvl1))
+            } else {
+                // Behind the face (away from the free side), or on the floor within the footprint.
+                let depth = half_t - sigma * d; // 0 at the face, growing behind it
+                (depth > face_tol && z > sc.floor - 0.05 && z < top - 0.05) || (floor_pt && inside)
+            };
+            if seen_through {
+                bin.evidence = true;
             }
-            return;
-        }
-        let floor_pt = (z - sc.floor).abs() <= 0.04;
-        let inside = d.abs() < half_t - face_tol;
-        let seen_through = if two_sided {
-            inside && (floor_pt || (z >= lvl0 && z <= lvl1))
-        } else {
-            // Behind the face (away from the free side), or on the floor within the footprint.
-            let depth = half_t - sigma * d; // 0 at the face, growing behind it
-            (depth > face_tol && z > sc.floor - 0.05 && z < top - 0.05) || (floor_pt && inside)
-        };
-        if seen_through {
-            bin.evidence = true;
-        }
-    });
+        });
     // A bin is blocked by three face points at door level (one is noise).
     for (bin, &k) in bins.iter_mut().zip(&blocking) {
         bin.blocked = k >= 3;

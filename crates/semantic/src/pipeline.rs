@@ -139,19 +139,34 @@ fn drop_leaf_walls(
     walls: Vec<crate::walls::WallFit>,
     openings: Vec<crate::openings::Opening>,
     leaves: Vec<Option<crate::doors::Leaf>>,
-) -> (Vec<crate::walls::WallFit>, Vec<crate::openings::Opening>, Vec<Option<crate::doors::Leaf>>) {
+) -> (
+    Vec<crate::walls::WallFit>,
+    Vec<crate::openings::Opening>,
+    Vec<Option<crate::doors::Leaf>>,
+) {
     let mut drop = vec![false; walls.len()];
     for (o, leaf) in openings.iter().zip(&leaves) {
         let Some(leaf) = leaf else { continue };
         let w = &walls[o.wall];
-        let (hinge, into) = if leaf.hinge_start { (w.line.at(o.s0), w.line.dir) } else { (w.line.at(o.s1), -w.line.dir) };
+        let (hinge, into) = if leaf.hinge_start {
+            (w.line.at(o.s0), w.line.dir)
+        } else {
+            (w.line.at(o.s1), -w.line.dir)
+        };
         let left = leaf.swing_left == leaf.hinge_start;
-        let dir = DVec2::from_angle(leaf.open_deg.to_radians() * if left { 1.0 } else { -1.0 }).rotate(into);
+        let dir = DVec2::from_angle(leaf.open_deg.to_radians() * if left { 1.0 } else { -1.0 })
+            .rotate(into);
         let line = crate::points::Line2 { origin: hinge, dir };
         let width = o.s1 - o.s0;
         for (k, v) in walls.iter().enumerate() {
-            let near = [v.start(), v.end()].iter().all(|p| line.coords(*p).1.abs() <= 0.15);
-            if k != o.wall && near && crate::points::undirected_angle_deg(v.line.dir, dir) <= 10.0 && v.length <= width + 0.3 {
+            let near = [v.start(), v.end()]
+                .iter()
+                .all(|p| line.coords(*p).1.abs() <= 0.15);
+            if k != o.wall
+                && near
+                && crate::points::undirected_angle_deg(v.line.dir, dir) <= 10.0
+                && v.length <= width + 0.3
+            {
                 drop[k] = true;
             }
         }
@@ -212,7 +227,9 @@ pub fn build_semantic_map(cloud: &PointCloud, config: &SemanticConfig) -> Result
         t: Instant::now(),
         times: Vec::new(),
     };
-    let finite: Vec<u32> = (0..cloud.len() as u32).filter(|&i| cloud.points[i as usize].is_finite()).collect();
+    let finite: Vec<u32> = (0..cloud.len() as u32)
+        .filter(|&i| cloud.points[i as usize].is_finite())
+        .collect();
     if finite.is_empty() {
         return Err(SemanticError::EmptyCloud { total: cloud.len() });
     }
@@ -253,17 +270,41 @@ pub fn build_semantic_map(cloud: &PointCloud, config: &SemanticConfig) -> Result
 
     let lo = DVec2::from_array(frame.to_map(0.0, frame.height_px as f64));
     let hi = DVec2::from_array(frame.to_map(frame.width_px as f64, 0.0));
-    let cell = 0.5f64.max((hi - lo).max_element() / 2048.0);
-    let index = XyIndex::new(&mp.points, lo, hi, cell);
+    let cell = 0.25f64.max((hi - lo).max_element() / 4096.0);
+    let (floor_z, ceiling_z) = (levels.floor_ref_m as f32, levels.ceiling_ref_m as f32);
+    let (index, (upright, band_index)) = rayon::join(
+        || XyIndex::new(&mp.points, lo, hi, cell),
+        || {
+            rayon::join(
+                || {
+                    XyIndex::filtered(&mp.points, lo, hi, cell, |p| {
+                        (p.z - floor_z).abs() > 0.05 && (p.z - ceiling_z).abs() > 0.05
+                    })
+                },
+                || {
+                    XyIndex::filtered(&mp.points, lo, hi, cell, |p| {
+                        p.z as f64 >= band.0 && p.z as f64 <= band.1
+                    })
+                },
+            )
+        },
+    );
     let scene = Scene {
         points: &mp.points,
         index: &index,
+        upright: &upright,
+        band_index: &band_index,
         floor: levels.floor_ref_m,
         ceiling: levels.ceiling_ref_m,
         band,
         middle: (lo + hi) / 2.0,
     };
-    let walls = identify_walls(&merged_segments, &scene, &config.walls, config.merge.max_angle_deg);
+    let walls = identify_walls(
+        &merged_segments,
+        &scene,
+        &config.walls,
+        config.merge.max_angle_deg,
+    );
     clock.lap("walls");
     let face_tol = config.walls.face_tolerance_m;
     let openings: Vec<_> = walls
@@ -286,8 +327,12 @@ pub fn build_semantic_map(cloud: &PointCloud, config: &SemanticConfig) -> Result
         .map(|w| w.line.angle())
         .unwrap_or(0.0);
     let tol = config.floor_ceiling.surface_tolerance_m;
-    let floor_extent = levels.floor.and_then(|(z, _)| slab_extent(&mp.points, z, tol, slab_yaw));
-    let ceiling_extent = levels.ceiling.and_then(|(z, _)| slab_extent(&mp.points, z, tol, slab_yaw));
+    let floor_extent = levels
+        .floor
+        .and_then(|(z, _)| slab_extent(&mp.points, z, tol, slab_yaw));
+    let ceiling_extent = levels
+        .ceiling
+        .and_then(|(z, _)| slab_extent(&mp.points, z, tol, slab_yaw));
     let det = Detections {
         levels,
         floor_extent,

@@ -24,9 +24,23 @@ pub(crate) struct XyIndex {
 impl XyIndex {
     /// Buckets `points` (those inside `[min, max]`; others are left out) into cells of `cell_m`.
     pub fn new(points: &[Vec3], min: DVec2, max: DVec2, cell_m: f64) -> XyIndex {
+        XyIndex::filtered(points, min, max, cell_m, |_| true)
+    }
+
+    /// As [`XyIndex::new`], for the points that pass `keep` only (indices stay those of `points`).
+    pub fn filtered(
+        points: &[Vec3],
+        min: DVec2,
+        max: DVec2,
+        cell_m: f64,
+        keep: impl Fn(&Vec3) -> bool,
+    ) -> XyIndex {
         let cols = (((max.x - min.x) / cell_m).floor() as usize + 1).clamp(1, 1 << 16);
         let rows = (((max.y - min.y) / cell_m).floor() as usize + 1).clamp(1, 1 << 16);
         let cell_of = |p: &Vec3| -> Option<usize> {
+            if !keep(p) {
+                return None;
+            }
             let c = ((p.x as f64 - min.x) / cell_m).floor();
             let r = ((p.y as f64 - min.y) / cell_m).floor();
             (c >= 0.0 && r >= 0.0 && (c as usize) < cols && (r as usize) < rows)
@@ -160,21 +174,24 @@ impl Line2 {
 
 /// The angle between two undirected directions, in degrees (0..=90).
 pub(crate) fn undirected_angle_deg(a: DVec2, b: DVec2) -> f64 {
-    let c = a.normalize_or_zero().dot(b.normalize_or_zero()).abs().min(1.0);
+    let c = a
+        .normalize_or_zero()
+        .dot(b.normalize_or_zero())
+        .abs()
+        .min(1.0);
     c.acos().to_degrees()
 }
 
-/// The `q`-quantile (0..=1) of `v` (sorted in place); `None` if empty.
+/// The `q`-quantile (0..=1) of `v` (reordered in place, in linear time); `None` if empty.
 pub(crate) fn quantile(v: &mut [f64], q: f64) -> Option<f64> {
     if v.is_empty() {
         return None;
     }
-    v.sort_by(f64::total_cmp);
     let i = ((v.len() - 1) as f64 * q.clamp(0.0, 1.0)).round() as usize;
-    Some(v[i])
+    Some(*v.select_nth_unstable_by(i, f64::total_cmp).1)
 }
 
-/// Median of `v` (sorted in place); `None` if empty.
+/// Median of `v` (reordered in place); `None` if empty.
 pub(crate) fn median(v: &mut [f64]) -> Option<f64> {
     quantile(v, 0.5)
 }
@@ -224,12 +241,7 @@ mod tests {
         let pts: Vec<Vec3> = (0..100)
             .map(|i| Vec3::new(i as f32 * 0.1, (i % 3) as f32 * 0.1, 1.0))
             .collect();
-        let idx = XyIndex::new(
-            &pts,
-            DVec2::new(0.0, 0.0),
-            DVec2::new(10.0, 1.0),
-            0.5,
-        );
+        let idx = XyIndex::new(&pts, DVec2::new(0.0, 0.0), DVec2::new(10.0, 1.0), 0.5);
         let line = Line2::through(DVec2::new(0.0, 0.0), DVec2::new(1.0, 0.0));
         let mut n = 0;
         idx.for_each_near_line(&pts, &line, 2.0, 4.0, 0.05, |_, s, d| {
@@ -243,8 +255,12 @@ mod tests {
     fn fits() {
         let (a, b) = linear_fit(&[(0.0, 1.0), (1.0, 3.0), (2.0, 5.0)]).expect("fit");
         assert!((a - 1.0).abs() < 1e-12 && (b - 2.0).abs() < 1e-12);
-        let (_, dir) = fit_line(&[DVec2::new(0.0, 0.0), DVec2::new(1.0, 1.0), DVec2::new(2.0, 2.0)])
-            .expect("fit");
+        let (_, dir) = fit_line(&[
+            DVec2::new(0.0, 0.0),
+            DVec2::new(1.0, 1.0),
+            DVec2::new(2.0, 2.0),
+        ])
+        .expect("fit");
         assert!((undirected_angle_deg(dir, DVec2::new(1.0, 1.0))).abs() < 1e-6);
         assert_eq!(median(&mut [3.0, 1.0, 2.0]), Some(2.0));
     }

@@ -97,18 +97,54 @@ impl Default for ProjectionConfig {
 
 impl ProjectionConfig {
     pub(crate) fn validate(&self) -> Result<()> {
-        check_range("projection.resolution_m", self.resolution_m, 1e-3, 10.0, "within 0.001..10 m")?;
-        check_range("projection.slice_m", self.slice_m, 1e-3, 10.0, "within 0.001..10 m")?;
-        check_range("projection.threshold", self.threshold, 0.0, 1.0, "within 0..1")?;
-        check_range("projection.extent_quantile", self.extent_quantile, 0.0, 0.2, "within 0..0.2")?;
-        check_range("projection.max_pixels", self.max_pixels as f64, 1.0, 1e9, "within 1..1e9")?;
+        check_range(
+            "projection.resolution_m",
+            self.resolution_m,
+            1e-3,
+            10.0,
+            "within 0.001..10 m",
+        )?;
+        check_range(
+            "projection.slice_m",
+            self.slice_m,
+            1e-3,
+            10.0,
+            "within 0.001..10 m",
+        )?;
+        check_range(
+            "projection.threshold",
+            self.threshold,
+            0.0,
+            1.0,
+            "within 0..1",
+        )?;
+        check_range(
+            "projection.extent_quantile",
+            self.extent_quantile,
+            0.0,
+            0.2,
+            "within 0..0.2",
+        )?;
+        check_range(
+            "projection.max_pixels",
+            self.max_pixels as f64,
+            1.0,
+            1e9,
+            "within 1..1e9",
+        )?;
         let (a, b) = match self.band {
             HeightBand::BelowCeiling { from_m, to_m } => (-from_m, -to_m),
             HeightBand::AboveFloor { from_m, to_m } => (from_m, to_m),
             HeightBand::Absolute { min_z_m, max_z_m } => (min_z_m, max_z_m),
         };
         check_range("projection.band (lower end)", a, -1e4, 1e4, "finite")?;
-        check_range("projection.band (upper end)", b - a, 1e-3, 1e4, "above the lower end")
+        check_range(
+            "projection.band (upper end)",
+            b - a,
+            1e-3,
+            1e4,
+            "above the lower end",
+        )
     }
 
     /// The band's z range in the map frame, given the floor and ceiling heights.
@@ -282,7 +318,14 @@ pub(crate) fn project(
     let n = frame.len();
     let slices = (((z1 - z0) / c.slice_m).ceil() as usize).clamp(1, 64);
     let mut counts = vec![0u32; n];
-    let mut occupied = vec![0u64; if c.value == ProjectionValue::Occupancy { n } else { 0 }];
+    let mut occupied = vec![
+        0u64;
+        if c.value == ProjectionValue::Occupancy {
+            n
+        } else {
+            0
+        }
+    ];
     for p in points {
         let z = p.z as f64;
         if !(z >= z0 && z <= z1) {
@@ -304,7 +347,11 @@ pub(crate) fn project(
             .map(|o| o.count_ones() as f32 / slices as f32)
             .collect(),
         ProjectionValue::Density => {
-            let mut nz: Vec<f64> = counts.iter().filter(|&&v| v > 0).map(|&v| v as f64).collect();
+            let mut nz: Vec<f64> = counts
+                .iter()
+                .filter(|&&v| v > 0)
+                .map(|&v| v as f64)
+                .collect();
             let top = quantile(&mut nz, 0.99).unwrap_or(1.0).max(1.0) as f32;
             counts.iter().map(|&v| (v as f32 / top).min(1.0)).collect()
         }
@@ -320,7 +367,11 @@ pub(crate) fn project(
 
 /// The inclusive pixel ranges `(col0, col1, row0, row1)` covering the map box `[lo, hi]`,
 /// clipped to the image; `None` if it misses the image.
-pub(crate) fn pixel_range(frame: &ImageFrame, lo: DVec2, hi: DVec2) -> Option<(usize, usize, usize, usize)> {
+pub(crate) fn pixel_range(
+    frame: &ImageFrame,
+    lo: DVec2,
+    hi: DVec2,
+) -> Option<(usize, usize, usize, usize)> {
     let a = frame.to_pixel(lo.x, hi.y);
     let b = frame.to_pixel(hi.x, lo.y);
     let (w, h) = (frame.width_px as f64, frame.height_px as f64);
@@ -328,8 +379,12 @@ pub(crate) fn pixel_range(frame: &ImageFrame, lo: DVec2, hi: DVec2) -> Option<(u
     let r0 = a[1].floor().max(0.0);
     let c1 = b[0].floor().min(w - 1.0);
     let r1 = b[1].floor().min(h - 1.0);
-    (c0 <= c1 && r0 <= r1 && c1 >= 0.0 && r1 >= 0.0)
-        .then_some((c0 as usize, c1 as usize, r0 as usize, r1 as usize))
+    (c0 <= c1 && r0 <= r1 && c1 >= 0.0 && r1 >= 0.0).then_some((
+        c0 as usize,
+        c1 as usize,
+        r0 as usize,
+        r1 as usize,
+    ))
 }
 
 /// The map XY of a pixel's centre.
@@ -353,10 +408,17 @@ mod tests {
         }
         let frame = frame_for(&pts, &c).expect("fits");
         let p = project(&pts, &frame, (0.0, 0.3), &c);
-        assert!(p.binary.count() >= 39 && p.binary.count() <= 41, "{}", p.binary.count());
+        assert!(
+            p.binary.count() >= 39 && p.binary.count() <= 41,
+            "{}",
+            p.binary.count()
+        );
         let (col, row) = frame.pixel_of(1.0, 1.0).expect("inside");
         let centre = pixel_center(&frame, col as f64, row as f64);
-        assert!((centre.x - 1.0).abs() <= 0.025 && (centre.y - 1.0).abs() <= 0.025);
+        assert!(
+            (centre.x - 1.0).abs() <= 0.025 + 1e-9 && (centre.y - 1.0).abs() <= 0.025 + 1e-9,
+            "{centre}"
+        );
         let wide = vec![Vec3::ZERO, Vec3::new(10_000.0, 10_000.0, 0.0)];
         let c = ProjectionConfig {
             extent_quantile: 0.0,

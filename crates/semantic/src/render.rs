@@ -35,7 +35,12 @@ fn surface_color(class: SurfaceClass) -> [u8; 3] {
 }
 
 /// `background` (dimmed) with `segments` drawn over it in `color`, plus their end points.
-pub fn render_segments(background: &GrayImage, frame: &ImageFrame, segments: &[Segment], color: [u8; 3]) -> RgbImage {
+pub fn render_segments(
+    background: &GrayImage,
+    frame: &ImageFrame,
+    segments: &[Segment],
+    color: [u8; 3],
+) -> RgbImage {
     let mut img = RgbImage::from_fn(background.width(), background.height(), |x, y| {
         let v = 255 - background.get_pixel(x, y).0[0] / 2;
         Rgb([v, v, v])
@@ -87,13 +92,22 @@ pub fn render_top_view(map: &SemanticMap, frame: &ImageFrame) -> RgbImage {
                     fill_box(&mut img, frame, &e.geometry, color);
                     let len = e.geometry.size_m[0];
                     let yaw = e.geometry.yaw_deg.to_radians();
-                    let sign_edge = if d.hinge_edge == crate::map::HingeEdge::Start { 1.0 } else { -1.0 };
+                    let sign_edge = if d.hinge_edge == crate::map::HingeEdge::Start {
+                        1.0
+                    } else {
+                        -1.0
+                    };
                     let into = DVec2::from_angle(yaw) * sign_edge;
                     let left = (d.swing == crate::map::SwingSide::Left) == (sign_edge > 0.0);
                     let a = d.observed_open_deg.to_radians() * if left { 1.0 } else { -1.0 };
                     let h = DVec2::new(d.hinge_m[0], d.hinge_m[1]);
                     let tip = h + DVec2::from_angle(a).rotate(into) * len;
-                    draw_line(&mut img, frame.to_pixel(h.x, h.y), frame.to_pixel(tip.x, tip.y), color);
+                    draw_line(
+                        &mut img,
+                        frame.to_pixel(h.x, h.y),
+                        frame.to_pixel(tip.x, tip.y),
+                        color,
+                    );
                 }
                 _ => fill_box(&mut img, frame, &e.geometry, color),
             }
@@ -104,7 +118,12 @@ pub fn render_top_view(map: &SemanticMap, frame: &ImageFrame) -> RgbImage {
 
 /// A top view of labelled points (in the input cloud's frame; moved into the map frame with
 /// `map.input_from_map`), coloured by class, higher points drawn over lower ones.
-pub fn render_labels(cloud: &PointCloud, labels: &[Label], map: &SemanticMap, frame: &ImageFrame) -> RgbImage {
+pub fn render_labels(
+    cloud: &PointCloud,
+    labels: &[Label],
+    map: &SemanticMap,
+    frame: &ImageFrame,
+) -> RgbImage {
     let mut img = RgbImage::from_pixel(frame.width_px, frame.height_px, Rgb([255, 255, 255]));
     let map_from_input = map.input_from_map().inverse();
     let mut pts: Vec<(DVec3, [u8; 3])> = cloud
@@ -112,7 +131,12 @@ pub fn render_labels(cloud: &PointCloud, labels: &[Label], map: &SemanticMap, fr
         .iter()
         .zip(labels)
         .filter(|(p, _)| p.is_finite())
-        .map(|(p, l)| (map_from_input.transform_point3(p.as_dvec3()), surface_color(l.class)))
+        .map(|(p, l)| {
+            (
+                map_from_input.transform_point3(p.as_dvec3()),
+                surface_color(l.class),
+            )
+        })
         .filter(|(_, c)| *c != class_color(EntityClass::Ceiling))
         .collect();
     pts.sort_by(|a, b| a.0.z.total_cmp(&b.0.z));
@@ -140,8 +164,12 @@ fn draw_line(img: &mut RgbImage, a: [f64; 2], b: [f64; 2], c: [u8; 3]) {
 
 fn fill_box(img: &mut RgbImage, frame: &ImageFrame, b: &OrientedBox, c: [u8; 3]) {
     let corners = b.corners_xy().map(DVec2::from_array);
-    let lo = corners.iter().fold(DVec2::splat(f64::INFINITY), |a, p| a.min(*p));
-    let hi = corners.iter().fold(DVec2::splat(f64::NEG_INFINITY), |a, p| a.max(*p));
+    let lo = corners
+        .iter()
+        .fold(DVec2::splat(f64::INFINITY), |a, p| a.min(*p));
+    let hi = corners
+        .iter()
+        .fold(DVec2::splat(f64::NEG_INFINITY), |a, p| a.max(*p));
     if let Some((c0, c1, r0, r1)) = pixel_range(frame, lo, hi) {
         for row in r0..=r1 {
             for col in c0..=c1 {
@@ -161,5 +189,10 @@ fn fill_box(img: &mut RgbImage, frame: &ImageFrame, b: &OrientedBox, c: [u8; 3])
     let h = b.size_m[0] / 2.0;
     let a = [b.center_m[0] - co * h, b.center_m[1] - s * h];
     let e = [b.center_m[0] + co * h, b.center_m[1] + s * h];
-    draw_line(img, frame.to_pixel(a[0], a[1]), frame.to_pixel(e[0], e[1]), c);
+    draw_line(
+        img,
+        frame.to_pixel(a[0], a[1]),
+        frame.to_pixel(e[0], e[1]),
+        c,
+    );
 }

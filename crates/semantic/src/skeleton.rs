@@ -39,9 +39,9 @@ fn table(first: bool) -> [bool; 256] {
         let a = (0..8).filter(|&k| !p(k) && p((k + 1) % 8)).count();
         let (p2, p4, p6, p8) = (p(0), p(2), p(4), p(6));
         let c = if first {
-            !(p2 && p4 && p6) && !(p4 && p6 && p8)
+            !(p4 && p6 && (p2 || p8))
         } else {
-            !(p2 && p4 && p8) && !(p2 && p6 && p8)
+            !(p2 && p8 && (p4 || p6))
         };
         *entry = (2..=6).contains(&b) && a == 1 && c;
     }
@@ -166,7 +166,10 @@ mod tests {
         assert_eq!(components(&s), 1);
         // The ring is not broken: every axis ray from the centre crosses it.
         for (dx, dy) in [(0, -1), (1, 0), (0, 1), (-1, 0)] {
-            assert!((1..15).any(|k| s.get(15 + dx * k, 15 + dy * k)), "ray {dx},{dy} escapes");
+            assert!(
+                (1..15).any(|k| s.get(15 + dx * k, 15 + dy * k)),
+                "ray {dx},{dy} escapes"
+            );
         }
     }
 }

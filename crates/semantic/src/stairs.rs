@@ -16,8 +16,9 @@
 //!   is the best sampled surface);
 //! - run and start: the stair model `top(s) = rise * min(n, floor((s - s0) / run) + 1)` fitted
 //!   by grid search to the profile (see `profile`);
-//! - width: the extent across the direction (1 % to 99 % of the points); landing: the top
-//!   level's depth beyond one run.
+//! - width: the extent across the direction (1 % to 99 % of the points); if that is under
+//!   `min_width_m`, only a side face was seen and `default_width_m` is assumed, away from the
+//!   side with floor in front of the face; landing: the top level's depth beyond one run.
 //!
 //! The direction with the most levels supported (then the best fit) wins.
 
@@ -44,8 +45,10 @@ pub struct StairsConfig {
     pub max_height_m: f64,
     /// Fewest pixels of a level.
     pub min_level_pixels: usize,
-    /// Narrowest staircase.
+    /// Narrowest staircase: a narrower one was seen from its side only.
     pub min_width_m: f64,
+    /// Width given to a staircase seen from its side only.
+    pub default_width_m: f64,
     /// The direction of ascent snaps to a wall's (or its normal's) within this angle.
     pub snap_direction_deg: f64,
 }
@@ -60,6 +63,7 @@ impl Default for StairsConfig {
             max_height_m: 2.6,
             min_level_pixels: 3,
             min_width_m: 0.4,
+            default_width_m: 1.0,
             snap_direction_deg: 10.0,
         }
     }
@@ -67,16 +71,83 @@ impl Default for StairsConfig {
 
 impl StairsConfig {
     pub(crate) fn validate(&self) -> Result<()> {
-        check_range("stairs.cell_m", self.cell_m, 1e-3, 10.0, "within 0.001..10 m")?;
-        check_range("stairs.min_steps", self.min_steps as f64, 2.0, 1000.0, "within 2..1000")?;
-        check_range("stairs.rise_m[0]", self.rise_m[0], 0.01, 1.0, "within 0.01..1 m")?;
-        check_range("stairs.rise_m[1]", self.rise_m[1], self.rise_m[0], 1.0, "within rise_m[0]..1 m")?;
-        check_range("stairs.run_m[0]", self.run_m[0], 0.01, 2.0, "within 0.01..2 m")?;
-        check_range("stairs.run_m[1]", self.run_m[1], self.run_m[0], 2.0, "within run_m[0]..2 m")?;
-        check_range("stairs.max_height_m", self.max_height_m, 0.1, 100.0, "within 0.1..100 m")?;
-        check_range("stairs.min_level_pixels", self.min_level_pixels as f64, 1.0, 1e6, "at least 1")?;
-        check_range("stairs.min_width_m", self.min_width_m, 0.0, 100.0, "within 0..100 m")?;
-        check_range("stairs.snap_direction_deg", self.snap_direction_deg, 0.0, 45.0, "within 0..45 deg")
+        check_range(
+            "stairs.cell_m",
+            self.cell_m,
+            1e-3,
+            10.0,
+            "within 0.001..10 m",
+        )?;
+        check_range(
+            "stairs.min_steps",
+            self.min_steps as f64,
+            2.0,
+            1000.0,
+            "within 2..1000",
+        )?;
+        check_range(
+            "stairs.rise_m[0]",
+            self.rise_m[0],
+            0.01,
+            1.0,
+            "within 0.01..1 m",
+        )?;
+        check_range(
+            "stairs.rise_m[1]",
+            self.rise_m[1],
+            self.rise_m[0],
+            1.0,
+            "within rise_m[0]..1 m",
+        )?;
+        check_range(
+            "stairs.run_m[0]",
+            self.run_m[0],
+            0.01,
+            2.0,
+            "within 0.01..2 m",
+        )?;
+        check_range(
+            "stairs.run_m[1]",
+            self.run_m[1],
+            self.run_m[0],
+            2.0,
+            "within run_m[0]..2 m",
+        )?;
+        check_range(
+            "stairs.max_height_m",
+            self.max_height_m,
+            0.1,
+            100.0,
+            "within 0.1..100 m",
+        )?;
+        check_range(
+            "stairs.min_level_pixels",
+            self.min_level_pixels as f64,
+            1.0,
+            1e6,
+            "at least 1",
+        )?;
+        check_range(
+            "stairs.min_width_m",
+            self.min_width_m,
+            0.0,
+            100.0,
+            "within 0..100 m",
+        )?;
+        check_range(
+            "stairs.default_width_m",
+            self.default_width_m,
+            0.01,
+            100.0,
+            "within 0.01..100 m",
+        )?;
+        check_range(
+            "stairs.snap_direction_deg",
+            self.snap_direction_deg,
+            0.0,
+            45.0,
+            "within 0..45 deg",
+        )
     }
 }
 
@@ -101,7 +172,10 @@ impl Staircase {
     pub fn step_range(&self, k: u32) -> (f64, f64) {
         let a = (k - 1) as f64 * self.run;
         if k > self.steps {
-            (self.steps as f64 * self.run, self.steps as f64 * self.run + self.landing)
+            (
+                self.steps as f64 * self.run,
+                self.steps as f64 * self.run + self.landing,
+            )
         } else {
             (a, a + self.run)
         }
@@ -109,7 +183,13 @@ impl Staircase {
 }
 
 /// Finds the staircases.
-pub(crate) fn find_stairs(sc: &Scene, image: &ImageFrame, walls: &[WallFit], c: &StairsConfig, max_pixels: u64) -> Vec<Staircase> {
+pub(crate) fn find_stairs(
+    sc: &Scene,
+    image: &ImageFrame,
+    walls: &[WallFit],
+    c: &StairsConfig,
+    max_pixels: u64,
+) -> Vec<Staircase> {
     // The height map covers the projection image's area at its own resolution.
     let scale = image.resolution_m / c.cell_m;
     let own = ImageFrame {
@@ -118,7 +198,11 @@ pub(crate) fn find_stairs(sc: &Scene, image: &ImageFrame, walls: &[WallFit], c: 
         width_px: (image.width_px as f64 * scale).ceil().max(1.0) as u32,
         height_px: (image.height_px as f64 * scale).ceil().max(1.0) as u32,
     };
-    let frame = &if (own.len() as u64) <= max_pixels { own } else { *image };
+    let frame = &if (own.len() as u64) <= max_pixels {
+        own
+    } else {
+        *image
+    };
     let (w, h) = (frame.width_px as usize, frame.height_px as usize);
     // Wall slabs (and a margin) are left out of the height map.
     let mut excluded = vec![false; w * h];
@@ -140,7 +224,10 @@ pub(crate) fn find_stairs(sc: &Scene, image: &ImageFrame, walls: &[WallFit], c: 
             }
         }
     }
-    let (z_lo, z_hi) = (sc.floor + 0.04, (sc.floor + c.max_height_m).min(sc.ceiling - 0.3));
+    let (z_lo, z_hi) = (
+        sc.floor + 0.04,
+        (sc.floor + c.max_height_m).min(sc.ceiling - 0.3),
+    );
     let mut hmax = vec![f32::NAN; w * h];
     let mut pixel_of_point = vec![u32::MAX; sc.points.len()];
     for (i, p) in sc.points.iter().enumerate() {
@@ -156,7 +243,7 @@ pub(crate) fn find_stairs(sc: &Scene, image: &ImageFrame, walls: &[WallFit], c: 
             continue;
         }
         pixel_of_point[i] = k as u32;
-        if !(hmax[k] >= p.z) {
+        if hmax[k].is_nan() || hmax[k] < p.z {
             hmax[k] = p.z;
         }
     }
@@ -201,7 +288,10 @@ pub(crate) fn find_stairs(sc: &Scene, image: &ImageFrame, walls: &[WallFit], c: 
     for wall in walls {
         let d = wall.line.dir;
         for cand in [d, d.perp(), -d, -d.perp()] {
-            if !directions.iter().any(|e| e.angle_to(cand).abs().to_degrees() < c.snap_direction_deg) {
+            if !directions
+                .iter()
+                .any(|e| e.angle_to(cand).abs().to_degrees() < c.snap_direction_deg)
+            {
                 directions.push(cand);
             }
         }
@@ -211,22 +301,32 @@ pub(crate) fn find_stairs(sc: &Scene, image: &ImageFrame, walls: &[WallFit], c: 
         if pixels.len() < (c.min_steps as usize) * c.min_level_pixels || members.len() < 20 {
             continue;
         }
-        let xy: Vec<DVec2> = members.iter().map(|&i| DVec2::new(sc.points[i].x as f64, sc.points[i].y as f64)).collect();
+        let xy: Vec<DVec2> = members
+            .iter()
+            .map(|&i| DVec2::new(sc.points[i].x as f64, sc.points[i].y as f64))
+            .collect();
         let mut cands = directions.clone();
         if let Some((_, d)) = crate::points::fit_line(&xy) {
             for cand in [d, d.perp(), -d, -d.perp()] {
-                if !cands.iter().any(|e| e.angle_to(cand).abs().to_degrees() < c.snap_direction_deg) {
+                if !cands
+                    .iter()
+                    .any(|e| e.angle_to(cand).abs().to_degrees() < c.snap_direction_deg)
+                {
                     cands.push(cand);
                 }
             }
         }
-        let pts: Vec<(DVec2, f64)> = members.iter().zip(&xy).map(|(&i, q)| (*q, sc.points[i].z as f64 - sc.floor)).collect();
+        let pts: Vec<(DVec2, f64)> = members
+            .iter()
+            .zip(&xy)
+            .map(|(&i, q)| (*q, sc.points[i].z as f64 - sc.floor))
+            .collect();
         let best = cands
             .iter()
             .filter_map(|&dir| profile(&pts, dir, c))
             .max_by(|a, b| a.score.total_cmp(&b.score));
         if let Some(p) = best {
-            out.push(finish(&pts, p));
+            out.push(finish(&pts, p, sc, c));
         }
     }
     out
@@ -300,7 +400,13 @@ fn profile(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<Profile
     }
     let n = n as u32;
     let nf = n as f64;
-    let level = |s: f64, run: f64, s0: f64| if s < s0 { 0.0 } else { (((s - s0) / run).floor() + 1.0).min(nf) };
+    let level = |s: f64, run: f64, s0: f64| {
+        if s < s0 {
+            0.0
+        } else {
+            (((s - s0) / run).floor() + 1.0).min(nf)
+        }
+    };
     let score = |run: f64, s0: f64| -> f64 {
         let mut v = 0.0;
         let mut support = [0u8; 64];
@@ -378,9 +484,15 @@ fn level_grid(heights: &[f64], c: &StairsConfig) -> Option<(f64, f64)> {
             hist[((hgt / bin) as usize).min(n - 1)] += 1;
         }
     }
-    let smooth: Vec<usize> = (0..n).map(|i| hist[i.saturating_sub(1)..(i + 2).min(n)].iter().sum()).collect();
+    let smooth: Vec<usize> = (0..n)
+        .map(|i| hist[i.saturating_sub(1)..(i + 2).min(n)].iter().sum())
+        .collect();
     let peaks: Vec<f64> = (0..n)
-        .filter(|&i| smooth[i] >= 3 && (i == 0 || smooth[i] > smooth[i - 1]) && (i + 1 == n || smooth[i] >= smooth[i + 1]))
+        .filter(|&i| {
+            smooth[i] >= 3
+                && (i == 0 || smooth[i] > smooth[i - 1])
+                && (i + 1 == n || smooth[i] >= smooth[i + 1])
+        })
         .map(|i| (i as f64 + 0.5) * bin)
         .collect();
     if peaks.len() < c.min_steps as usize {
@@ -420,17 +532,61 @@ fn level_grid(heights: &[f64], c: &StairsConfig) -> Option<(f64, f64)> {
     best.map(|b| (b.1, b.2))
 }
 
-fn finish(pts: &[(DVec2, f64)], p: Profile) -> Staircase {
+fn finish(pts: &[(DVec2, f64)], p: Profile, sc: &Scene, c: &StairsConfig) -> Staircase {
     let dir = p.dir;
     let mut ts: Vec<f64> = pts.iter().map(|(q, _)| dir.perp_dot(*q)).collect();
-    let t0 = quantile(&mut ts, 0.01).unwrap_or(0.0);
-    let t1 = quantile(&mut ts, 0.99).unwrap_or(0.0);
+    let mut t0 = quantile(&mut ts, 0.01).unwrap_or(0.0);
+    let mut t1 = quantile(&mut ts, 0.99).unwrap_or(0.0);
+    let mut width_rule = format!("{:.2} m wide across its points", t1 - t0);
+    if t1 - t0 < c.min_width_m {
+        // Only a side face was seen (the treads above the laser are hidden): the staircase
+        // extends `default_width_m` away from the side with floor in front of the face.
+        let length = p.run * p.steps as f64;
+        let line = crate::points::Line2 {
+            origin: dir * (p.front1 + length / 2.0) + dir.perp() * ((t0 + t1) / 2.0),
+            dir,
+        };
+        let (mut left, mut right) = (0usize, 0usize);
+        sc.index.for_each_near_line(
+            sc.points,
+            &line,
+            -length / 2.0,
+            length / 2.0,
+            0.4,
+            |i, _, d| {
+                if (sc.points[i].z as f64 - sc.floor).abs() <= 0.03 && d.abs() >= 0.05 {
+                    if d > 0.0 {
+                        left += 1;
+                    } else {
+                        right += 1;
+                    }
+                }
+            },
+        );
+        if left > right {
+            t0 = t1 - c.default_width_m;
+        } else {
+            t1 = t0 + c.default_width_m;
+        }
+        width_rule = format!(
+            "only a side face seen: width assumed {:.2} m, away from the floor seen in front of it",
+            c.default_width_m
+        );
+    }
     let width = t1 - t0;
     let top_h = (p.steps as f64 - 0.5) * p.rise;
-    let mut far: Vec<f64> = pts.iter().filter(|(_, z)| *z >= top_h).map(|(q, _)| q.dot(dir)).collect();
+    let mut far: Vec<f64> = pts
+        .iter()
+        .filter(|(_, z)| *z >= top_h)
+        .map(|(q, _)| q.dot(dir))
+        .collect();
     let far = quantile(&mut far, 0.99).unwrap_or(p.front1);
     let top_depth = far - (p.front1 + p.run * (p.steps as f64 - 1.0));
-    let landing = if top_depth - p.run > 0.1 { top_depth - p.run } else { 0.0 };
+    let landing = if top_depth - p.run > 0.1 {
+        top_depth - p.run
+    } else {
+        0.0
+    };
     let start = dir * p.front1 + dir.perp() * ((t0 + t1) / 2.0);
     let rules = vec![
         format!(
@@ -441,7 +597,7 @@ fn finish(pts: &[(DVec2, f64)], p: Profile) -> Staircase {
             dir.y.atan2(dir.x).to_degrees(),
             p.run
         ),
-        format!("step count {} from the top level; {width:.2} m wide", p.steps),
+        format!("step count {} from the top level; {width_rule}", p.steps),
     ];
     Staircase {
         steps: p.steps,

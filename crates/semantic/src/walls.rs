@@ -28,6 +28,7 @@ use crate::error::{check_range, Result};
 use crate::merge::Segment;
 use crate::points::{fit_line, median, quantile, undirected_angle_deg, Line2, XyIndex};
 use glam::{DVec2, Vec3};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// Configuration of wall identification.
@@ -86,25 +87,96 @@ impl Default for WallConfig {
 
 impl WallConfig {
     pub(crate) fn validate(&self) -> Result<()> {
-        check_range("walls.search_half_width_m", self.search_half_width_m, 0.01, 10.0, "within 0.01..10 m")?;
-        check_range("walls.face_tolerance_m", self.face_tolerance_m, 1e-3, 1.0, "within 0.001..1 m")?;
-        check_range("walls.max_thickness_m", self.max_thickness_m, 0.01, 10.0, "within 0.01..10 m")?;
-        check_range("walls.min_thickness_m", self.min_thickness_m, 0.0, self.max_thickness_m, "within 0..max_thickness_m")?;
-        check_range("walls.default_thickness_m", self.default_thickness_m, 0.01, 10.0, "within 0.01..10 m")?;
-        check_range("walls.min_length_m", self.min_length_m, 0.0, 1e4, "within 0..10 km")?;
-        check_range("walls.max_gap_m", self.max_gap_m, 0.0, 100.0, "within 0..100 m")?;
+        check_range(
+            "walls.search_half_width_m",
+            self.search_half_width_m,
+            0.01,
+            10.0,
+            "within 0.01..10 m",
+        )?;
+        check_range(
+            "walls.face_tolerance_m",
+            self.face_tolerance_m,
+            1e-3,
+            1.0,
+            "within 0.001..1 m",
+        )?;
+        check_range(
+            "walls.max_thickness_m",
+            self.max_thickness_m,
+            0.01,
+            10.0,
+            "within 0.01..10 m",
+        )?;
+        check_range(
+            "walls.min_thickness_m",
+            self.min_thickness_m,
+            0.0,
+            self.max_thickness_m,
+            "within 0..max_thickness_m",
+        )?;
+        check_range(
+            "walls.default_thickness_m",
+            self.default_thickness_m,
+            0.01,
+            10.0,
+            "within 0.01..10 m",
+        )?;
+        check_range(
+            "walls.min_length_m",
+            self.min_length_m,
+            0.0,
+            1e4,
+            "within 0..10 km",
+        )?;
+        check_range(
+            "walls.max_gap_m",
+            self.max_gap_m,
+            0.0,
+            100.0,
+            "within 0..100 m",
+        )?;
         check_range("walls.snap_m", self.snap_m, 0.0, 10.0, "within 0..10 m")?;
-        check_range("walls.max_bottom_above_floor_m", self.max_bottom_above_floor_m, 0.0, 100.0, "within 0..100 m")?;
-        check_range("walls.max_top_below_ceiling_m", self.max_top_below_ceiling_m, 0.0, 100.0, "within 0..100 m")?;
-        check_range("walls.max_join_gap_m", self.max_join_gap_m, 0.0, 100.0, "within 0..100 m")?;
-        check_range("walls.duplicate_offset_m", self.duplicate_offset_m, 0.0, 10.0, "within 0..10 m")
+        check_range(
+            "walls.max_bottom_above_floor_m",
+            self.max_bottom_above_floor_m,
+            0.0,
+            100.0,
+            "within 0..100 m",
+        )?;
+        check_range(
+            "walls.max_top_below_ceiling_m",
+            self.max_top_below_ceiling_m,
+            0.0,
+            100.0,
+            "within 0..100 m",
+        )?;
+        check_range(
+            "walls.max_join_gap_m",
+            self.max_join_gap_m,
+            0.0,
+            100.0,
+            "within 0..100 m",
+        )?;
+        check_range(
+            "walls.duplicate_offset_m",
+            self.duplicate_offset_m,
+            0.0,
+            10.0,
+            "within 0..10 m",
+        )
     }
 }
 
 /// The scene every identification stage works in.
 pub(crate) struct Scene<'a> {
     pub points: &'a [Vec3],
+    /// All points.
     pub index: &'a XyIndex,
+    /// The points off the floor and ceiling (within 5 cm of neither).
+    pub upright: &'a XyIndex,
+    /// The points in the projection band.
+    pub band_index: &'a XyIndex,
     pub floor: f64,
     pub ceiling: f64,
     pub band: (f64, f64),
@@ -158,8 +230,35 @@ impl WallFit {
 
 /// Measures every prerequisite and returns the walls, duplicates merged, thickness of
 /// one-sided walls resolved.
-pub(crate) fn identify_walls(segments: &[Segment], sc: &Scene, c: &WallConfig, max_angle_deg: f64) -> Vec<WallFit> {
-    let mut walls: Vec<WallFit> = segments.iter().filter_map(|s| fit_wall(s, sc, c)).collect();
+pub(crate) fn identify_walls(
+    segments: &[Segment],
+    sc: &Scene,
+    c: &WallConfig,
+    max_angle_deg: f64,
+) -> Vec<WallFit> {
+    // A prerequisite lying inside a longer one's slab (a wall's other face, a skeleton spur) would
+    // only find the same wall again: skip it.
+    let mut order: Vec<&Segment> = segments.iter().collect();
+    order.sort_by(|a, b| b.length_m().total_cmp(&a.length_m()));
+    let mut unique: Vec<&Segment> = Vec::new();
+    for s in order {
+        let inside = unique.iter().any(|u| {
+            let line = u.line();
+            let reach = c.duplicate_offset_m + c.max_thickness_m / 2.0;
+            undirected_angle_deg(line.dir, s.line().dir) <= max_angle_deg
+                && [s.a(), s.b()].iter().all(|p| {
+                    let (t, d) = line.coords(*p);
+                    d.abs() <= reach && t >= -0.3 && t <= u.length_m() + 0.3
+                })
+        });
+        if !inside {
+            unique.push(s);
+        }
+    }
+    let mut walls: Vec<WallFit> = unique
+        .par_iter()
+        .filter_map(|s| fit_wall(s, sc, c))
+        .collect();
     walls.sort_by(|a, b| b.length.total_cmp(&a.length));
     let mut kept: Vec<WallFit> = Vec::new();
     for w in walls {
@@ -176,7 +275,11 @@ pub(crate) fn identify_walls(segments: &[Segment], sc: &Scene, c: &WallConfig, m
         kept.push(w);
     }
     merge_through_gaps(&mut kept, sc, c, max_angle_deg);
-    let mut measured: Vec<f64> = kept.iter().filter(|w| w.measured).map(|w| w.thickness).collect();
+    let mut measured: Vec<f64> = kept
+        .iter()
+        .filter(|w| w.measured)
+        .map(|w| w.thickness)
+        .collect();
     let assumed = median(&mut measured).unwrap_or(c.default_thickness_m);
     for w in &mut kept {
         if !w.measured {
@@ -234,7 +337,9 @@ fn merge_through_gaps(walls: &mut Vec<WallFit>, sc: &Scene, c: &WallConfig, max_
         a.coverage = (a.coverage * a.length + b.coverage * b.length) / hi.max(1e-9);
         a.length = hi;
         a.support += b.support;
-        a.rules.push(format!("joined with a collinear piece across {gap:.2} m through which nothing was seen"));
+        a.rules.push(format!(
+            "joined with a collinear piece across {gap:.2} m through which nothing was seen"
+        ));
     }
 }
 
@@ -242,16 +347,23 @@ fn merge_through_gaps(walls: &mut Vec<WallFit>, sc: &Scene, c: &WallConfig, max_
 /// footprint (two faces), or anything behind its face (one face; `w.line` is the face here).
 fn seen_through(w: &WallFit, s0: f64, s1: f64, sc: &Scene) -> bool {
     let mut n = 0;
-    sc.index.for_each_near_line(sc.points, &w.line, s0 + 0.05, s1 - 0.05, w.thickness / 2.0 + 1.0, |i, _, d| {
-        let z = sc.z(i);
-        let hit = if w.measured {
-            (z - sc.floor).abs() <= 0.04 && d.abs() <= w.thickness / 2.0 - 0.02
-        } else {
-            let behind = -w.free_side * d;
-            behind >= 0.05 && z >= sc.floor - 0.05 && z <= sc.ceiling - 0.05
-        };
-        n += usize::from(hit);
-    });
+    sc.index.for_each_near_line(
+        sc.points,
+        &w.line,
+        s0 + 0.05,
+        s1 - 0.05,
+        w.thickness / 2.0 + 1.0,
+        |i, _, d| {
+            let z = sc.z(i);
+            let hit = if w.measured {
+                (z - sc.floor).abs() <= 0.04 && d.abs() <= w.thickness / 2.0 - 0.02
+            } else {
+                let behind = -w.free_side * d;
+                behind >= 0.05 && z >= sc.floor - 0.05 && z <= sc.ceiling - 0.05
+            };
+            n += usize::from(hit);
+        },
+    );
     n >= 5
 }
 
@@ -289,16 +401,26 @@ fn face_peaks(ds: &[f64], hw: f64, c: &WallConfig) -> Vec<(f64, usize)> {
     let max = s.iter().copied().max().unwrap_or(0);
     let floor = (max / 8).max(c.min_face_points / 3).max(1);
     let mut peaks: Vec<(f64, usize)> = (0..n)
-        .filter(|&i| s[i] >= floor && (i == 0 || s[i] > s[i - 1]) && (i + 1 == n || s[i] >= s[i + 1]))
+        .filter(|&i| {
+            s[i] >= floor && (i == 0 || s[i] > s[i - 1]) && (i + 1 == n || s[i] >= s[i + 1])
+        })
         .map(|i| (-hw + (i as f64 + 0.5) * bin, s[i]))
         .collect();
-    peaks.sort_by(|a, b| b.1.cmp(&a.1));
+    peaks.sort_by_key(|p| std::cmp::Reverse(p.1));
     // Refine each peak to the mean of its points.
     peaks
         .into_iter()
         .map(|(o, n)| {
-            let near: Vec<f64> = ds.iter().copied().filter(|d| (d - o).abs() <= c.face_tolerance_m).collect();
-            let mean = if near.is_empty() { o } else { near.iter().sum::<f64>() / near.len() as f64 };
+            let near: Vec<f64> = ds
+                .iter()
+                .copied()
+                .filter(|d| (d - o).abs() <= c.face_tolerance_m)
+                .collect();
+            let mean = if near.is_empty() {
+                o
+            } else {
+                near.iter().sum::<f64>() / near.len() as f64
+            };
             (mean, n)
         })
         .collect()
@@ -321,17 +443,24 @@ fn pick_faces(peaks: &[(f64, usize)], c: &WallConfig) -> Vec<f64> {
 
 /// The faces of the wall along `line` over `[a, b]` from the band points, and the line refitted
 /// on them (three rounds); `None` if too few points.
-fn refine_line(mut line: Line2, a: f64, b: f64, sc: &Scene, c: &WallConfig) -> Option<(Line2, Vec<f64>)> {
+fn refine_line(
+    mut line: Line2,
+    a: f64,
+    b: f64,
+    sc: &Scene,
+    c: &WallConfig,
+) -> Option<(Line2, Vec<f64>)> {
     let hw = c.search_half_width_m;
     let in_band = |z: f64| z >= sc.band.0 && z <= sc.band.1;
     let anchor = line.origin;
     for _ in 0..3 {
         let mut near: Vec<(usize, f64)> = Vec::new();
-        sc.index.for_each_near_line(sc.points, &line, a - 0.1, b + 0.1, hw, |i, _, d| {
-            if in_band(sc.z(i)) {
-                near.push((i, d));
-            }
-        });
+        sc.band_index
+            .for_each_near_line(sc.points, &line, a - 0.1, b + 0.1, hw, |i, _, d| {
+                if in_band(sc.z(i)) {
+                    near.push((i, d));
+                }
+            });
         if near.len() < c.min_face_points {
             return None;
         }
@@ -364,11 +493,12 @@ fn refine_line(mut line: Line2, a: f64, b: f64, sc: &Scene, c: &WallConfig) -> O
         };
     }
     let mut ds = Vec::new();
-    sc.index.for_each_near_line(sc.points, &line, a - 0.1, b + 0.1, hw, |i, _, d| {
-        if in_band(sc.z(i)) {
-            ds.push(d);
-        }
-    });
+    sc.band_index
+        .for_each_near_line(sc.points, &line, a - 0.1, b + 0.1, hw, |i, _, d| {
+            if in_band(sc.z(i)) {
+                ds.push(d);
+            }
+        });
     let faces = pick_faces(&face_peaks(&ds, hw, c), c);
     (!faces.is_empty()).then_some((line, faces))
 }
@@ -377,7 +507,14 @@ fn refine_line(mut line: Line2, a: f64, b: f64, sc: &Scene, c: &WallConfig) -> O
 /// searched range's ends, and the corner regions `(s0, s1, z0, z1)` where a crossing surface
 /// hides the face points.
 #[allow(clippy::type_complexity)]
-fn find_extent(line: &Line2, faces: &[f64], a: f64, b: f64, sc: &Scene, c: &WallConfig) -> Option<(f64, f64, Vec<(f64, f64, f64, f64)>)> {
+fn find_extent(
+    line: &Line2,
+    faces: &[f64],
+    a: f64,
+    b: f64,
+    sc: &Scene,
+    c: &WallConfig,
+) -> Option<(f64, f64, Vec<(f64, f64, f64, f64)>)> {
     let hw = c.search_half_width_m;
     let tol = c.face_tolerance_m;
     let on_face = |d: f64| faces.iter().any(|f| (d - f).abs() <= tol);
@@ -394,21 +531,22 @@ fn find_extent(line: &Line2, faces: &[f64], a: f64, b: f64, sc: &Scene, c: &Wall
         let nb = (((r1 - r0) / bin).ceil() as usize + 1).min(10_000_000);
         let mut across = vec![(0u32, f64::INFINITY, f64::NEG_INFINITY); nb];
         let mut face_pts = Vec::new();
-        sc.index.for_each_near_line(sc.points, line, r0, r1, hw, |i, s, d| {
-            let z = sc.z(i);
-            if z < z_lo || z > z_hi {
-                return;
-            }
-            let k = (((s - r0) / bin) as usize).min(nb - 1);
-            if on_face(d) {
-                face_pts.push((k, s, z));
-            } else if d < f_lo || d > f_hi {
-                let x = &mut across[k];
-                x.0 |= 1 << ((((d + hw) / bin) as usize).min(31));
-                x.1 = x.1.min(z);
-                x.2 = x.2.max(z);
-            }
-        });
+        sc.upright
+            .for_each_near_line(sc.points, line, r0, r1, hw, |i, s, d| {
+                let z = sc.z(i);
+                if z < z_lo || z > z_hi {
+                    return;
+                }
+                let k = (((s - r0) / bin) as usize).min(nb - 1);
+                if on_face(d) {
+                    face_pts.push((k, s, z));
+                } else if d < f_lo || d > f_hi {
+                    let x = &mut across[k];
+                    x.0 |= 1 << ((((d + hw) / bin) as usize).min(31));
+                    x.1 = x.1.min(z);
+                    x.2 = x.2.max(z);
+                }
+            });
         // A crossing surface hides the face points at its own heights only (a cupboard in
         // front of a wall leaves the wall above it).
         // Noise spreads a crossing surface into the neighbouring bins: they are hidden too.
@@ -418,8 +556,11 @@ fn find_extent(line: &Line2, faces: &[f64], a: f64, b: f64, sc: &Scene, c: &Wall
                 x.0.count_ones() >= 5 && z >= x.1 - 0.1 && z <= x.2 + 0.1
             })
         };
-        let mut s_vals: Vec<f64> = face_pts.iter().filter(|(k, _, z)| !hidden(*k, *z)).map(|p| p.1).collect();
-        s_vals.sort_by(f64::total_cmp);
+        let s_vals: Vec<f64> = face_pts
+            .iter()
+            .filter(|(k, _, z)| !hidden(*k, *z))
+            .map(|p| p.1)
+            .collect();
         let (lo, hi) = extent(&s_vals, a, b, c.max_gap_m)?;
         let grow_lo = lo <= r0 + c.max_gap_m;
         let grow_hi = hi >= r1 - c.max_gap_m;
@@ -427,7 +568,14 @@ fn find_extent(line: &Line2, faces: &[f64], a: f64, b: f64, sc: &Scene, c: &Wall
             .iter()
             .enumerate()
             .filter(|(_, m)| m.0.count_ones() >= 5)
-            .map(|(k, m)| (r0 + k as f64 * bin, r0 + (k + 1) as f64 * bin, m.1 - 0.1, m.2 + 0.1))
+            .map(|(k, m)| {
+                (
+                    r0 + k as f64 * bin,
+                    r0 + (k + 1) as f64 * bin,
+                    m.1 - 0.1,
+                    m.2 + 0.1,
+                )
+            })
             .collect();
         // An end next to a wall-high crossing surface (the hidden bins keep it a few
         // centimetres off) is a corner: the wall ends at the surface.
@@ -481,30 +629,35 @@ fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
     let tol = c.face_tolerance_m;
     let on_face = |d: f64, faces: &[f64]| faces.iter().any(|f| (d - f).abs() <= tol);
     let (z_lo, z_hi) = (sc.floor + 0.05, sc.ceiling - 0.05);
-    let crossed = |s: f64, z: f64| crossing.iter().any(|&(a, b, z0, z1)| s >= a && s < b && z >= z0 && z <= z1);
+    let crossed = |s: f64, z: f64| {
+        crossing
+            .iter()
+            .any(|&(a, b, z0, z1)| s >= a && s < b && z >= z0 && z <= z1)
+    };
     // Face points over the final extent (corners left out): support, coverage, heights, free sides.
     let mut zs = Vec::new();
     let mut bins = vec![false; (((hi - lo) / 0.1).ceil() as usize).clamp(1, 1_000_000)];
     let mut top_bins = vec![false; bins.len()];
     let mut front = vec![[0usize; 2]; faces.len()];
     let strip = (0.02, 0.10);
-    sc.index.for_each_near_line(sc.points, &line, lo, hi, hw + strip.1, |i, s, d| {
-        let z = sc.z(i);
-        if z >= z_lo && z <= z_hi && on_face(d, &faces) && !crossed(s, z) {
-            zs.push(z);
-            let b = (((s - lo) / 0.1) as usize).min(bins.len() - 1);
-            bins[b] = true;
-            top_bins[b] |= z >= sc.ceiling - c.max_top_below_ceiling_m;
-        }
-        if sc.on_slab(i, 0.04) {
-            for (k, f) in faces.iter().enumerate() {
-                let off = d - f;
-                if off.abs() >= strip.0 && off.abs() <= strip.1 {
-                    front[k][usize::from(off > 0.0)] += 1;
+    sc.index
+        .for_each_near_line(sc.points, &line, lo, hi, hw + strip.1, |i, s, d| {
+            let z = sc.z(i);
+            if z >= z_lo && z <= z_hi && on_face(d, &faces) && !crossed(s, z) {
+                zs.push(z);
+                let b = (((s - lo) / 0.1) as usize).min(bins.len() - 1);
+                bins[b] = true;
+                top_bins[b] |= z >= sc.ceiling - c.max_top_below_ceiling_m;
+            }
+            if sc.on_slab(i, 0.04) {
+                for (k, f) in faces.iter().enumerate() {
+                    let off = d - f;
+                    if off.abs() >= strip.0 && off.abs() <= strip.1 {
+                        front[k][usize::from(off > 0.0)] += 1;
+                    }
                 }
             }
-        }
-    });
+        });
     if zs.len() < c.min_face_points {
         return None;
     }
@@ -512,7 +665,10 @@ fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
     let bottom = quantile(&mut zs, 0.01)?;
     let top = quantile(&mut zs, 0.995)?;
     let top_coverage = top_bins.iter().filter(|&&b| b).count() as f64 / top_bins.len() as f64;
-    if bottom > sc.floor + c.max_bottom_above_floor_m || top < sc.ceiling - c.max_top_below_ceiling_m || top_coverage < 0.3 {
+    if bottom > sc.floor + c.max_bottom_above_floor_m
+        || top < sc.ceiling - c.max_top_below_ceiling_m
+        || top_coverage < 0.3
+    {
         return None;
     }
     let snap = |v: f64, to: f64| if (v - to).abs() <= c.snap_m { to } else { v };
@@ -536,7 +692,10 @@ fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
         coverage * 100.0
     )];
     let mut fit = WallFit {
-        line: Line2 { origin: start, dir: line.dir },
+        line: Line2 {
+            origin: start,
+            dir: line.dir,
+        },
         length: hi - lo,
         thickness: 0.0,
         measured: false,
@@ -567,7 +726,11 @@ fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
         let mut s = side(k);
         if s == 0.0 {
             // No floor or ceiling seen beside it: the free space faces the cloud's middle.
-            s = if (sc.middle - line.at((lo + hi) / 2.0)).dot(line.normal()) >= 0.0 { 1.0 } else { -1.0 };
+            s = if (sc.middle - line.at((lo + hi) / 2.0)).dot(line.normal()) >= 0.0 {
+                1.0
+            } else {
+                -1.0
+            };
             rules.push("free side unknown (no floor or ceiling beside the face): taken towards the middle of the cloud".into());
         }
         fit.line = fit.line.shifted(faces[k]);
@@ -581,13 +744,26 @@ fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
     Some(fit)
 }
 
-/// The union of the runs of sorted `s` (gaps at most `max_gap`) that overlap `[a, b]`.
+/// The union of the runs of the values `s` (gaps at most `max_gap`) that overlap `[a, b]`.
+/// Linear time: the values go into 1 cm bins that keep their least and greatest value.
 fn extent(s: &[f64], a: f64, b: f64, max_gap: f64) -> Option<(f64, f64)> {
-    let mut runs: Vec<(f64, f64)> = Vec::new();
+    let lo = s.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = s.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    if lo.is_nan() || hi.is_nan() || lo > hi {
+        return None;
+    }
+    let n = (((hi - lo) / 0.01) as usize + 1).min(10_000_000);
+    let mut bins = vec![(f64::INFINITY, f64::NEG_INFINITY); n];
     for &v in s {
+        let bin = &mut bins[(((v - lo) / 0.01) as usize).min(n - 1)];
+        bin.0 = bin.0.min(v);
+        bin.1 = bin.1.max(v);
+    }
+    let mut runs: Vec<(f64, f64)> = Vec::new();
+    for &(b0, b1) in bins.iter().filter(|x| x.0 <= x.1) {
         match runs.last_mut() {
-            Some(r) if v - r.1 <= max_gap => r.1 = v,
-            _ => runs.push((v, v)),
+            Some(r) if b0 - r.1 <= max_gap => r.1 = b1,
+            _ => runs.push((b0, b1)),
         }
     }
     let hits: Vec<&(f64, f64)> = runs.iter().filter(|r| r.1 >= a && r.0 <= b).collect();

@@ -5,15 +5,26 @@
 
 mod common;
 
-use semantic::{build_semantic_map, evaluate, ClassScore, EntityClass, SemanticConfig};
+use semantic::{
+    build_semantic_map, evaluate, evaluate_labels, ClassScore, EntityClass, SemanticConfig,
+};
 
 const SEEDS: [u64; 10] = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10];
 
 fn pooled(scores: &[ClassScore]) -> ClassScore {
-    let (e, d, m) = scores.iter().fold((0, 0, 0), |a, s| (a.0 + s.expected, a.1 + s.detected, a.2 + s.matched));
+    let (e, d, m) = scores.iter().fold((0, 0, 0), |a, s| {
+        (a.0 + s.expected, a.1 + s.detected, a.2 + s.matched)
+    });
     let p = m as f64 / d.max(1) as f64;
     let r = m as f64 / e.max(1) as f64;
-    ClassScore { expected: e, detected: d, matched: m, precision: p, recall: r, f1: 2.0 * p * r / (p + r).max(1e-12) }
+    ClassScore {
+        expected: e,
+        detected: d,
+        matched: m,
+        precision: p,
+        recall: r,
+        f1: 2.0 * p * r / (p + r).max(1e-12),
+    }
 }
 
 #[test]
@@ -23,15 +34,20 @@ fn ten_generated_buildings_meet_the_criteria() {
     let mut endpoint_errors = Vec::new();
     let mut stairs_found = 0;
     let mut stairs_expected = 0;
+    let (mut agree, mut compared) = (0.0, 0usize);
     for seed in SEEDS {
         let (building, cloud) = common::generated(seed, 0.03);
         let out = build_semantic_map(&cloud, &SemanticConfig::default()).expect("map");
         let ev = evaluate(&out.map, &building, Some(&cloud));
+        let labels = evaluate_labels(&out.labels, cloud.labels.as_deref().expect("ground truth"));
+        agree += labels.accuracy * labels.points as f64;
+        compared += labels.points;
         eprintln!(
-            "seed {seed:2}: {} points, map {:.0} ms; walls F1 {:.3} ({}/{}/{}), openings F1 {:.3} ({}/{}/{}), leaves F1 {:.3}, \
+            "seed {seed:2}: {} points, map {:.0} ms, point labels {:.3}; walls F1 {:.3} ({}/{}/{}), openings F1 {:.3} ({}/{}/{}), leaves F1 {:.3}, \
              endpoint error {:.3} m (max {:.3}), floor {:+.3} ceiling {:+.3} m, stairs {:?}",
             cloud.len(),
             out.total_ms(),
+            labels.accuracy,
             ev.walls.f1,
             ev.walls.matched,
             ev.walls.detected,
@@ -51,7 +67,10 @@ fn ten_generated_buildings_meet_the_criteria() {
                 .collect::<Vec<_>>()
         );
         if !ev.missed.is_empty() || !ev.spurious.is_empty() {
-            eprintln!("         missed {:?}, spurious {:?}", ev.missed, ev.spurious);
+            eprintln!(
+                "         missed {:?}, spurious {:?}",
+                ev.missed, ev.spurious
+            );
         }
         // Floor and ceiling: found every time.
         assert_eq!(ev.floor.matched, 1, "seed {seed}: floor");
@@ -61,8 +80,16 @@ fn ten_generated_buildings_meet_the_criteria() {
         stairs_expected += ev.stairs.expected;
         for s in &ev.stairs_matches {
             assert_eq!(s.steps, s.steps_truth, "seed {seed}: step count");
-            assert!(s.rise_error_m.abs() <= 0.02, "seed {seed}: rise error {}", s.rise_error_m);
-            assert!(s.run_error_m.abs() <= 0.02, "seed {seed}: run error {}", s.run_error_m);
+            assert!(
+                s.rise_error_m.abs() <= 0.02,
+                "seed {seed}: rise error {}",
+                s.rise_error_m
+            );
+            assert!(
+                s.run_error_m.abs() <= 0.02,
+                "seed {seed}: run error {}",
+                s.run_error_m
+            );
             stairs_found += 1;
         }
         walls.push(ev.walls);
@@ -72,15 +99,56 @@ fn ten_generated_buildings_meet_the_criteria() {
     let w = pooled(&walls);
     let o = pooled(&openings);
     let mean = endpoint_errors.iter().sum::<f64>() / endpoint_errors.len() as f64;
+    let accuracy = agree / compared as f64;
     eprintln!(
-        "pooled: walls P {:.3} R {:.3} F1 {:.3}; door openings P {:.3} R {:.3} F1 {:.3}; mean wall endpoint error {:.3} m over {} ends; stairs {stairs_found}/{stairs_expected}",
+        "pooled: walls P {:.3} R {:.3} F1 {:.3}; door openings P {:.3} R {:.3} F1 {:.3}; mean wall endpoint error {:.3} m over {} ends; stairs {stairs_found}/{stairs_expected}; point labels {accuracy:.3}",
         w.precision, w.recall, w.f1, o.precision, o.recall, o.f1, mean, endpoint_errors.len()
     );
+    assert!(accuracy >= 0.9, "point label accuracy {accuracy:.3}");
     assert!(w.f1 >= 0.95, "wall F1 {:.3}", w.f1);
     assert!(o.f1 >= 0.9, "door-opening F1 {:.3}", o.f1);
     assert!(mean <= 0.05, "mean wall endpoint error {mean:.3} m");
     assert_eq!(stairs_found, stairs_expected, "staircases found");
     for (seed, s) in SEEDS.iter().zip(&walls) {
         assert!(s.f1 >= 0.85, "seed {seed}: wall F1 {:.3}", s.f1);
+    }
+}
+
+#[test]
+fn the_default_building_is_mapped() {
+    let b = scanner::Building::default_building().expect("built-in building");
+    let g = scanner::BuildingGeometry::new(&b);
+    let cloud = common::scan_building(
+        &b,
+        &common::survey_poses(&b, &g),
+        &common::test_laser(),
+        0.03,
+    );
+    let out = build_semantic_map(&cloud, &SemanticConfig::default()).expect("map");
+    let ev = evaluate(&out.map, &b, Some(&cloud));
+    eprintln!(
+        "default building: walls F1 {:.3}, door openings F1 {:.3} ({}/{}/{}), leaves F1 {:.3}, endpoint error {:.3} m, stairs {:?}",
+        ev.walls.f1,
+        ev.door_openings.f1,
+        ev.door_openings.matched,
+        ev.door_openings.detected,
+        ev.door_openings.expected,
+        ev.doors.f1,
+        ev.wall_endpoint_error_mean_m,
+        ev.stairs_matches
+    );
+    assert!(ev.walls.f1 >= 0.95 && ev.door_openings.f1 >= 0.9);
+    let s = ev.stairs_matches.first().expect("the staircase");
+    assert_eq!((s.steps, s.steps_truth), (6, 6));
+    assert!(
+        s.rise_error_m.abs() <= 0.02 && s.run_error_m.abs() <= 0.02,
+        "{s:?}"
+    );
+    // Every open door seen from its hinge side is found with the right hinge and swing.
+    for d in ev.door_matches.iter().filter(|d| d.leaf_truth) {
+        assert!(d.leaf_found, "{}: leaf not found", d.truth);
+        if let (Some(h), Some(sw)) = (d.hinge_correct, d.swing_correct) {
+            assert!(h && sw, "{}: hinge {h} swing {sw}", d.truth);
+        }
     }
 }

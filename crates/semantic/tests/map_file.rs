@@ -14,8 +14,15 @@ fn default_map() -> &'static SemanticMap {
     MAP.get_or_init(|| {
         let b = scanner::Building::default_building().expect("built-in building");
         let g = scanner::BuildingGeometry::new(&b);
-        let cloud = common::scan_building(&b, &common::survey_poses(&b, &g), &common::test_laser(), 0.03);
-        build_semantic_map(&cloud, &SemanticConfig::default()).expect("map").map
+        let cloud = common::scan_building(
+            &b,
+            &common::survey_poses(&b, &g),
+            &common::test_laser(),
+            0.03,
+        );
+        build_semantic_map(&cloud, &SemanticConfig::default())
+            .expect("map")
+            .map
     })
 }
 
@@ -76,7 +83,12 @@ fn check(schema: &Value, root: &Value, v: &Value, at: &str, errors: &mut Vec<Str
         }
     }
     if let Some(obj) = v.as_object() {
-        for key in schema.get("required").and_then(Value::as_array).into_iter().flatten() {
+        for key in schema
+            .get("required")
+            .and_then(Value::as_array)
+            .into_iter()
+            .flatten()
+        {
             let key = key.as_str().unwrap_or_default();
             if !obj.contains_key(key) {
                 errors.push(format!("{at}: missing required {key:?}"));
@@ -113,8 +125,10 @@ fn check(schema: &Value, root: &Value, v: &Value, at: &str, errors: &mut Vec<Str
 }
 
 fn schema() -> Value {
-    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("schema/semantic_map.schema.json"))
-        .expect("schema file");
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("schema/semantic_map.schema.json"),
+    )
+    .expect("schema file");
     serde_json::from_str(&text).expect("schema is JSON")
 }
 
@@ -122,7 +136,11 @@ fn schema() -> Value {
 fn output_validates_against_the_schema_and_holds_every_class() {
     let map = default_map();
     for class in EntityClass::ALL {
-        assert!(map.of_class(class).count() > 0, "no {} in the default building's map", class.name());
+        assert!(
+            map.of_class(class).count() > 0,
+            "no {} in the default building's map",
+            class.name()
+        );
     }
     let schema = schema();
     let value: Value = serde_json::from_str(&map.to_json_string()).expect("JSON");
@@ -147,10 +165,16 @@ fn save_and_load_round_trip_atomically() {
     map.save(&path).expect("saves");
     let back = SemanticMap::load(&path).expect("loads");
     assert_eq!(&back, map);
-    let names: Vec<_> = std::fs::read_dir(dir.path()).expect("dir").map(|e| e.expect("entry").file_name()).collect();
+    let names: Vec<_> = std::fs::read_dir(dir.path())
+        .expect("dir")
+        .map(|e| e.expect("entry").file_name())
+        .collect();
     assert_eq!(names.len(), 1, "left behind: {names:?}");
     // Saving into a missing folder fails cleanly.
-    assert!(matches!(map.save(&dir.path().join("no/such/map.json")), Err(SemanticError::Cloud(_))));
+    assert!(matches!(
+        map.save(&dir.path().join("no/such/map.json")),
+        Err(SemanticError::Cloud(_))
+    ));
 }
 
 #[test]
@@ -163,25 +187,64 @@ fn bad_files_give_typed_errors() {
         f(&mut v);
         SemanticMap::from_json_str(&v.to_string(), path)
     };
-    let err = edit(&|v| v["entities"][2]["class"] = Value::from("window")).expect_err("unknown class");
-    assert!(matches!(&err, SemanticError::UnknownClass { index: 2, class, .. } if class == "window"), "{err}");
-    assert!(err.to_string().contains("bad.json") && err.to_string().contains("wall_above_door"), "{err}");
-    let err = edit(&|v| v["relations"][0]["type"] = Value::from("adjacent")).expect_err("unknown relation");
-    assert!(matches!(&err, SemanticError::UnknownRelation { index: 0, kind, .. } if kind == "adjacent"), "{err}");
+    let err =
+        edit(&|v| v["entities"][2]["class"] = Value::from("window")).expect_err("unknown class");
+    assert!(
+        matches!(&err, SemanticError::UnknownClass { index: 2, class, .. } if class == "window"),
+        "{err}"
+    );
+    assert!(
+        err.to_string().contains("bad.json") && err.to_string().contains("wall_above_door"),
+        "{err}"
+    );
+    let err = edit(&|v| v["relations"][0]["type"] = Value::from("adjacent"))
+        .expect_err("unknown relation");
+    assert!(
+        matches!(&err, SemanticError::UnknownRelation { index: 0, kind, .. } if kind == "adjacent"),
+        "{err}"
+    );
     let err = edit(&|v| v["relations"][1]["b"] = Value::from(9999)).expect_err("dangling id");
-    assert!(matches!(err, SemanticError::DanglingId { index: 1, id: 9999, .. }), "{err}");
+    assert!(
+        matches!(
+            err,
+            SemanticError::DanglingId {
+                index: 1,
+                id: 9999,
+                ..
+            }
+        ),
+        "{err}"
+    );
     let err = edit(&|v| v["format"] = Value::from("something else")).expect_err("format");
     assert!(matches!(err, SemanticError::WrongFormat { .. }), "{err}");
     let err = edit(&|v| v["version"] = Value::from(2)).expect_err("version");
-    assert!(matches!(err, SemanticError::UnsupportedVersion { found: 2, .. }), "{err}");
-    let err = edit(&|v| v["entities"][1]["id"] = v["entities"][0]["id"].clone()).expect_err("duplicate id");
-    assert!(matches!(err, SemanticError::BadId { index: 1, .. }), "{err}");
+    assert!(
+        matches!(err, SemanticError::UnsupportedVersion { found: 2, .. }),
+        "{err}"
+    );
+    let err = edit(&|v| v["entities"][1]["id"] = v["entities"][0]["id"].clone())
+        .expect_err("duplicate id");
+    assert!(
+        matches!(err, SemanticError::BadId { index: 1, .. }),
+        "{err}"
+    );
     let err = edit(&|v| {
-        let i = v["entities"].as_array().expect("array").iter().position(|e| e["class"] == "wall").expect("a wall");
-        v["entities"][i].as_object_mut().expect("object").remove("wall");
+        let i = v["entities"]
+            .as_array()
+            .expect("array")
+            .iter()
+            .position(|e| e["class"] == "wall")
+            .expect("a wall");
+        v["entities"][i]
+            .as_object_mut()
+            .expect("object")
+            .remove("wall");
     })
     .expect_err("wall without its section");
-    assert!(matches!(err, SemanticError::InvalidEntity { class: "wall", .. }), "{err}");
+    assert!(
+        matches!(err, SemanticError::InvalidEntity { class: "wall", .. }),
+        "{err}"
+    );
     let err = SemanticMap::from_json_str("{ not json", path).expect_err("syntax");
     assert!(matches!(err, SemanticError::Syntax { .. }), "{err}");
     let err = SemanticMap::load(Path::new("/nonexistent/map.json")).expect_err("missing file");
@@ -193,34 +256,53 @@ fn the_net_relates_doors_to_their_walls() {
     use semantic::RelationType as R;
     let map = default_map();
     for door in map.of_class(EntityClass::Door) {
-        let joint: Vec<_> = map.relations_of(R::ConnectedViaJoint).filter(|r| r.a == door.id).collect();
+        let joint: Vec<_> = map
+            .relations_of(R::ConnectedViaJoint)
+            .filter(|r| r.a == door.id)
+            .collect();
         assert_eq!(joint.len(), 1, "door {} has no hinge relation", door.id);
         let wall = map.entity(joint[0].b).expect("exists");
         assert_eq!(wall.class, EntityClass::Wall);
         let info = door.door.as_ref().expect("door section");
         // The hinge lies on the wall's centre line, at an edge of the closed leaf.
         let seg = wall.wall.as_ref().expect("wall section").segment_m;
-        let (a, b) = (glam::DVec2::from_array(seg[0]), glam::DVec2::from_array(seg[1]));
+        let (a, b) = (
+            glam::DVec2::from_array(seg[0]),
+            glam::DVec2::from_array(seg[1]),
+        );
         let h = glam::DVec2::new(info.hinge_m[0], info.hinge_m[1]);
         let off = (h - a).perp_dot((b - a).normalize()).abs();
         assert!(off < 0.01, "hinge {off} m off its wall's centre line");
         let corners = door.geometry.corners_xy();
-        let edge = |i: usize, j: usize| glam::DVec2::from_array(corners[i]).lerp(glam::DVec2::from_array(corners[j]), 0.5);
-        assert!(edge(0, 3).distance(h).min(edge(1, 2).distance(h)) < 0.01, "hinge not at a leaf edge");
+        let edge = |i: usize, j: usize| {
+            glam::DVec2::from_array(corners[i]).lerp(glam::DVec2::from_array(corners[j]), 0.5)
+        };
+        assert!(
+            edge(0, 3).distance(h).min(edge(1, 2).distance(h)) < 0.01,
+            "hinge not at a leaf edge"
+        );
         // The leaf is available inside a free space, under a lintel.
         assert!(map.relations_of(R::AvailableInside).any(|r| r.a == door.id
-            && map.entity(r.b).is_some_and(|e| e.class == EntityClass::FreeSpaceForDoor)));
+            && map
+                .entity(r.b)
+                .is_some_and(|e| e.class == EntityClass::FreeSpaceForDoor)));
     }
     let walls: Vec<_> = map.of_class(EntityClass::Wall).collect();
     let pairs = walls.len() * (walls.len() - 1) / 2;
     let related = map.relations_of(R::Parallel).count() + map.relations_of(R::Orthogonal).count();
-    assert_eq!(related, pairs, "the default building is rectilinear: every wall pair is parallel or orthogonal");
+    assert_eq!(
+        related, pairs,
+        "the default building is rectilinear: every wall pair is parallel or orthogonal"
+    );
     for s in map.of_class(EntityClass::Stairs) {
         let info = s.stairs.as_ref().expect("stairs section");
         assert_eq!(info.steps.len() as u32, info.step_count);
         for (k, step) in info.steps.iter().enumerate() {
             let top = step.z_range_m()[1];
-            assert!((top - info.start_m[2] - info.rise_m * (k + 1) as f64).abs() < 1e-6, "step {k} top");
+            assert!(
+                (top - info.start_m[2] - info.rise_m * (k + 1) as f64).abs() < 1e-6,
+                "step {k} top"
+            );
         }
     }
 }

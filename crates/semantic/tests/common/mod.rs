@@ -24,9 +24,10 @@ fn clear(g: &BuildingGeometry, x: f64, y: f64) -> bool {
     [(0.0, 0.0), (r, 0.0), (-r, 0.0), (0.0, r), (0.0, -r)]
         .iter()
         .all(|(dx, dy)| {
-            [0.1, MOUNT_M]
-                .iter()
-                .all(|&z| g.entity_containing(Vec3::new((x + dx) as f32, (y + dy) as f32, z as f32)).is_none())
+            [0.1, MOUNT_M].iter().all(|&z| {
+                g.entity_containing(Vec3::new((x + dx) as f32, (y + dy) as f32, z as f32))
+                    .is_none()
+            })
         })
 }
 
@@ -46,7 +47,10 @@ pub fn survey_poses(b: &Building, g: &BuildingGeometry) -> Vec<ScanPose> {
         }];
     };
     let y_mid = (n.start_m[1] + s.start_m[1]) / 2.0;
-    let (x0, x1) = (n.start_m[0].min(n.end_m[0]) + 1.0, n.start_m[0].max(n.end_m[0]) - 1.0);
+    let (x0, x1) = (
+        n.start_m[0].min(n.end_m[0]) + 1.0,
+        n.start_m[0].max(n.end_m[0]) - 1.0,
+    );
     let k = ((x1 - x0) / 2.5).ceil().max(1.0) as usize;
     let mut poses: Vec<ScanPose> = (0..=k)
         .map(|i| ScanPose {
@@ -71,13 +75,22 @@ pub fn survey_poses(b: &Building, g: &BuildingGeometry) -> Vec<ScanPose> {
             // A room with a staircase is scanned from beside the staircase's middle instead,
             // 1.5 m off its side towards the room's centre (a surveyor scans stairs closely).
             for st in &b.stairs {
-                let d = (st.direction_deg.to_radians().cos(), st.direction_deg.to_radians().sin());
+                let d = (
+                    st.direction_deg.to_radians().cos(),
+                    st.direction_deg.to_radians().sin(),
+                );
                 let half = (st.steps as f64 * st.run_m + st.landing_m) / 2.0;
                 let mid = (st.start_m[0] + d.0 * half, st.start_m[1] + d.1 * half);
-                let inside = !b.walls.iter().any(|w| segments_cross([centre.0, centre.1], [mid.0, mid.1], w.start_m, w.end_m));
+                let inside = !b.walls.iter().any(|w| {
+                    segments_cross([centre.0, centre.1], [mid.0, mid.1], w.start_m, w.end_m)
+                });
                 if inside {
                     let n = (-d.1, d.0);
-                    let toward = if (centre.0 - mid.0) * n.0 + (centre.1 - mid.1) * n.1 >= 0.0 { 1.0 } else { -1.0 };
+                    let toward = if (centre.0 - mid.0) * n.0 + (centre.1 - mid.1) * n.1 >= 0.0 {
+                        1.0
+                    } else {
+                        -1.0
+                    };
                     let off = st.width_m / 2.0 + 1.5;
                     centre = (mid.0 + toward * n.0 * off, mid.1 + toward * n.1 * off);
                 }
@@ -86,7 +99,11 @@ pub fn survey_poses(b: &Building, g: &BuildingGeometry) -> Vec<ScanPose> {
                 for dx in [0.0, 0.6, -0.6, 1.2, -1.2] {
                     let (x, y) = (centre.0 + dx, centre.1 + sign * dy);
                     if clear(g, x, y) {
-                        poses.push(ScanPose { x_m: x, y_m: y, yaw_deg: 0.0 });
+                        poses.push(ScanPose {
+                            x_m: x,
+                            y_m: y,
+                            yaw_deg: 0.0,
+                        });
                         break 'search;
                     }
                 }
@@ -97,7 +114,9 @@ pub fn survey_poses(b: &Building, g: &BuildingGeometry) -> Vec<ScanPose> {
 }
 
 fn segments_cross(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
-    let orient = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+    let orient = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| {
+        (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])
+    };
     let (o1, o2) = (orient(a, b, c), orient(a, b, d));
     let (o3, o4) = (orient(c, d, a), orient(c, d, b));
     o1 * o2 < 0.0 && o3 * o4 < 0.0
@@ -125,13 +144,22 @@ fn room_centre(b: &Building, x: f64, y: f64, sign: f64) -> (f64, f64) {
             far = far.min(sign * (y0 - y));
         }
     }
-    let cx = if west.is_finite() && east.is_finite() { (west + east) / 2.0 } else { x };
+    let cx = if west.is_finite() && east.is_finite() {
+        (west + east) / 2.0
+    } else {
+        x
+    };
     (cx, if far.is_finite() { far } else { 3.0 })
 }
 
 /// Scans `b` from `poses` and merges the scans in the world frame (missing returns dropped,
 /// ground-truth labels kept), then voxel-downsamples to `voxel_m` (0 = keep every point).
-pub fn scan_building(b: &Building, poses: &[ScanPose], laser: &LaserConfig, voxel_m: f64) -> PointCloud {
+pub fn scan_building(
+    b: &Building,
+    poses: &[ScanPose],
+    laser: &LaserConfig,
+    voxel_m: f64,
+) -> PointCloud {
     let g = BuildingGeometry::new(b);
     let laser = VirtualLaser::new(laser.clone()).expect("valid laser");
     let mut merged = PointCloud::from_points(Vec::new());
@@ -155,24 +183,45 @@ pub fn scan_building(b: &Building, poses: &[ScanPose], laser: &LaserConfig, voxe
 /// placed with the last pose of their `.frames` (3DTK's 2009 registration), "no echo" readings
 /// (over 30 m from the scanner) dropped. `None` if the folder is absent.
 pub fn threedtk_corridor() -> Option<PointCloud> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/real/3dtk-corridor");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data/real/3dtk-corridor");
     if !dir.is_dir() {
         return None;
     }
     let mut merged = PointCloud::from_points(Vec::new());
     for k in 0..3 {
-        let scan = cloud::io::threedtk::read_3d(&dir.join(format!("scan{k:03}.3d"))).expect("readable scan");
-        let frames = cloud::io::threedtk::read_frames_3dtk(&dir.join(format!("frames_2009/scan{k:03}.frames"))).expect("readable frames");
+        let scan = cloud::io::threedtk::read_3d(&dir.join(format!("scan{k:03}.3d")))
+            .expect("readable scan");
+        let frames = cloud::io::threedtk::read_frames_3dtk(
+            &dir.join(format!("frames_2009/scan{k:03}.frames")),
+        )
+        .expect("readable frames");
         let world_from_scan = *frames.last().expect("a frame");
         let t = glam::Affine3A::from_mat4(glam::DMat4::from(world_from_scan).as_mat4());
-        merged.points.extend(scan.points.iter().filter(|p| p.is_finite() && p.length() < 30.0).map(|p| t.transform_point3(*p)));
+        merged.points.extend(
+            scan.points
+                .iter()
+                .filter(|p| p.is_finite() && p.length() < 30.0)
+                .map(|p| t.transform_point3(*p)),
+        );
     }
     Some(merged)
 }
 
+/// The default building scanned from its first `n` survey poses at the laser's full resolution
+/// (541 x 301), merged, not downsampled (missing returns dropped): the benchmark's cloud.
+pub fn default_building_full_scans(n: usize) -> PointCloud {
+    let b = Building::default_building().expect("built-in building");
+    let g = BuildingGeometry::new(&b);
+    let mut poses = survey_poses(&b, &g);
+    poses.truncate(n);
+    scan_building(&b, &poses, &LaserConfig::default(), 0.0)
+}
+
 /// Generated building `seed`, its survey poses and the merged, downsampled test scan.
 pub fn generated(seed: u64, voxel_m: f64) -> (Building, PointCloud) {
-    let b = scanner::generate_building(seed, &scanner::GeneratorConfig::default()).expect("valid building");
+    let b = scanner::generate_building(seed, &scanner::GeneratorConfig::default())
+        .expect("valid building");
     let g = BuildingGeometry::new(&b);
     let poses = survey_poses(&b, &g);
     let cloud = scan_building(&b, &poses, &test_laser(), voxel_m);

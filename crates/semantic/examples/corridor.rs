@@ -1,6 +1,8 @@
 //! The semantic map of 3DTK's 2009 corridor (three registered scans), with its images.
 //!
-//! `cargo run --release -p semantic --example corridor -- [--out DIR]`
+//! `cargo run --release -p semantic --example corridor -- [--out DIR] [--config CONFIG.json]
+//! [--histogram] [--profile] [--segments]` (the last three print diagnostics: the z histogram of
+//! the corridor, the south wall's position along the corridor, the merged segments).
 
 #[path = "../tests/common/mod.rs"]
 mod common;

@@ -1,8 +1,10 @@
 //! Builds the semantic map of a generated building (or the default one) scanned by the virtual
 //! laser, evaluates it and optionally writes the images and the map.
 //!
-//! `cargo run --release -p semantic --example map_building -- SEED|default [--full] [--out DIR]`
-//! (`--full`: the laser's full 541 x 301 resolution instead of the tests' 271 x 151).
+//! `cargo run --release -p semantic --example map_building -- SEED|default [--full] [--voxel M]
+//! [--config CONFIG.json] [--out DIR]` (`--full`: the laser's full 541 x 301 resolution instead
+//! of the tests' 271 x 151; `--voxel`: downsampling, default 0.03 m). `--out` writes the stage
+//! images, the map, a top view, the labelled points and a side view of the first staircase.
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -44,17 +46,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for s in &b.stairs {
         eprintln!("truth stairs: start {:?} dir {} steps {} rise {:.3} run {:.3} width {:.2} landing {:.2}", s.start_m, s.direction_deg, s.steps, s.rise_m, s.run_m, s.width_m, s.landing_m);
     }
-    if std::env::var_os("SEMSIM_WALLS").is_some() {
-        for (i, w) in b.walls.iter().enumerate() {
-            eprintln!(
-                "truth walls[{i}] {:?} -> {:?} t {:.3} doors {}",
-                w.start_m,
-                w.end_m,
-                w.thickness_m,
-                w.doors.len()
-            );
-        }
-    }
     eprintln!(
         "poses: {:?}",
         poses.iter().map(|p| (p.x_m, p.y_m)).collect::<Vec<_>>()
@@ -82,38 +73,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .map(|t| format!("{} {:.1}", t.stage, t.ms))
         .collect();
     eprintln!("map in {:.1} ms: {}", out.total_ms(), timings.join(", "));
-    if let Ok(win) = std::env::var("SEMSIM_BOX") {
-        let v: Vec<f32> = win.split(',').map(|x| x.parse().unwrap_or(0.0)).collect();
-        let mut hist = std::collections::BTreeMap::<(i32, u32, u8), usize>::new();
-        for (p, l) in cloud
-            .points
-            .iter()
-            .zip(cloud.labels.as_deref().unwrap_or_default())
-        {
-            if p.x >= v[0] && p.x <= v[1] && p.y >= v[2] && p.y <= v[3] && p.z > 0.1 && p.z < 2.3 {
-                *hist
-                    .entry(((p.x * 50.0).floor() as i32, l.entity, l.class.code()))
-                    .or_default() += 1;
-            }
-        }
-        for ((x, e, c), n) in hist {
-            eprintln!("box x {:.2} entity {e} class {c}: {n}", x as f32 / 50.0);
-        }
-    }
-    if let Ok(win) = std::env::var("SEMSIM_SEGS") {
-        let v: Vec<f64> = win.split(',').map(|x| x.parse().unwrap_or(0.0)).collect();
-        let inside = |p: [f64; 2]| p[0] >= v[0] && p[0] <= v[1] && p[1] >= v[2] && p[1] <= v[3];
-        for s in &out.hough_segments {
-            if inside(s.a_m) || inside(s.b_m) {
-                eprintln!("hough {:?} {:?}", s.a_m, s.b_m);
-            }
-        }
-        for s in &out.merged_segments {
-            if inside(s.a_m) || inside(s.b_m) {
-                eprintln!("merged {:?} {:?}", s.a_m, s.b_m);
-            }
-        }
-    }
     let ev = evaluate(&out.map, &b, Some(&cloud));
     let labels = evaluate_labels(&out.labels, cloud.labels.as_deref().unwrap_or_default());
     println!("{}", serde_json::to_string_pretty(&ev)?);

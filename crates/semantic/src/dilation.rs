@@ -4,7 +4,7 @@
 //! gaps in sparsely seen walls. Computed separably (rows, then columns) with running counts.
 
 use crate::error::{check_range, Result};
-use crate::projection::Mask;
+use crate::image_frame::Mask;
 use image::GrayImage;
 use serde::{Deserialize, Serialize};
 

@@ -66,31 +66,45 @@ mod dilation;
 mod doors;
 mod error;
 mod evaluate;
+mod evaluate_doors;
+mod evaluate_stairs;
+mod evaluate_walls;
 mod floor_ceiling;
 mod hough;
+mod image_frame;
 mod labels;
+mod levelling;
 mod map;
+mod map_file;
 mod merge;
 mod net;
 mod noise_filter;
 mod openings;
 mod pipeline;
 mod points;
+mod ppht;
 mod projection;
 mod render;
 mod skeleton;
+mod stair_profile;
 mod stairs;
+mod wall_extent;
+mod wall_faces;
+mod wall_fit;
 mod walls;
 
 pub use dilation::{dilate, DilationConfig};
 pub use doors::DoorConfig;
 pub use error::{Result, SemanticError};
 pub use evaluate::{
-    evaluate, evaluate_labels, evaluate_with, ClassScore, DoorMatch, EvalConfig, Evaluation,
-    LabelEvaluation, StairsMatch, WallMatch,
+    evaluate, evaluate_labels, evaluate_with, ClassScore, EvalConfig, Evaluation, LabelEvaluation,
 };
+pub use evaluate_doors::DoorMatch;
+pub use evaluate_stairs::StairsMatch;
+pub use evaluate_walls::WallMatch;
 pub use floor_ceiling::FloorCeilingConfig;
 pub use hough::{hough_lines_p, HoughConfig, HoughParams, PixelSegment, Unvote};
+pub use image_frame::ImageFrame;
 pub use labels::LabelConfig;
 pub use map::{
     DoorInfo, Entity, EntityClass, HingeEdge, OpeningInfo, OrientedBox, Relation, RelationType,
@@ -101,7 +115,7 @@ pub use net::NetConfig;
 pub use noise_filter::{noise_filter, NoiseFilterConfig};
 pub use openings::OpeningConfig;
 pub use pipeline::{build_semantic_map, MapOutput, SemanticConfig, StageTime};
-pub use projection::{HeightBand, ImageFrame, ProjectionConfig, ProjectionValue};
+pub use projection::{HeightBand, ProjectionConfig, ProjectionValue};
 pub use render::{class_color, render_labels, render_segments, render_top_view};
 pub use skeleton::skeletonize;
 pub use stairs::StairsConfig;

@@ -9,7 +9,7 @@
 //! coarser resolution.
 
 use crate::error::{check_range, Result};
-use crate::projection::Mask;
+use crate::image_frame::Mask;
 use image::GrayImage;
 use serde::{Deserialize, Serialize};
 

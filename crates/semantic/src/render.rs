@@ -1,9 +1,9 @@
 //! Pictures for people: segments over an image, a top view of the map's entities and a top
 //! view of labelled points, as RGB images in an [`ImageFrame`] (north up; no text).
 
+use crate::image_frame::{pixel_range, ImageFrame};
 use crate::map::{EntityClass, OrientedBox, SemanticMap};
 use crate::merge::Segment;
-use crate::projection::{pixel_range, ImageFrame};
 use cloud::{Label, PointCloud, SurfaceClass};
 use glam::{DVec2, DVec3};
 use image::{GrayImage, Rgb, RgbImage};
@@ -173,7 +173,7 @@ fn fill_box(img: &mut RgbImage, frame: &ImageFrame, b: &OrientedBox, c: [u8; 3])
     if let Some((c0, c1, r0, r1)) = pixel_range(frame, lo, hi) {
         for row in r0..=r1 {
             for col in c0..=c1 {
-                let q = crate::projection::pixel_center(frame, col as f64, row as f64);
+                let q = crate::image_frame::pixel_center(frame, col as f64, row as f64);
                 let inside = (0..4).all(|k| {
                     let (p, n) = (corners[k], corners[(k + 1) % 4]);
                     (n - p).perp_dot(q - p) >= 0.0

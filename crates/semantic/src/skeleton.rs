@@ -11,7 +11,7 @@
 //! precomputed as 256-entry tables over the neighbour pattern. As in the original algorithm,
 //! an isolated 2 x 2 block vanishes; every larger shape keeps its connectivity.
 
-use crate::projection::Mask;
+use crate::image_frame::Mask;
 use image::GrayImage;
 
 /// The thinned copy of a binary image (non-zero = set); output pixels are 0 or 255.

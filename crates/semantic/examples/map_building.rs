@@ -131,10 +131,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     if let Some(dir) = out_dir {
         std::fs::create_dir_all(&dir)?;
-        out.projection.save(dir.join("projection.png"))?;
-        out.filtered.save(dir.join("filtered.png"))?;
-        out.dilated.save(dir.join("dilated.png"))?;
-        out.skeleton.save(dir.join("skeleton.png"))?;
+        semantic::save_png(&dir.join("projection.png"), out.projection.clone())?;
+        semantic::save_png(&dir.join("filtered.png"), out.filtered.clone())?;
+        semantic::save_png(&dir.join("dilated.png"), out.dilated.clone())?;
+        semantic::save_png(&dir.join("skeleton.png"), out.skeleton.clone())?;
         render_segments(&out.skeleton, &out.frame, &out.merged_segments, [255, 0, 0])
             .save(dir.join("segments.png"))?;
         render_top_view(&out.map, &out.frame).save(dir.join("top_view.png"))?;

@@ -44,6 +44,14 @@ pub enum SemanticError {
     /// Reading or writing a file failed.
     #[error(transparent)]
     Cloud(#[from] cloud::CloudError),
+    /// An image could not be encoded.
+    #[error("{path}: cannot encode the image: {msg}")]
+    Image {
+        /// The image file.
+        path: PathBuf,
+        /// The encoder's message.
+        msg: String,
+    },
     /// A map file is not valid JSON, or not the expected structure.
     #[error("{path}: {msg}")]
     Syntax {

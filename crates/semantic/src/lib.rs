@@ -116,7 +116,7 @@ pub use noise_filter::{noise_filter, NoiseFilterConfig};
 pub use openings::OpeningConfig;
 pub use pipeline::{build_semantic_map, MapOutput, SemanticConfig, StageTime};
 pub use projection::{HeightBand, ProjectionConfig, ProjectionValue};
-pub use render::{class_color, render_labels, render_segments, render_top_view};
+pub use render::{class_color, render_labels, render_segments, render_top_view, save_png};
 pub use skeleton::skeletonize;
 pub use stairs::StairsConfig;
 pub use walls::WallConfig;

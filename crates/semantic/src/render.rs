@@ -8,6 +8,24 @@ use cloud::{Label, PointCloud, SurfaceClass};
 use glam::{DVec2, DVec3};
 use image::{GrayImage, Rgb, RgbImage};
 
+/// Writes `image` (a `GrayImage` or an `RgbImage`, e.g. [`crate::MapOutput::skeleton`] or
+/// [`render_top_view`]'s) as a PNG file, atomically.
+pub fn save_png(
+    path: &std::path::Path,
+    image: impl Into<image::DynamicImage>,
+) -> crate::Result<()> {
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image
+        .into()
+        .write_to(&mut bytes, image::ImageFormat::Png)
+        .map_err(|e| crate::SemanticError::Image {
+            path: path.into(),
+            msg: e.to_string(),
+        })?;
+    cloud::write_bytes_atomically(path, bytes.get_ref())?;
+    Ok(())
+}
+
 /// The colour of each class in the pictures.
 pub fn class_color(class: EntityClass) -> [u8; 3] {
     match class {

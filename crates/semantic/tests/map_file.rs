@@ -178,6 +178,20 @@ fn save_and_load_round_trip_atomically() {
 }
 
 #[test]
+fn pngs_are_written_atomically() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("a.png");
+    semantic::save_png(&path, image::GrayImage::new(4, 3)).expect("writes");
+    let back = image::open(&path).expect("reads").to_luma8();
+    assert_eq!(back.dimensions(), (4, 3));
+    assert!(semantic::save_png(
+        &dir.path().join("no/such/b.png"),
+        image::RgbImage::new(2, 2)
+    )
+    .is_err());
+}
+
+#[test]
 fn bad_files_give_typed_errors() {
     let map = default_map();
     let text = map.to_json_string();

@@ -24,14 +24,13 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
 }
 
-/// Draws line series into `path` (`.svg` or `.png`), written atomically.
+/// Draws line series with a logarithmic y axis into `path` (`.svg` or `.png`), written atomically.
 pub fn line_chart(
     path: &Path,
     title: &str,
     x_label: &str,
     y_label: &str,
     series: &[Series],
-    log_y: bool,
 ) -> anyhow::Result<()> {
     let ext = path
         .extension()
@@ -58,7 +57,6 @@ pub fn line_chart(
             x_label,
             y_label,
             series,
-            log_y,
         )
     } else {
         draw(
@@ -67,7 +65,6 @@ pub fn line_chart(
             x_label,
             y_label,
             series,
-            log_y,
         )
     };
     let result = drawn.and_then(|()| {
@@ -85,7 +82,6 @@ fn draw<DB: DrawingBackend>(
     x_label: &str,
     y_label: &str,
     series: &[Series],
-    log_y: bool,
 ) -> anyhow::Result<()>
 where
     DB::ErrorType: 'static,
@@ -109,7 +105,7 @@ where
         .x_label_area_size(44)
         .y_label_area_size(72);
     let colors = [BLUE, RED, GREEN, MAGENTA, CYAN, BLACK];
-    if log_y {
+    {
         let (lo, hi) = (y0.max(1e-6) * 0.8, (y1 * 1.25).max(y0.max(1e-6) * 2.0));
         let mut c = chart
             .build_cartesian_2d(0f64..x1, (lo..hi).log_scale())
@@ -128,33 +124,6 @@ where
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
                 });
-        }
-        c.configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 15))
-            .draw()
-            .map_err(err)?;
-    } else {
-        let mut c = chart
-            .build_cartesian_2d(0f64..x1, y0.min(0.0)..y1 * 1.1)
-            .map_err(err)?;
-        c.configure_mesh()
-            .x_desc(x_label)
-            .y_desc(y_label)
-            .label_style(("sans-serif", 15))
-            .draw()
-            .map_err(err)?;
-        for (s, color) in series.iter().zip(colors.iter().cycle()) {
-            c.draw_series(LineSeries::new(
-                s.points.iter().copied(),
-                color.stroke_width(2),
-            ))
-            .map_err(err)?
-            .label(s.name.clone())
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-            });
         }
         c.configure_series_labels()
             .background_style(WHITE.mix(0.8))

@@ -182,14 +182,7 @@ fn plot_rmse(path: &Path, runs: &[(String, &IcpResult)]) -> anyhow::Result<()> {
                 .collect(),
         })
         .collect();
-    line_chart(
-        path,
-        "ICP convergence",
-        "iteration",
-        "RMSE (m)",
-        &series,
-        true,
-    )
+    line_chart(path, "ICP convergence", "iteration", "RMSE (m)", &series)
 }
 
 /// The scans of a sequence, their odometry and (if known) their ground truth.

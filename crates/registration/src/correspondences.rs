@@ -36,6 +36,10 @@ impl Correspondences {
     /// within `gate_m`. Each search is hinted with the better of the point's previous
     /// correspondence and the previous source point's match (neighbours in scan order), which
     /// lets the bucket grid prune almost everything.
+    ///
+    /// With `facing = Some((oriented target normals, sensor position in the target frame))` a
+    /// nearest target point whose normal points away from the sensor is no pair (its surface
+    /// is seen from behind).
     pub(crate) fn find<N: NearestNeighbors>(
         &mut self,
         index: &N,
@@ -43,6 +47,7 @@ impl Correspondences {
         source: &[Vec3],
         target_from_source: &Affine3A,
         gate_m: f32,
+        facing: Option<(&[Vec3], Vec3)>,
     ) {
         debug_assert_eq!(source.len(), self.pairs.len());
         self.matched = self
@@ -63,13 +68,20 @@ impl Correspondences {
                             }
                         }
                     }
-                    *o = match index.nearest_with_hint(q, gate_m, hint) {
-                        Some(hit) => {
+                    let hit = index.nearest_with_hint(q, gate_m, hint);
+                    let seen = |j: u32| {
+                        facing.is_none_or(|(normals, sensor)| {
+                            let j = j as usize;
+                            normals[j].dot(sensor - target[j]) >= 0.0
+                        })
+                    };
+                    *o = match hit {
+                        Some(hit) if seen(hit.0) => {
                             n += 1;
                             last = hit.0;
                             hit
                         }
-                        None => (NONE, 0.0),
+                        _ => (NONE, 0.0),
                     };
                 }
                 n
@@ -142,7 +154,7 @@ mod tests {
             .collect();
         source.push(Vec3::new(50.0, 0.0, 0.0));
         let mut c = Correspondences::new(source.len());
-        c.find(&tree, &target, &source, &Affine3A::IDENTITY, 0.42);
+        c.find(&tree, &target, &source, &Affine3A::IDENTITY, 0.42, None);
         assert_eq!(c.matched, 9);
         assert_eq!(c.pairs[3].0, 3);
         assert_eq!(c.pairs[10].0, NONE);
@@ -157,7 +169,7 @@ mod tests {
         assert_eq!(sum, 6);
         // Moving the source moves the matches.
         let shift = Affine3A::from_translation(Vec3::new(1.0, 0.0, 0.0));
-        c.find(&tree, &target, &source, &shift, 0.42);
+        c.find(&tree, &target, &source, &shift, 0.42, None);
         assert_eq!(c.pairs[0].0, 1);
         assert_eq!(c.pairs[9].0, NONE);
     }

@@ -38,6 +38,33 @@ pub(crate) fn voxel_downsample(
     voxel_m: f64,
     name: &'static str,
 ) -> Result<Vec<Vec3>> {
+    Ok(voxel_centroids(points, voxel_m, name)?
+        .into_iter()
+        .map(|(p, _)| p)
+        .collect())
+}
+
+/// As [`voxel_downsample`], carrying one attribute per point along: each voxel keeps the
+/// attribute of its first point (e.g. the sensor position a map point was seen from).
+pub(crate) fn voxel_downsample_with<A: Copy>(
+    points: &[Vec3],
+    attributes: &[A],
+    voxel_m: f64,
+    name: &'static str,
+) -> Result<(Vec<Vec3>, Vec<A>)> {
+    debug_assert_eq!(points.len(), attributes.len());
+    Ok(voxel_centroids(points, voxel_m, name)?
+        .into_iter()
+        .map(|(p, first)| (p, attributes[first]))
+        .unzip())
+}
+
+/// The centroid of every occupied voxel and the index of its first point.
+fn voxel_centroids(
+    points: &[Vec3],
+    voxel_m: f64,
+    name: &'static str,
+) -> Result<Vec<(Vec3, usize)>> {
     let lattice = Lattice::new(points, voxel_m, name)?;
     let (_, start, order) = sort_into_cells(points, &lattice);
     let origin = Vec3::from(lattice.origin).as_dvec3();
@@ -49,7 +76,8 @@ pub(crate) fn voxel_downsample(
                 .iter()
                 .map(|&i| points[i as usize].as_dvec3() - origin)
                 .sum();
-            (origin + sum / members.len() as f64).as_vec3()
+            let first = members.iter().copied().min().unwrap_or(0) as usize;
+            ((origin + sum / members.len() as f64).as_vec3(), first)
         })
         .collect())
 }

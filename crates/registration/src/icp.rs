@@ -129,6 +129,7 @@ pub fn register_to(
     let mut state = Loop {
         config,
         target,
+        sensor: source.sensor_origin,
         source: &points,
         source_cov: &source_cov,
         corr: Correspondences::new(points.len()),
@@ -162,6 +163,8 @@ pub fn register_to(
 struct Loop<'a> {
     config: &'a IcpConfig,
     target: &'a Target,
+    /// The source's sensor position in the source frame.
+    sensor: Vec3,
     source: &'a [Vec3],
     source_cov: &'a [Mat3],
     corr: Correspondences,
@@ -186,6 +189,9 @@ impl Loop<'_> {
                 self.source,
                 &t32,
                 gate as f32,
+                self.target
+                    .oriented_normals()
+                    .map(|n| (n, t32.transform_point3(self.sensor))),
             );
             let matched = self.corr.matched;
             fitness = matched as f64 / n as f64;

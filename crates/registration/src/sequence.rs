@@ -7,7 +7,7 @@
 //! odometry pose.
 
 use crate::config::IcpConfig;
-use crate::downsample::{finite_points, voxel_downsample};
+use crate::downsample::{finite_points, voxel_downsample, voxel_downsample_with};
 use crate::error::{RegistrationError, Result};
 use crate::icp::{register_to, IcpResult};
 use crate::target::Target;
@@ -106,19 +106,24 @@ pub fn register_sequence(
         voxel_downsample(&p, config.scan_voxel_m, "scan_voxel_m")
     };
 
+    // The map keeps, per point, the world position of the sensor that saw it, so that the
+    // target's normals can be oriented and back faces rejected (see `Target::with_viewpoints`).
+    let sensor = |k: usize| scans[k].sensor_origin;
     let mut world_from_scan = vec![odom(0)];
     let mut results = vec![None];
     let mut map = scan_points(0)?;
     move_points(&mut map, &odom(0));
-    map = voxel_downsample(&map, config.map_voxel_m, "map_voxel_m")?;
+    let mut views = vec![odom(0).transform_point3(sensor(0).as_dvec3()).as_vec3(); map.len()];
+    (map, views) = voxel_downsample_with(&map, &views, config.map_voxel_m, "map_voxel_m")?;
     progress(1, total);
     for k in 1..total {
         let points = scan_points(k)?;
         let map_cloud = PointCloud::from_points(std::mem::take(&mut map));
-        let target = Target::new(&map_cloud, &config.icp)?;
+        let target = Target::with_viewpoints(&map_cloud, &views, &config.icp)?;
         map = map_cloud.points;
         let guess = world_from_scan[k - 1] * odom(k - 1).inverse() * odom(k);
-        let source = PointCloud::from_points(points);
+        let mut source = PointCloud::from_points(points);
+        source.sensor_origin = sensor(k);
         let result = match register_to(&target, &source, guess, &config.icp) {
             Ok(r) => r,
             Err(RegistrationError::NotConverged { result, reason }) => {
@@ -132,8 +137,10 @@ pub fn register_sequence(
         let pose = result.target_from_source;
         let mut moved = source.points;
         move_points(&mut moved, &pose);
+        let view = pose.transform_point3(sensor(k).as_dvec3()).as_vec3();
+        views.extend(std::iter::repeat_n(view, moved.len()));
         map.extend(moved);
-        map = voxel_downsample(&map, config.map_voxel_m, "map_voxel_m")?;
+        (map, views) = voxel_downsample_with(&map, &views, config.map_voxel_m, "map_voxel_m")?;
         world_from_scan.push(pose);
         results.push(Some(result));
         progress(k + 1, total);

@@ -4,7 +4,7 @@
 
 use crate::config::{IcpConfig, Method, NnBackend};
 use crate::covariance::{estimate_surface, Surface};
-use crate::downsample::{finite_points, voxel_downsample};
+use crate::downsample::{finite_points, voxel_downsample_with};
 use crate::error::{RegistrationError, Result};
 use crate::nearest::{NearestNeighbors, NnIndex};
 use cloud::PointCloud;
@@ -20,6 +20,7 @@ pub struct Target {
     normals: Vec<Vec3>,
     covariances: Vec<Mat3>,
     method: Method,
+    oriented: bool,
     build_ms: f64,
 }
 
@@ -28,13 +29,57 @@ impl Target {
     /// `bucket_size_m`, `target_voxel_m`, `normal_voxel_m`, `neighbours_k`). For point-to-plane
     /// and GICP, points whose neighbourhood is degenerate are left out.
     pub fn new(cloud: &PointCloud, config: &IcpConfig) -> Result<Target> {
+        Target::build(cloud, None, config)
+    }
+
+    /// As [`Target::new`], with the sensor position (in the target frame) each point was seen
+    /// from. For point-to-plane and GICP the normals are then oriented towards their sensor,
+    /// and registration rejects every pair whose target point faces away from the source's
+    /// sensor (`PointCloud::sensor_origin` moved by the current estimate): a laser cannot see
+    /// the back of a surface. This keeps the inside face of a wall from being matched to its
+    /// outside face, the classic failure of scans taken on both sides of a thin wall.
+    /// Point-to-point targets have no normals and ignore the viewpoints.
+    pub fn with_viewpoints(
+        cloud: &PointCloud,
+        viewpoints: &[Vec3],
+        config: &IcpConfig,
+    ) -> Result<Target> {
+        if viewpoints.len() != cloud.len() {
+            return Err(RegistrationError::Mismatch {
+                what: "viewpoints",
+                msg: format!(
+                    "{} viewpoints for {} target points",
+                    viewpoints.len(),
+                    cloud.len()
+                ),
+            });
+        }
+        Target::build(cloud, Some(viewpoints), config)
+    }
+
+    fn build(
+        cloud: &PointCloud,
+        viewpoints: Option<&[Vec3]>,
+        config: &IcpConfig,
+    ) -> Result<Target> {
         config.validate()?;
         let start = Instant::now();
         let mut points = finite_points(cloud, "target")?;
+        let mut views: Vec<Vec3> = match viewpoints {
+            Some(v) => cloud
+                .points
+                .iter()
+                .zip(v)
+                .filter(|(p, _)| p.is_finite())
+                .map(|(_, v)| *v)
+                .collect(),
+            None => vec![Vec3::ZERO; points.len()],
+        };
         if let Some(v) = config.target_voxel_m {
-            points = voxel_downsample(&points, v, "target_voxel_m")?;
+            (points, views) = voxel_downsample_with(&points, &views, v, "target_voxel_m")?;
         }
         let (mut normals, mut covariances) = (Vec::new(), Vec::new());
+        let oriented = viewpoints.is_some() && config.method.needs_surface();
         if config.method.needs_surface() {
             let gicp = config.method == Method::Gicp;
             let Surface {
@@ -42,8 +87,18 @@ impl Target {
                 covariances: c,
             } = estimate_surface(&points, config.target_voxel_m, config, gicp)?;
             let keep: Vec<usize> = (0..points.len()).filter(|&i| n[i] != Vec3::ZERO).collect();
+            normals = keep
+                .iter()
+                .map(|&i| {
+                    let facing = oriented && n[i].dot(views[i] - points[i]) < 0.0;
+                    if facing {
+                        -n[i]
+                    } else {
+                        n[i]
+                    }
+                })
+                .collect();
             points = keep.iter().map(|&i| points[i]).collect();
-            normals = keep.iter().map(|&i| n[i]).collect();
             if gicp {
                 covariances = keep.iter().map(|&i| c[i]).collect();
             }
@@ -60,6 +115,7 @@ impl Target {
             normals,
             covariances,
             method: config.method,
+            oriented,
             build_ms: start.elapsed().as_secs_f64() * 1e3,
         })
     }
@@ -109,6 +165,12 @@ impl Target {
 
     pub(crate) fn normals(&self) -> &[Vec3] {
         &self.normals
+    }
+
+    /// The oriented normals, if the target was prepared with viewpoints (see
+    /// [`Target::with_viewpoints`]).
+    pub(crate) fn oriented_normals(&self) -> Option<&[Vec3]> {
+        self.oriented.then_some(self.normals.as_slice())
     }
 
     pub(crate) fn covariances(&self) -> &[Mat3] {

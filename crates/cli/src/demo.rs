@@ -1,6 +1,6 @@
-//! `semsim demo`: the whole chain on the built-in default building.
-//! Today: building -> virtual scans with ground truth and noisy odometry -> registration
-//! from the odometry, with pose errors against ground truth.
+//! `semsim demo`: the whole chain on the built-in default building: building -> virtual scans
+//! with ground truth and noisy odometry -> registration from the odometry -> semantic map ->
+//! the default scenario judged in the map's world, each stage scored against ground truth.
 
 use crate::config::SemsimConfig;
 use clap::Args;
@@ -46,40 +46,37 @@ pub fn run(a: DemoArgs, cfg: &SemsimConfig) -> anyhow::Result<()> {
     let summary = crate::scan::write_scans(&building, &demo_poses(), cfg, &a.out)?;
     summary.print();
     println!("  wrote {}", building_path.display());
-    register_scans(&a.out, cfg)?;
-    println!("simulation of the default scenario (world from the building description):");
+    let input = crate::register::collect_sequence(&[a.out.clone()], None, None)?;
+    let scans = crate::map::read_scans(&input.files, None)?;
     let scenario = sim::Scenario::default_scenario()?;
     let text = sim::Scenario::default_scenario_toml();
-    let passed = crate::simulate::simulate(
-        &building,
-        &scenario,
-        text,
-        std::path::Path::new("."),
-        &a.out.join("simulation"),
+    let outcome = crate::run::scans_to_verdict(
+        &input,
+        scans,
+        (&scenario, text, std::path::Path::new(".")),
+        cfg,
+        &a.out,
     )?;
-    println!("verdict: {}", if passed { "PASSED" } else { "FAILED" });
+    report_against_truth(&input, &a.out, &building, &outcome)?;
+    println!(
+        "verdict: {} (rerun: semsim simulate --map {} --scenario {} --out DIR)",
+        if outcome.passed { "PASSED" } else { "FAILED" },
+        a.out.join("map/semantic_map.json").display(),
+        a.out.join("simulation/scenario.toml").display()
+    );
     println!("done in {:.1} s", t0.elapsed().as_secs_f64());
     Ok(())
 }
 
-/// Registers the demo's scans from their noisy odometry into `out/registration/` and reports
-/// the pose errors of odometry and registration against ground truth.
-fn register_scans(out: &std::path::Path, cfg: &SemsimConfig) -> anyhow::Result<()> {
-    let input = crate::register::collect_sequence(&[out.to_path_buf()], None, None)?;
-    let scans = input
-        .files
-        .iter()
-        .map(|f| cloud::read_cloud(f))
-        .collect::<Result<Vec<_>, _>>()?;
-    let reg_dir = out.join("registration");
-    std::fs::create_dir_all(&reg_dir).map_err(|e| cloud::CloudError::io(&reg_dir, e))?;
-    println!(
-        "registration ({}) of {} scans from noisy odometry:",
-        cfg.registration.icp.method.short_name(),
-        scans.len()
-    );
-    crate::register::register_and_write(&input, &scans, &cfg.registration, &reg_dir)?;
-    let registered = cloud::read_poses(&reg_dir.join("poses.txt"))?;
+/// Scores the demo's registration (pose errors of odometry and registration) and semantic map
+/// (per-class F1, wall endpoint error, stairs) against the ground truth.
+fn report_against_truth(
+    input: &crate::register::SequenceInput,
+    out: &std::path::Path,
+    building: &Building,
+    outcome: &crate::run::Outcome,
+) -> anyhow::Result<()> {
+    let registered = cloud::read_poses(&out.join("registration/poses.txt"))?;
     let worst = |poses: &[glam::DAffine3]| {
         poses
             .iter()
@@ -96,7 +93,21 @@ fn register_scans(out: &std::path::Path, cfg: &SemsimConfig) -> anyhow::Result<(
     let reg: Vec<glam::DAffine3> = registered.iter().map(|p| p.world_from_scan).collect();
     let (rm, rd) = worst(&reg);
     println!(
-        "worst pose error: odometry {om:.3} m / {od:.2} deg -> registered {rm:.4} m / {rd:.3} deg"
+        "against ground truth: worst pose error odometry {om:.3} m / {od:.2} deg -> registered {rm:.4} m / {rd:.3} deg"
+    );
+    let ev = semantic::evaluate(&outcome.map, building, Some(&outcome.cloud));
+    println!(
+        "against ground truth: map walls F1 {:.3}, door openings F1 {:.3}, door leaves F1 {:.3}, wall endpoint error {:.3} m, floor {}, ceiling {}{}",
+        ev.walls.f1,
+        ev.door_openings.f1,
+        ev.doors.f1,
+        ev.wall_endpoint_error_mean_m,
+        if ev.floor.matched == 1 { "found" } else { "missed" },
+        if ev.ceiling.matched == 1 { "found" } else { "missed" },
+        ev.stairs_matches
+            .iter()
+            .map(|s| format!(", stairs {}/{} steps", s.steps, s.steps_truth))
+            .collect::<String>()
     );
     Ok(())
 }

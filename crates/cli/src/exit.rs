@@ -34,6 +34,13 @@ pub fn code_for(e: &anyhow::Error) -> u8 {
                 _ => 2,
             };
         }
+        if let Some(s) = cause.downcast_ref::<semantic::SemanticError>() {
+            return match s {
+                semantic::SemanticError::Cloud(c) if !c.is_bad_input() => 1,
+                semantic::SemanticError::Image { .. } => 1,
+                _ => 2,
+            };
+        }
         if cause.is::<sim::SimError>() {
             return 2;
         }

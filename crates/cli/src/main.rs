@@ -9,8 +9,10 @@ mod convert;
 mod demo;
 mod exit;
 mod info;
+mod map;
 mod plot;
 mod register;
+mod run;
 mod scan;
 mod simulate;
 
@@ -39,6 +41,15 @@ enum Command {
     Info(info::InfoArgs),
     /// Register scans with ICP: a pair (SOURCE TARGET) or, with --sequence, a whole sequence.
     Register(register::RegisterArgs),
+    /// Build the semantic map of a registered cloud (or of scans placed with --poses):
+    /// semantic_map.json, labels.pcd and a picture of every stage.
+    Map(map::MapArgs),
+    /// Evaluate results against ground truth.
+    #[command(subcommand)]
+    Eval(map::EvalCommand),
+    /// One command from scans to verdict: register, map, simulate the scenario in the map's
+    /// world and judge it (exit 0 pass, 1 fail).
+    Run(run::RunArgs),
     /// Scan a building with the virtual 3D laser from one or more poses.
     Scan(scan::ScanArgs),
     /// Run a scenario in a physics world of the building and judge it (exit 0 pass, 1 fail).
@@ -67,6 +78,9 @@ fn main() -> ExitCode {
             Command::Info(a) => info::run(a),
             Command::Register(a) => register::run(a, &cfg, default_config),
             Command::Scan(a) => scan::run(a, &cfg),
+            Command::Map(a) => map::run(a, &cfg),
+            Command::Run(a) => run::run(a, &cfg),
+            Command::Eval(c) => map::run_eval(c),
             Command::Building(c) => building_cmd::run(c, &cfg),
             Command::Bench(c) => bench::run(c),
             Command::Simulate(a) => simulate::run(a),

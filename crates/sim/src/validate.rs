@@ -47,11 +47,17 @@ impl WorldSpec {
     }
 
     /// Finds an entity by id (`"17"`), machine name (`walls[4].doors[2].leaf`), opening name
-    /// (`walls[4].doors[2]`: the leaf, or the free space of an opening without one) or unique
-    /// human label (`corridor north`). `element` names the reference in errors.
+    /// (`walls[4].doors[2]`: the leaf, or the free space of an opening without one), unique
+    /// human label (`corridor north`) or location (`door@14.5,1.1`, `stairs@17,4.2`: the
+    /// nearest door opening or staircase to that point of the floor plan, within 2 m; the
+    /// form that works alike in a building's world and in a semantic map's, whose entities
+    /// have only ids). `element` names the reference in errors.
     pub fn resolve(&self, reference: &str, element: &str) -> Result<EntityInfo> {
         let entities = self.entities();
         let r = reference.trim();
+        if let Some((kind, at)) = r.split_once('@') {
+            return self.locate(kind.trim(), at, element, reference);
+        }
         let found = r
             .parse::<u32>()
             .ok()
@@ -87,6 +93,65 @@ impl WorldSpec {
                 hint: format!(" (known names include: {})", names.join(", ")),
             }
         })
+    }
+
+    /// Resolves `door@x,y` / `stairs@x,y` (see [`WorldSpec::resolve`]).
+    fn locate(&self, kind: &str, at: &str, element: &str, reference: &str) -> Result<EntityInfo> {
+        const MAX_DISTANCE_M: f64 = 2.0;
+        let unknown = |hint: &str| SimError::UnknownEntity {
+            element: element.to_string(),
+            reference: reference.to_string(),
+            hint: hint.to_string(),
+        };
+        let xy: Vec<f64> = at
+            .split(',')
+            .map(|v| v.trim().parse::<f64>())
+            .collect::<std::result::Result<_, _>>()
+            .map_err(|_| unknown(" (a location is `door@X,Y` or `stairs@X,Y`, in metres)"))?;
+        let [x, y] = xy[..] else {
+            return Err(unknown(
+                " (a location is `door@X,Y` or `stairs@X,Y`, in metres)",
+            ));
+        };
+        if !(x.is_finite() && y.is_finite()) {
+            return Err(unknown(" (the location must be finite)"));
+        }
+        let dist = |c: [f64; 3]| (c[0] - x).hypot(c[1] - y);
+        // Candidates: (distance, entity id).
+        let candidates: Vec<(f64, u32)> = match kind {
+            "door" => self
+                .free_spaces
+                .iter()
+                .map(|f| (dist(f.geometry.center_m), f.door.unwrap_or(f.entity)))
+                .chain(self.doors.iter().map(|d| (dist(d.leaf.center_m), d.entity)))
+                .collect(),
+            "stairs" => self
+                .stairs
+                .iter()
+                .filter_map(|s| {
+                    let n = s.steps.len() as f64;
+                    let c = s.steps.iter().fold([0.0; 3], |a, st| {
+                        let g = st.geometry.center_m;
+                        [a[0] + g[0] / n, a[1] + g[1] / n, 0.0]
+                    });
+                    (n > 0.0).then_some((dist(c), s.entity))
+                })
+                .collect(),
+            _ => return Err(unknown(" (locations name `door@X,Y` or `stairs@X,Y`)")),
+        };
+        let best = candidates
+            .into_iter()
+            .filter(|c| c.0 <= MAX_DISTANCE_M)
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        let id = best.map(|b| b.1).ok_or_else(|| {
+            unknown(&format!(
+                " (no {kind} within {MAX_DISTANCE_M} m of ({x}, {y}))"
+            ))
+        })?;
+        self.entities()
+            .into_iter()
+            .find(|e| e.id == id)
+            .ok_or_else(|| unknown(""))
     }
 
     /// Checks ids, references and numbers; see [`SimError`] for what is reported.

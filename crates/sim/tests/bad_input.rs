@@ -52,6 +52,16 @@ fn entities_resolve_by_id_name_opening_and_label() {
         spec.resolve("stairs to the landing", "t").unwrap().name,
         "stairs[0]"
     );
+    // By location: the nearest opening (its leaf) or staircase, in either world.
+    assert_eq!(spec.resolve("door@14.5,1.3", "t").unwrap(), by_name);
+    assert_eq!(
+        spec.resolve("stairs@17.0,4.0", "t").unwrap().name,
+        "stairs[0]"
+    );
+    for bad in ["door@14.6", "door@x,1", "window@1,1", "door@100,100"] {
+        let e = spec.resolve(bad, "rules.open_door").unwrap_err();
+        assert!(matches!(e, SimError::UnknownEntity { .. }), "{bad}: {e}");
+    }
     // An opening without a leaf resolves to its free space.
     assert_eq!(
         spec.resolve("walls[5].doors[1]", "t").unwrap().name,

@@ -54,6 +54,17 @@ pub enum RegistrationError {
         /// What it must be.
         msg: String,
     },
+    /// The GPU path failed: no adapter for `device = gpu`, an input too large for the device,
+    /// or a device / driver error.
+    #[cfg(feature = "gpu")]
+    #[error("GPU registration failed while {context}: {source}")]
+    Gpu {
+        /// What was being done.
+        context: String,
+        /// The GPU error.
+        #[source]
+        source: gpu::GpuError,
+    },
     /// The two inputs to a sequence registration disagree (e.g. poses and scans counts).
     #[error("{what}: {msg}")]
     Mismatch {
@@ -72,6 +83,15 @@ impl RegistrationError {
             value,
             msg: msg.into(),
         }
+    }
+}
+
+#[cfg(feature = "gpu")]
+impl RegistrationError {
+    /// Wraps a GPU error with what was being done.
+    pub(crate) fn gpu(context: impl Into<String>) -> impl FnOnce(gpu::GpuError) -> Self {
+        let context = context.into();
+        move |source| RegistrationError::Gpu { context, source }
     }
 }
 

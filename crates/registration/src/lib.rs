@@ -87,6 +87,7 @@ mod cells;
 mod config;
 mod correspondences;
 mod covariance;
+mod device;
 mod downsample;
 mod error;
 mod gicp;
@@ -101,11 +102,14 @@ mod point_to_point;
 mod sequence;
 mod target;
 
-pub use config::{IcpConfig, Method, NnBackend, ParseMethodError, RobustKernel};
+pub use config::{
+    Device, IcpConfig, Method, NnBackend, ParseDeviceError, ParseMethodError, RobustKernel,
+};
+pub use device::Registrar;
 pub use error::{RegistrationError, Result};
 pub use grid::BucketGrid;
 pub use icp::{register, register_to, IcpResult, IterationReport};
 pub use kdtree::KdTree;
 pub use nearest::NearestNeighbors;
-pub use sequence::{register_sequence, SequenceConfig, SequenceResult};
+pub use sequence::{register_sequence, register_sequence_with, SequenceConfig, SequenceResult};
 pub use target::Target;

@@ -43,7 +43,7 @@ impl Registrar {
     ///
     /// - [`Device::Cpu`]: the CPU.
     /// - [`Device::Gpu`]: the best GPU adapter, a software one (lavapipe) included; none is
-    ///   `RegistrationError::Gpu` (whose source is `gpu::GpuError::NoAdapter`).
+    ///   `RegistrationError::Gpu` (holding `gpu::GpuError::NoAdapter`).
     /// - [`Device::Auto`]: a hardware GPU if the method runs there (point-to-point,
     ///   point-to-plane without `reject_worst_fraction`) and one is present; otherwise the CPU,
     ///   with the reason in [`Registrar::description`]. A software adapter is not used: lavapipe
@@ -190,7 +190,7 @@ fn cpu_only(config: &IcpConfig) -> Option<String> {
 fn auto_reason(e: &crate::RegistrationError) -> String {
     #[cfg(feature = "gpu")]
     if let crate::RegistrationError::Gpu {
-        source: gpu::GpuError::NoAdapter(why),
+        error: gpu::GpuError::NoAdapter(why),
         ..
     } = e
     {
@@ -230,7 +230,7 @@ mod gpu_path {
             } else {
                 (&ANY, AdapterChoice::Any)
             };
-            let context = "opening a GPU (device = gpu)";
+            let context = "opening a GPU";
             let ctx = cell
                 .get_or_init(|| GpuContext::new(choice))
                 .clone()

@@ -56,14 +56,15 @@ pub enum RegistrationError {
     },
     /// The GPU path failed: no adapter for `device = gpu`, an input too large for the device,
     /// or a device / driver error.
+    /// (The GPU error is part of the message, not a separate `source()`, so that printing the
+    /// error chain does not repeat it.)
     #[cfg(feature = "gpu")]
-    #[error("GPU registration failed while {context}: {source}")]
+    #[error("GPU registration failed while {context}: {error}")]
     Gpu {
         /// What was being done.
         context: String,
         /// The GPU error.
-        #[source]
-        source: gpu::GpuError,
+        error: gpu::GpuError,
     },
     /// The two inputs to a sequence registration disagree (e.g. poses and scans counts).
     #[error("{what}: {msg}")]
@@ -91,7 +92,7 @@ impl RegistrationError {
     /// Wraps a GPU error with what was being done.
     pub(crate) fn gpu(context: impl Into<String>) -> impl FnOnce(gpu::GpuError) -> Self {
         let context = context.into();
-        move |source| RegistrationError::Gpu { context, source }
+        move |error| RegistrationError::Gpu { context, error }
     }
 }
 

@@ -32,7 +32,7 @@ fn gpu_or_skip(test: &str) -> bool {
             true
         }
         Err(RegistrationError::Gpu {
-            source: gpu::GpuError::NoAdapter(why),
+            error: gpu::GpuError::NoAdapter(why),
             ..
         }) => {
             eprintln!("{test}: SKIPPED: no GPU adapter at all ({why})");

@@ -13,7 +13,7 @@ use crate::error::Result;
 use crate::icp::{finish, prepare_source, register_points_cpu, IcpResult};
 use crate::target::Target;
 use cloud::PointCloud;
-use glam::{DAffine3, Vec3};
+use glam::DAffine3;
 use std::time::Instant;
 
 /// An open device for ICP, reused across registrations (and by
@@ -208,7 +208,7 @@ mod gpu_path {
     use crate::icp::{run_loop, PairSums, StepSums};
     use crate::linalg::System6;
     use crate::point_to_point::CorrelationSums;
-    use glam::{DMat3, DMat4, DVec3};
+    use glam::{DMat3, DMat4, DVec3, Vec3};
     use gpu::{AdapterChoice, GpuContext, GpuIcp, GpuKernel};
     use std::sync::OnceLock;
 

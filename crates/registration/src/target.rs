@@ -112,6 +112,7 @@ impl Target {
     }
 
     /// The bucket edge the target was prepared with.
+    #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
     pub(crate) fn bucket_size_m(&self) -> f64 {
         self.bucket_size_m
     }

@@ -31,6 +31,15 @@ pub fn code_for(e: &anyhow::Error) -> u8 {
         if let Some(r) = cause.downcast_ref::<registration::RegistrationError>() {
             return match r {
                 registration::RegistrationError::NotConverged { .. } => 1,
+                // No adapter for `--device gpu`, or a cloud too large for the device: the
+                // user's to fix; a device or driver failure is the job's.
+                registration::RegistrationError::Gpu { error, .. } => {
+                    if error.is_bad_input() {
+                        2
+                    } else {
+                        1
+                    }
+                }
                 _ => 2,
             };
         }

@@ -8,7 +8,7 @@ use clap::Args;
 use cloud::{NamedPose, PointCloud};
 use glam::{DAffine3, DMat4, DQuat, DVec3, EulerRot};
 use indicatif::{ProgressBar, ProgressStyle};
-use registration::{IcpResult, Method, RegistrationError, SequenceConfig};
+use registration::{Device, IcpResult, Method, Registrar, RegistrationError, SequenceConfig};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `semsim register`.
@@ -26,6 +26,11 @@ pub struct RegisterArgs {
     /// ICP variant: p2p, p2plane or gicp (default from the configuration).
     #[arg(long, value_name = "METHOD")]
     method: Option<Method>,
+    /// Where ICP runs: auto (a hardware GPU for p2p/p2plane if there is one, else the CPU),
+    /// cpu, or gpu (any Vulkan adapter, software ones included; GICP is CPU-only). Default from
+    /// the configuration ([registration.icp] device, itself auto by default).
+    #[arg(long, value_name = "auto|cpu|gpu")]
+    device: Option<Device>,
     /// Pair mode: print exactly one JSON object.
     #[arg(long)]
     json: bool,
@@ -54,6 +59,9 @@ pub fn run(a: RegisterArgs, cfg: &SemsimConfig, cfg_is_default: bool) -> anyhow:
         }
         cfg.registration.icp.method = m;
     }
+    if let Some(d) = a.device {
+        cfg.registration.icp.device = d;
+    }
     if a.sequence {
         return run_sequence(&a, &cfg);
     }
@@ -69,7 +77,8 @@ pub fn run(a: RegisterArgs, cfg: &SemsimConfig, cfg_is_default: bool) -> anyhow:
     };
     let source = cloud::read_cloud(source_path)?;
     let target = cloud::read_cloud(target_path)?;
-    let result = registration::register(&source, &target, guess, &cfg.registration.icp);
+    let mut registrar = open_device(&cfg.registration.icp)?;
+    let result = registrar.register(&source, &target, guess, &cfg.registration.icp);
     let result = match result {
         Ok(r) => r,
         Err(RegistrationError::NotConverged { result, reason }) => {
@@ -89,11 +98,21 @@ pub fn run(a: RegisterArgs, cfg: &SemsimConfig, cfg_is_default: bool) -> anyhow:
         plot_rmse(p, &[("pair".into(), &result)])?;
     }
     if a.json {
-        println!("{}", pair_json(&result));
+        let mut v = pair_json(&result);
+        v["device"] = serde_json::Value::from(registrar.description());
+        println!("{v}");
     } else {
         print_pair(&result);
     }
     Ok(())
+}
+
+/// Opens the configured device and says on stderr which it is (for `auto`: the adapter chosen,
+/// or why the CPU runs instead). `device = gpu` without an adapter is bad input (exit 2).
+pub fn open_device(icp: &registration::IcpConfig) -> anyhow::Result<Registrar> {
+    let registrar = Registrar::new(icp)?;
+    eprintln!("device: {}", registrar.description());
+    Ok(registrar)
 }
 
 fn print_pair(r: &IcpResult) {
@@ -235,10 +254,15 @@ pub fn register_and_write(
         .unwrap_or_else(|_| ProgressStyle::default_bar())
         .progress_chars("=> "),
     );
+    let mut registrar = open_device(&cfg.icp)?;
     bar.set_message("registering");
-    let seq = registration::register_sequence(scans, &input.odometry, cfg, &mut |done, _| {
-        bar.set_position(done as u64)
-    })
+    let seq = registration::register_sequence_with(
+        &mut registrar,
+        scans,
+        &input.odometry,
+        cfg,
+        &mut |done, _| bar.set_position(done as u64),
+    )
     .context("registering the sequence")?;
     bar.finish_and_clear();
     let names: Vec<String> = input

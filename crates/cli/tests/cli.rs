@@ -344,6 +344,78 @@ fn register_rejects_bad_input_and_reports_non_convergence() {
     );
 }
 
+/// The 16 numbers of `semsim register --json`'s transform.
+fn json_transform(out: &str) -> Vec<f64> {
+    let v: serde_json::Value = serde_json::from_str(out.trim()).expect("exactly one JSON object");
+    v["transform"]
+        .as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_f64().expect("number"))
+        .collect()
+}
+
+#[test]
+fn register_on_the_gpu_gives_the_cpus_transform_and_bad_devices_are_bad_input() {
+    let d = Dir::new();
+    let cfg = d.small_config();
+    d.run(&[
+        "demo",
+        "--out",
+        "demo",
+        "--config",
+        cfg.to_str().expect("utf8"),
+    ])
+    .ok();
+    let pair = |device: &str| {
+        d.run(&[
+            "register",
+            "demo/scan002.pcd",
+            "demo/scan001.pcd",
+            "--guess",
+            "2.4,-0.1,0,0,0,2",
+            "--method",
+            "p2plane",
+            "--device",
+            device,
+            "--json",
+        ])
+    };
+    let cpu = pair("cpu");
+    let cpu_out = cpu.ok();
+    assert!(cpu.stderr().contains("device: CPU"), "{}", cpu.stderr());
+    let gpu = pair("gpu");
+    if gpu.code() == 2 && gpu.stderr().contains("no GPU adapter") {
+        eprintln!("SKIPPED the GPU half: {}", gpu.stderr());
+    } else {
+        let gpu_out = gpu.ok();
+        assert!(gpu.stderr().contains("device: GPU"), "{}", gpu.stderr());
+        let (a, b) = (json_transform(&cpu_out), json_transform(&gpu_out));
+        for (x, y) in a.iter().zip(&b) {
+            assert!((x - y).abs() < 1e-4, "GPU {b:?} vs CPU {a:?}");
+        }
+        let v: serde_json::Value = serde_json::from_str(gpu_out.trim()).expect("json");
+        assert!(v["device"].as_str().is_some_and(|s| s.starts_with("GPU")));
+    }
+    // auto says what it chose, and on a software adapter (or none) falls back to the CPU.
+    let auto = pair("auto");
+    auto.ok();
+    assert!(auto.stderr().contains("device: "), "{}", auto.stderr());
+    pair("tpu").bad_input(&["tpu", "auto, cpu or gpu"]);
+    let gicp = d.write(
+        "gicp_gpu.toml",
+        "[registration.icp]\nmethod = \"gicp\"\ndevice = \"gpu\"\n",
+    );
+    d.run(&[
+        "register",
+        "demo/scan002.pcd",
+        "demo/scan001.pcd",
+        "--config",
+        gicp.to_str().expect("utf8"),
+    ])
+    .bad_input(&["device", "GICP"]);
+}
+
 #[test]
 fn register_sequence_of_the_3dtk_corridor_uses_its_pose_files() {
     let Some(real) = util::real_data() else {

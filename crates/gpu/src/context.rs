@@ -1,7 +1,14 @@
 //! The GPU context: adapter choice and device. Prefers a hardware adapter; falls back to a
 //! software one (Mesa's lavapipe) so the same code runs in CI without a GPU.
+//!
+//! wgpu reports validation and out-of-memory errors asynchronously and, by default, panics on
+//! them. Here every operation runs inside error scopes ([`GpuContext::scoped`]) that turn them
+//! into [`GpuError`]s, and an uncaptured-error handler records anything that escapes a scope
+//! (e.g. raised on another thread) so that the next scoped operation reports it instead of
+//! the process panicking.
 
 use crate::error::{GpuError, Result};
+use std::sync::{Arc, Mutex};
 
 /// Which adapters may be used.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -12,12 +19,15 @@ pub enum AdapterChoice {
     HardwareOnly,
 }
 
-/// An open GPU device with its queue.
+/// An open GPU device with its queue. Cloning shares the device.
+#[derive(Clone)]
 pub struct GpuContext {
     pub(crate) device: wgpu::Device,
     pub(crate) queue: wgpu::Queue,
     info: wgpu::AdapterInfo,
     pub(crate) limits: wgpu::Limits,
+    /// Errors that escaped every error scope (first one kept), reported by the next operation.
+    uncaptured: Arc<Mutex<Option<GpuError>>>,
 }
 
 impl GpuContext {
@@ -53,12 +63,46 @@ impl GpuContext {
             adapter: info.name.clone(),
             msg: e.to_string(),
         })?;
+        let uncaptured: Arc<Mutex<Option<GpuError>>> = Arc::default();
+        let sink = Arc::clone(&uncaptured);
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            if let Ok(mut slot) = sink.lock() {
+                slot.get_or_insert(GpuError::from_wgpu("running a GPU operation", e));
+            }
+        }));
         Ok(GpuContext {
             device,
             queue,
             info,
             limits,
+            uncaptured,
         })
+    }
+
+    /// Runs `f` inside validation, out-of-memory and internal error scopes: an error wgpu
+    /// raises meanwhile (or one recorded earlier by the uncaptured-error handler) is returned
+    /// as a [`GpuError`] naming `during`, instead of wgpu's default panic.
+    pub(crate) fn scoped<T>(&self, during: &str, f: impl FnOnce() -> Result<T>) -> Result<T> {
+        let scopes = [
+            self.device.push_error_scope(wgpu::ErrorFilter::Internal),
+            self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory),
+            self.device.push_error_scope(wgpu::ErrorFilter::Validation),
+        ];
+        let out = f();
+        // Scopes pop in reverse order of their pushes; keep the first error.
+        let mut caught = None;
+        for scope in scopes.into_iter().rev() {
+            if let Some(e) = pollster::block_on(scope.pop()) {
+                caught.get_or_insert(GpuError::from_wgpu(during, e));
+            }
+        }
+        if let Some(e) = caught {
+            return Err(e);
+        }
+        if let Some(e) = self.uncaptured.lock().ok().and_then(|mut s| s.take()) {
+            return Err(e);
+        }
+        out
     }
 
     /// The adapter's name and kind, e.g. `NVIDIA H100 (discrete GPU)` or `llvmpipe (software)`.

@@ -6,7 +6,7 @@
 
 const NONE: u32 = 0xffffffffu;
 const WG: u32 = 128u;
-const K: u32 = 29u; // values per pair (point-to-plane needs 29; point-to-point uses 17)
+const K: u32 = 30u; // values per pair (point-to-plane needs 30; point-to-point uses 18)
 
 struct Params {
     transform: mat4x4<f32>,   // target_from_source
@@ -29,7 +29,7 @@ struct Params {
 @group(0) @binding(9) var<storage, read_write> partials: array<f32>;
 @group(0) @binding(10) var<storage, read_write> totals: array<f32>;
 
-var<workgroup> sh: array<f32, 3712>; // WG * K
+var<workgroup> sh: array<f32, 3840>; // WG * K (15 KiB, within the 16 KiB every device offers)
 
 fn bucket_of(key: u32) -> u32 {
     let mask = params.dims.w;
@@ -134,16 +134,19 @@ fn search_reduce(@builtin(global_invocation_id) gid: vec3<u32>,
             let pc = p - params.reference.xyz;
             let o = lid * K;
             if (params.counts.y == 0u) {
-                // Point-to-point: pairs (transformed data point, model point), centred on `reference`.
+                // Point-to-point: pairs (transformed data point, model point), centred on
+                // `reference`, weighted by the robust kernel of the point distance.
+                let w = robust_weight(sqrt(hit.d2));
                 sh[o] = 1.0;
-                sh[o + 1u] = pc.x; sh[o + 2u] = pc.y; sh[o + 3u] = pc.z;
-                sh[o + 4u] = q.x; sh[o + 5u] = q.y; sh[o + 6u] = q.z;
+                sh[o + 1u] = w * pc.x; sh[o + 2u] = w * pc.y; sh[o + 3u] = w * pc.z;
+                sh[o + 4u] = w * q.x; sh[o + 5u] = w * q.y; sh[o + 6u] = w * q.z;
                 for (var a = 0u; a < 3u; a++) {
                     for (var b2 = 0u; b2 < 3u; b2++) {
-                        sh[o + 7u + a * 3u + b2] = pc[a] * q[b2];
+                        sh[o + 7u + a * 3u + b2] = w * pc[a] * q[b2];
                     }
                 }
                 sh[o + 16u] = hit.d2;
+                sh[o + 17u] = w;
             } else {
                 // Point-to-plane: residual r = (p - q) . n, Jacobian J = [p x n, n] (about `reference`).
                 let n = normals[hit.index].xyz;
@@ -162,6 +165,7 @@ fn search_reduce(@builtin(global_invocation_id) gid: vec3<u32>,
                 }
                 for (var a = 0u; a < 6u; a++) { sh[o + 22u + a] = w * jac[a] * r; }
                 sh[o + 28u] = w * r * r;
+                sh[o + 29u] = hit.d2;
             }
         }
     }

@@ -8,10 +8,9 @@ use crate::grid::{HostGrid, NONE};
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
 use std::time::Instant;
-use wgpu::util::DeviceExt;
 
 const WG: u32 = 128;
-const K: usize = 29;
+const K: usize = 30;
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -49,23 +48,27 @@ pub struct StageTimes {
 }
 
 /// Point-to-point sums over the accepted pairs (transformed data point p, model point q),
-/// both centred on the `reference` point given: count, sum p, sum q, sum p q^T, sum |p - q|^2.
+/// both centred on the `reference` point given, each pair weighted by the robust kernel `w` of
+/// its distance (1 without a kernel): count, sum w p, sum w q, sum w p q^T, sum |p - q|^2, sum w.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct P2pSums {
     /// Pairs.
     pub count: f64,
-    /// Sum of p - reference.
+    /// Sum of w (p - reference).
     pub sum_p: [f64; 3],
-    /// Sum of q - reference.
+    /// Sum of w (q - reference).
     pub sum_q: [f64; 3],
-    /// Sum of (p - reference)(q - reference)^T, row-major.
+    /// Sum of w (p - reference)(q - reference)^T, row-major.
     pub sum_pq: [f64; 9],
-    /// Sum of squared distances.
+    /// Sum of squared distances (unweighted).
     pub sum_d2: f64,
+    /// Sum of the weights (equals `count` without a kernel).
+    pub weight: f64,
 }
 
 /// Point-to-plane normal equations over the accepted pairs, linearised about `reference`:
-/// upper triangle of J^T W J (21, row-major), J^T W r (6), sum of w r^2, pair count.
+/// upper triangle of J^T W J (21, row-major), J^T W r (6), sum of w r^2, pair count, sum of
+/// squared point distances.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PlaneSystem {
     /// Pairs.
@@ -76,8 +79,12 @@ pub struct PlaneSystem {
     pub jtr: [f64; 6],
     /// Sum of w r^2.
     pub sum_wr2: f64,
+    /// Sum of the squared point (not plane) distances of the pairs.
+    pub sum_d2: f64,
 }
 
+/// The model cloud's buffers: reused (overwritten in place) by the next `set_target` while
+/// they are large enough, so a growing map re-allocates only now and then.
 struct TargetBuffers {
     grid: HostGrid,
     target: wgpu::Buffer,
@@ -114,6 +121,33 @@ pub struct GpuIcp {
 impl GpuIcp {
     /// Compiles the kernels on `ctx`.
     pub fn new(ctx: GpuContext) -> Result<GpuIcp> {
+        let parts = ctx.scoped("compiling the ICP kernels", || Ok(Self::build(&ctx)))?;
+        let (layout, search, sum, params, totals, readback) = parts;
+        Ok(GpuIcp {
+            ctx,
+            layout,
+            search,
+            sum,
+            params,
+            totals,
+            readback,
+            target: None,
+            source: None,
+            bind: None,
+        })
+    }
+
+    #[allow(clippy::type_complexity)]
+    fn build(
+        ctx: &GpuContext,
+    ) -> (
+        wgpu::BindGroupLayout,
+        wgpu::ComputePipeline,
+        wgpu::ComputePipeline,
+        wgpu::Buffer,
+        wgpu::Buffer,
+        wgpu::Buffer,
+    ) {
         let d = &ctx.device;
         let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("icp.wgsl"),
@@ -173,18 +207,7 @@ impl GpuIcp {
             (K * 4) as u64,
             wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
         );
-        Ok(GpuIcp {
-            ctx,
-            layout,
-            search,
-            sum,
-            params,
-            totals,
-            readback,
-            target: None,
-            source: None,
-            bind: None,
-        })
+        (layout, search, sum, params, totals, readback)
     }
 
     /// The context in use.
@@ -192,37 +215,74 @@ impl GpuIcp {
         &self.ctx
     }
 
-    /// Builds the model cloud's bucket grid (CPU counting sort) and uploads it with optional normals.
+    /// Builds the model cloud's bucket grid (CPU counting sort) and uploads it with optional
+    /// normals. The previous target's buffers are overwritten in place where they are large
+    /// enough (a new target costs an upload, rarely an allocation).
     pub fn set_target(
         &mut self,
         points: &[Vec3],
         normals: Option<&[Vec3]>,
         bucket_size_m: f32,
     ) -> Result<()> {
+        if let Some(n) = normals {
+            if n.len() != points.len() {
+                return Err(GpuError::Invalid(format!(
+                    "{} normals for {} target points",
+                    n.len(),
+                    points.len()
+                )));
+            }
+        }
         let grid = HostGrid::build(points, normals, bucket_size_m)?;
         self.check_size(grid.sorted.len() * 16, "the target cloud")?;
-        let d = &self.ctx.device;
-        let storage = wgpu::BufferUsages::STORAGE;
-        let init = |label: &str, bytes: &[u8]| {
-            d.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents: bytes,
-                usage: storage,
-            })
-        };
+        self.check_size(grid.start.len() * 4, "the target's bucket grid")?;
         let dummy = [[0.0f32; 4]];
         let normal_data: &[[f32; 4]] = grid.normals.as_deref().unwrap_or(&dummy);
+        let old = self.target.take();
+        let ctx = &self.ctx;
+        let (buffers, reallocated) = ctx.scoped("uploading the target cloud", || {
+            let mut realloc = false;
+            let mut put = |old: Option<wgpu::Buffer>, label: &str, bytes: &[u8]| {
+                let (b, r) = upload(ctx, old, label, bytes);
+                realloc |= r;
+                b
+            };
+            let (t, n, k, v, st) = match old {
+                Some(o) => (
+                    Some(o.target),
+                    Some(o.normals),
+                    Some(o.keys),
+                    Some(o.vals),
+                    Some(o.starts),
+                ),
+                None => (None, None, None, None, None),
+            };
+            let target = put(t, "target", bytemuck::cast_slice(&grid.sorted));
+            let normals = put(n, "normals", bytemuck::cast_slice(normal_data));
+            let keys = put(k, "keys", bytemuck::cast_slice(&grid.keys));
+            let vals = put(v, "vals", bytemuck::cast_slice(&grid.vals));
+            let starts = put(st, "starts", bytemuck::cast_slice(&grid.start));
+            Ok(((target, normals, keys, vals, starts), realloc))
+        })?;
+        let (target, normals, keys, vals, starts) = buffers;
         self.target = Some(TargetBuffers {
-            target: init("target", bytemuck::cast_slice(&grid.sorted)),
-            normals: init("normals", bytemuck::cast_slice(normal_data)),
-            keys: init("keys", bytemuck::cast_slice(&grid.keys)),
-            vals: init("vals", bytemuck::cast_slice(&grid.vals)),
-            starts: init("starts", bytemuck::cast_slice(&grid.start)),
+            target,
+            normals,
+            keys,
+            vals,
+            starts,
             has_normals: grid.normals.is_some(),
             grid,
         });
-        self.bind = None;
+        if reallocated {
+            self.bind = None;
+        }
         Ok(())
+    }
+
+    /// Whether a target with normals (as point-to-plane needs) is uploaded.
+    pub fn target_has_normals(&self) -> bool {
+        self.target.as_ref().is_some_and(|t| t.has_normals)
     }
 
     /// Uploads the data cloud, reusing the buffers when they are large enough.
@@ -241,28 +301,32 @@ impl GpuIcp {
         }
         self.check_size(points.len() * 16, "the source cloud")?;
         let data: Vec<[f32; 4]> = points.iter().map(|p| [p.x, p.y, p.z, 1.0]).collect();
-        if self.source.as_ref().is_none_or(|s| s.capacity < n) {
-            let d = &self.ctx.device;
-            let rw = wgpu::BufferUsages::STORAGE
-                | wgpu::BufferUsages::COPY_SRC
-                | wgpu::BufferUsages::COPY_DST;
-            self.source = Some(SourceBuffers {
-                len: n,
-                capacity: n,
-                source: buffer(d, "source", n as u64 * 16, rw),
-                corr: buffer(d, "corr", n as u64 * 4, rw),
-                dist2: buffer(d, "dist2", n as u64 * 4, rw),
-                partials: buffer(d, "partials", n.div_ceil(WG) as u64 * K as u64 * 4, rw),
-            });
-            self.bind = None;
-        }
-        if let Some(s) = self.source.as_mut() {
-            s.len = n;
-            self.ctx
-                .queue
-                .write_buffer(&s.source, 0, bytemuck::cast_slice(&data));
-        }
-        Ok(())
+        let ctx = &self.ctx;
+        let source = &mut self.source;
+        let bind = &mut self.bind;
+        ctx.scoped("uploading the source cloud", || {
+            if source.as_ref().is_none_or(|s| s.capacity < n) {
+                let d = &ctx.device;
+                let rw = wgpu::BufferUsages::STORAGE
+                    | wgpu::BufferUsages::COPY_SRC
+                    | wgpu::BufferUsages::COPY_DST;
+                *source = Some(SourceBuffers {
+                    len: n,
+                    capacity: n,
+                    source: buffer(d, "source", n as u64 * 16, rw),
+                    corr: buffer(d, "corr", n as u64 * 4, rw),
+                    dist2: buffer(d, "dist2", n as u64 * 4, rw),
+                    partials: buffer(d, "partials", n.div_ceil(WG) as u64 * K as u64 * 4, rw),
+                });
+                *bind = None;
+            }
+            if let Some(s) = source.as_mut() {
+                s.len = n;
+                ctx.queue
+                    .write_buffer(&s.source, 0, bytemuck::cast_slice(&data));
+            }
+            Ok(())
+        })
     }
 
     /// One point-to-point iteration's sums for `target_from_source` with the correspondence gate.
@@ -272,20 +336,31 @@ impl GpuIcp {
         max_distance_m: f32,
         reference: Vec3,
     ) -> Result<(P2pSums, StageTimes)> {
-        let (v, t) = self.run(
+        self.p2p_sums_weighted(
             target_from_source,
             max_distance_m,
             reference,
-            0,
             GpuKernel::None,
-        )?;
-        let f = |i: usize| v[i] as f64;
+        )
+    }
+
+    /// [`GpuIcp::p2p_sums`] with each pair weighted by `kernel` of its point distance.
+    pub fn p2p_sums_weighted(
+        &mut self,
+        target_from_source: Mat4,
+        max_distance_m: f32,
+        reference: Vec3,
+        kernel: GpuKernel,
+    ) -> Result<(P2pSums, StageTimes)> {
+        let (v, t) = self.run(target_from_source, max_distance_m, reference, 0, kernel)?;
+        let f = |i: usize| v.get(i).copied().unwrap_or(f32::NAN) as f64;
         let sums = P2pSums {
             count: f(0),
             sum_p: [f(1), f(2), f(3)],
             sum_q: [f(4), f(5), f(6)],
             sum_pq: std::array::from_fn(|i| f(7 + i)),
             sum_d2: f(16),
+            weight: f(17),
         };
         Ok((sums, t))
     }
@@ -304,12 +379,13 @@ impl GpuIcp {
             ));
         }
         let (v, t) = self.run(target_from_source, max_distance_m, reference, 1, kernel)?;
-        let f = |i: usize| v[i] as f64;
+        let f = |i: usize| v.get(i).copied().unwrap_or(f32::NAN) as f64;
         let sys = PlaneSystem {
             count: f(0),
             jtj_upper: std::array::from_fn(|i| f(1 + i)),
             jtr: std::array::from_fn(|i| f(22 + i)),
             sum_wr2: f(28),
+            sum_d2: f(29),
         };
         Ok((sys, t))
     }
@@ -331,8 +407,13 @@ impl GpuIcp {
         let (Some(s), Some(t)) = (&self.source, &self.target) else {
             return Err(GpuError::Invalid("no clouds uploaded".into()));
         };
-        let idx: Vec<u32> = read_back(&self.ctx, &s.corr, s.len as u64 * 4)?;
-        let d2: Vec<f32> = read_back(&self.ctx, &s.dist2, s.len as u64 * 4)?;
+        let (idx, d2): (Vec<u32>, Vec<f32>) =
+            self.ctx.scoped("reading the correspondences back", || {
+                Ok((
+                    read_back(&self.ctx, &s.corr, s.len as u64 * 4)?,
+                    read_back(&self.ctx, &s.dist2, s.len as u64 * 4)?,
+                ))
+            })?;
         Ok(idx
             .iter()
             .zip(&d2)
@@ -360,6 +441,13 @@ impl GpuIcp {
                 "upload a target and a source first".into(),
             ));
         };
+        if let GpuKernel::Huber(k) | GpuKernel::Cauchy(k) = kernel {
+            if !(k.is_finite() && k > 0.0) {
+                return Err(GpuError::Invalid(format!(
+                    "robust kernel width {k} must be positive"
+                )));
+            }
+        }
         let groups = s.len.div_ceil(WG);
         let (kind, k) = match kernel {
             GpuKernel::None => (0, 1.0),
@@ -382,29 +470,39 @@ impl GpuIcp {
         };
         let mut times = StageTimes::default();
         let t0 = Instant::now();
-        self.ctx
-            .queue
-            .write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
         if self.bind.is_none() {
-            self.bind = Some(self.bind_group());
+            let bind = self
+                .ctx
+                .scoped("binding the buffers", || Ok(self.bind_group()))?;
+            self.bind = Some(bind);
         }
         let Some(bind) = &self.bind else {
             return Err(GpuError::Invalid("no bind group".into()));
         };
-        times.upload_ms = ms(t0);
-        let t1 = Instant::now();
-        self.dispatch(bind, &self.search, groups);
-        times.search_ms = ms(t1);
-        let t2 = Instant::now();
-        self.dispatch(bind, &self.sum, 1);
-        times.reduce_ms = ms(t2);
-        let t3 = Instant::now();
-        let v: Vec<f32> = read_back_via(&self.ctx, &self.totals, &self.readback, (K * 4) as u64)?;
-        times.download_ms = ms(t3);
-        Ok((v, times))
+        let ctx = &self.ctx;
+        ctx.scoped("running the ICP kernels", || {
+            ctx.queue
+                .write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
+            times.upload_ms = ms(t0);
+            let t1 = Instant::now();
+            self.dispatch(bind, &self.search, groups)?;
+            times.search_ms = ms(t1);
+            let t2 = Instant::now();
+            self.dispatch(bind, &self.sum, 1)?;
+            times.reduce_ms = ms(t2);
+            let t3 = Instant::now();
+            let v: Vec<f32> = read_back_via(ctx, &self.totals, &self.readback, (K * 4) as u64)?;
+            times.download_ms = ms(t3);
+            Ok((v, times))
+        })
     }
 
-    fn dispatch(&self, bind: &wgpu::BindGroup, pipeline: &wgpu::ComputePipeline, groups: u32) {
+    fn dispatch(
+        &self,
+        bind: &wgpu::BindGroup,
+        pipeline: &wgpu::ComputePipeline,
+        groups: u32,
+    ) -> Result<()> {
         let mut enc = self.ctx.device.create_command_encoder(&Default::default());
         {
             let mut pass = enc.begin_compute_pass(&Default::default());
@@ -413,7 +511,14 @@ impl GpuIcp {
             pass.dispatch_workgroups(groups, 1, 1);
         }
         self.ctx.queue.submit([enc.finish()]);
-        let _ = self.ctx.device.poll(wgpu::PollType::wait_indefinitely());
+        self.ctx
+            .device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| GpuError::Internal {
+                during: "waiting for the ICP kernels".into(),
+                msg: e.to_string(),
+            })?;
+        Ok(())
     }
 
     fn bind_group(&self) -> wgpu::BindGroup {
@@ -473,6 +578,27 @@ fn buffer(d: &wgpu::Device, label: &str, size: u64, usage: wgpu::BufferUsages) -
         usage,
         mapped_at_creation: false,
     })
+}
+
+/// Writes `bytes` into `old` if it is large enough, else into a new buffer with 25% headroom;
+/// returns the buffer and whether it is new.
+fn upload(
+    ctx: &GpuContext,
+    old: Option<wgpu::Buffer>,
+    label: &str,
+    bytes: &[u8],
+) -> (wgpu::Buffer, bool) {
+    let need = (bytes.len() as u64).max(16);
+    let (b, fresh) = match old {
+        Some(b) if b.size() >= need => (b, false),
+        _ => {
+            let size = (need + need / 4).next_multiple_of(16);
+            let usage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
+            (buffer(&ctx.device, label, size, usage), true)
+        }
+    };
+    ctx.queue.write_buffer(&b, 0, bytes);
+    (b, fresh)
 }
 
 fn read_back<T: Pod>(ctx: &GpuContext, src: &wgpu::Buffer, bytes: u64) -> Result<Vec<T>> {

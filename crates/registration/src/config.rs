@@ -72,6 +72,64 @@ pub enum NnBackend {
     KdTree,
 }
 
+/// Where the ICP iterations run.
+///
+/// The GPU path (the `gpu` feature, on by default) finds the correspondences and reduces the
+/// point-to-point SVD sums or the point-to-plane normal equations on the GPU (wgpu compute,
+/// Vulkan); only the 3x3 SVD / 6x6 solve and the stop criteria run on the CPU, with the same
+/// loop as the CPU path. GICP and `reject_worst_fraction > 0` run only on the CPU.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Device {
+    /// A hardware GPU where there is one and the method runs there (point-to-point,
+    /// point-to-plane); otherwise the CPU. A software rasteriser (Mesa's lavapipe) does not
+    /// count: it is slower than the CPU path. [`crate::Registrar::description`] says which
+    /// was chosen and why.
+    #[default]
+    Auto,
+    /// Always the CPU.
+    Cpu,
+    /// Always a GPU, a software one (lavapipe) included; no adapter is
+    /// [`RegistrationError::Gpu`], GICP or `reject_worst_fraction > 0` is
+    /// [`RegistrationError::InvalidParameter`].
+    Gpu,
+}
+
+impl Device {
+    /// The name used in configuration files and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Device::Auto => "auto",
+            Device::Cpu => "cpu",
+            Device::Gpu => "gpu",
+        }
+    }
+}
+
+impl std::fmt::Display for Device {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// The error of parsing a [`Device`] name.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown device '{0}' (expected auto, cpu or gpu)")]
+pub struct ParseDeviceError(pub String);
+
+impl FromStr for Device {
+    type Err = ParseDeviceError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim().to_ascii_lowercase().as_str() {
+            "auto" => Ok(Device::Auto),
+            "cpu" => Ok(Device::Cpu),
+            "gpu" => Ok(Device::Gpu),
+            _ => Err(ParseDeviceError(s.to_string())),
+        }
+    }
+}
+
 /// A robust kernel applied as iteratively re-weighted least squares weights on each pair's
 /// residual (point distance for point-to-point and GICP, plane distance for point-to-plane).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
@@ -135,6 +193,13 @@ pub struct IcpConfig {
     /// A result whose fitness (fraction of source points with a correspondence) is below this
     /// is [`RegistrationError::NotConverged`].
     pub min_fitness: f64,
+    /// Where the iterations run (see [`Device`]).
+    pub device: Device,
+    /// Against a target prepared with viewpoints (every sequence map, see
+    /// `Target::with_viewpoints`), pairs whose target surface faces away from the source's
+    /// sensor are no pairs. Runs on the CPU only: with it on, such registrations run on the CPU
+    /// under `device = auto` and are an error under `device = gpu`.
+    pub reject_back_faces: bool,
 }
 
 impl Default for IcpConfig {
@@ -156,6 +221,8 @@ impl Default for IcpConfig {
             source_voxel_m: Some(0.1),
             target_voxel_m: Some(0.1),
             min_fitness: 0.2,
+            device: Device::Auto,
+            reject_back_faces: true,
         }
     }
 }
@@ -237,6 +304,32 @@ impl IcpConfig {
                 m,
                 "must be within [0, 1]",
             ));
+        }
+        if self.device == Device::Gpu {
+            if !cfg!(feature = "gpu") {
+                return Err(RegistrationError::invalid(
+                    "device",
+                    f64::NAN,
+                    "device = gpu: this build has no GPU support (the registration crate's \
+                     `gpu` feature is off); use device = cpu or auto",
+                ));
+            }
+            if self.method == Method::Gicp {
+                return Err(RegistrationError::invalid(
+                    "device",
+                    f64::NAN,
+                    "device = gpu runs point-to-point and point-to-plane only; GICP runs on the \
+                     CPU (use device = cpu or auto, or method p2p / p2plane)",
+                ));
+            }
+            if self.reject_worst_fraction > 0.0 {
+                return Err(RegistrationError::invalid(
+                    "reject_worst_fraction",
+                    self.reject_worst_fraction,
+                    "must be 0 with device = gpu (the GPU reduction cannot drop the worst \
+                     pairs); use device = cpu or auto",
+                ));
+            }
         }
         Ok(())
     }

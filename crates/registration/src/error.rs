@@ -54,6 +54,18 @@ pub enum RegistrationError {
         /// What it must be.
         msg: String,
     },
+    /// The GPU path failed: no adapter for `device = gpu`, an input too large for the device,
+    /// or a device / driver error.
+    /// (The GPU error is part of the message, not a separate `source()`, so that printing the
+    /// error chain does not repeat it.)
+    #[cfg(feature = "gpu")]
+    #[error("GPU registration failed while {context}: {error}")]
+    Gpu {
+        /// What was being done.
+        context: String,
+        /// The GPU error.
+        error: gpu::GpuError,
+    },
     /// The two inputs to a sequence registration disagree (e.g. poses and scans counts).
     #[error("{what}: {msg}")]
     Mismatch {
@@ -72,6 +84,15 @@ impl RegistrationError {
             value,
             msg: msg.into(),
         }
+    }
+}
+
+#[cfg(feature = "gpu")]
+impl RegistrationError {
+    /// Wraps a GPU error with what was being done.
+    pub(crate) fn gpu(context: impl Into<String>) -> impl FnOnce(gpu::GpuError) -> Self {
+        let context = context.into();
+        move |error| RegistrationError::Gpu { context, error }
     }
 }
 

@@ -10,6 +10,13 @@
 //!   correspondence gate that adapts to 3 x RMSE (never below 0.15 m), and
 //!   [`IcpConfig::point_to_point`] is the paper's method at full resolution.
 //! - [`BucketGrid`] and [`KdTree`] implement [`NearestNeighbors`].
+//! - [`Device`] (`IcpConfig::device`: `auto`, `cpu`, `gpu`) says where the iterations run;
+//!   a [`Registrar`] keeps the device open (and, on a GPU, the target uploaded) across
+//!   registrations. Point-to-point and point-to-plane run on the GPU through the `gpu` crate
+//!   (feature `gpu`, default on); the loop is the same, only each iteration's correspondences
+//!   and sums come from the GPU (f32, centred on the moved source centroid), and the result
+//!   equals the CPU path's within 1e-7 m on the tests' pairs. `auto` ignores software
+//!   adapters (lavapipe): they are slower than the CPU.
 //!
 //! # Pipeline
 //! Missing returns (NaN in organised clouds) are skipped, the clouds optionally voxel-downsampled;
@@ -87,6 +94,7 @@ mod cells;
 mod config;
 mod correspondences;
 mod covariance;
+mod device;
 mod downsample;
 mod error;
 mod gicp;
@@ -101,11 +109,14 @@ mod point_to_point;
 mod sequence;
 mod target;
 
-pub use config::{IcpConfig, Method, NnBackend, ParseMethodError, RobustKernel};
+pub use config::{
+    Device, IcpConfig, Method, NnBackend, ParseDeviceError, ParseMethodError, RobustKernel,
+};
+pub use device::Registrar;
 pub use error::{RegistrationError, Result};
 pub use grid::BucketGrid;
 pub use icp::{register, register_to, IcpResult, IterationReport};
 pub use kdtree::KdTree;
 pub use nearest::NearestNeighbors;
-pub use sequence::{register_sequence, SequenceConfig, SequenceResult};
+pub use sequence::{register_sequence, register_sequence_with, SequenceConfig, SequenceResult};
 pub use target::Target;

@@ -8,9 +8,12 @@
 use crate::config::RobustKernel;
 use crate::correspondences::Correspondences;
 use crate::linalg::System6;
-use glam::{Affine3A, Vec3, Vec3A};
+use glam::{Affine3A, DVec3, Vec3, Vec3A};
 
-/// Accumulates the normal equations over the accepted pairs whose target has a normal.
+/// Accumulates the normal equations over the accepted pairs whose target has a normal,
+/// linearised about `reference`: the Jacobian is `J = [(d - reference) × n, n]`, so the solved
+/// increment rotates about `reference` (as the GPU kernels do; a reference near the points also
+/// keeps the system well conditioned).
 pub(crate) fn accumulate(
     corr: &Correspondences,
     source: &[Vec3],
@@ -18,6 +21,7 @@ pub(crate) fn accumulate(
     normals: &[Vec3],
     target_from_source: &Affine3A,
     kernel: RobustKernel,
+    reference: DVec3,
 ) -> System6 {
     corr.fold(
         System6::default(),
@@ -30,7 +34,7 @@ pub(crate) fn accumulate(
             let (d, m, n) = (d.as_dvec3(), target[j as usize].as_dvec3(), n.as_dvec3());
             let r = n.dot(d - m);
             let w = kernel.weight(r);
-            let c = d.cross(n);
+            let c = (d - reference).cross(n);
             acc.add_row(&[c.x, c.y, c.z, n.x, n.y, n.z], r, w);
             acc.sq_dist += d2 as f64;
             acc.pairs += 1;
@@ -44,7 +48,7 @@ mod tests {
     use super::*;
     use crate::correspondences::NONE;
     use crate::linalg::increment;
-    use glam::{DAffine3, DQuat, DVec3};
+    use glam::{DAffine3, DQuat};
 
     #[test]
     fn steps_converge_on_three_planes() {
@@ -82,7 +86,15 @@ mod tests {
         let mut t = DAffine3::IDENTITY;
         for _ in 0..5 {
             let a = Affine3A::from_mat4(glam::DMat4::from(t).as_mat4());
-            let sys = accumulate(&corr, &source, &target, &normals, &a, RobustKernel::None);
+            let sys = accumulate(
+                &corr,
+                &source,
+                &target,
+                &normals,
+                &a,
+                RobustKernel::None,
+                DVec3::ZERO,
+            );
             assert_eq!(sys.pairs, source.len());
             t = increment(&sys.solve().expect("solvable")) * t;
         }
@@ -90,7 +102,16 @@ mod tests {
         corr.pairs[0].0 = NONE;
         let a = Affine3A::IDENTITY;
         assert_eq!(
-            accumulate(&corr, &source, &target, &normals, &a, RobustKernel::None).pairs,
+            accumulate(
+                &corr,
+                &source,
+                &target,
+                &normals,
+                &a,
+                RobustKernel::None,
+                DVec3::ZERO
+            )
+            .pairs,
             source.len() - 1
         );
     }

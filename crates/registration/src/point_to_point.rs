@@ -93,20 +93,26 @@ impl CorrelationSums {
 }
 
 /// Accumulates the sums over the accepted pairs of `corr`; the source points are moved by
-/// `target_from_source` first.
+/// `target_from_source` first, and both points of a pair are taken relative to `reference`
+/// (so the step solved from the sums is in a frame centred there).
 pub(crate) fn accumulate(
     corr: &Correspondences,
     source: &[Vec3],
     target: &[Vec3],
     target_from_source: &Affine3A,
     kernel: RobustKernel,
+    reference: DVec3,
 ) -> CorrelationSums {
     corr.fold(
         CorrelationSums::default(),
         |acc, i, j, d2| {
             let d = target_from_source.transform_point3a(Vec3A::from(source[i]));
             let w = kernel.weight((d2 as f64).sqrt());
-            acc.add(Vec3::from(d).as_dvec3(), target[j as usize].as_dvec3(), w);
+            acc.add(
+                Vec3::from(d).as_dvec3() - reference,
+                target[j as usize].as_dvec3() - reference,
+                w,
+            );
         },
         CorrelationSums::merge,
     )

@@ -7,9 +7,10 @@
 //! odometry pose.
 
 use crate::config::IcpConfig;
+use crate::device::Registrar;
 use crate::downsample::{finite_points, voxel_downsample, voxel_downsample_with};
 use crate::error::{RegistrationError, Result};
-use crate::icp::{register_to, IcpResult};
+use crate::icp::IcpResult;
 use crate::target::Target;
 use cloud::PointCloud;
 use glam::{DAffine3, Vec3};
@@ -54,7 +55,29 @@ pub struct SequenceResult {
 /// relative motion is then the identity). `progress(done, total)` is called after each scan.
 /// A scan that fails to register stops the sequence with its error (for
 /// [`RegistrationError::NotConverged`] the reason names the scan).
+///
+/// Opens the device of `config.icp.device` once for the whole sequence (see
+/// [`register_sequence_with`] to choose it yourself).
 pub fn register_sequence(
+    scans: &[PointCloud],
+    world_from_scan_guess: &[DAffine3],
+    config: &SequenceConfig,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<SequenceResult> {
+    let mut registrar = Registrar::new(&config.icp)?;
+    register_sequence_with(
+        &mut registrar,
+        scans,
+        world_from_scan_guess,
+        config,
+        progress,
+    )
+}
+
+/// [`register_sequence`] on an open device: on a GPU the kernels and buffers serve every scan,
+/// and each scan's map is uploaded once for all its iterations.
+pub fn register_sequence_with(
+    registrar: &mut Registrar,
     scans: &[PointCloud],
     world_from_scan_guess: &[DAffine3],
     config: &SequenceConfig,
@@ -113,8 +136,9 @@ pub fn register_sequence(
     let mut results = vec![None];
     let mut map = scan_points(0)?;
     move_points(&mut map, &odom(0));
-    let mut views = vec![odom(0).transform_point3(sensor(0).as_dvec3()).as_vec3(); map.len()];
-    (map, views) = voxel_downsample_with(&map, &views, config.map_voxel_m, "map_voxel_m")?;
+    let views = vec![odom(0).transform_point3(sensor(0).as_dvec3()).as_vec3(); map.len()];
+    let (mut map, mut views) =
+        voxel_downsample_with(&map, &views, config.map_voxel_m, "map_voxel_m")?;
     progress(1, total);
     for k in 1..total {
         let points = scan_points(k)?;
@@ -124,7 +148,7 @@ pub fn register_sequence(
         let guess = world_from_scan[k - 1] * odom(k - 1).inverse() * odom(k);
         let mut source = PointCloud::from_points(points);
         source.sensor_origin = sensor(k);
-        let result = match register_to(&target, &source, guess, &config.icp) {
+        let result = match registrar.register_to(&target, &source, guess, &config.icp) {
             Ok(r) => r,
             Err(RegistrationError::NotConverged { result, reason }) => {
                 return Err(RegistrationError::NotConverged {

@@ -9,7 +9,11 @@ use crate::error::{RegistrationError, Result};
 use crate::nearest::{NearestNeighbors, NnIndex};
 use cloud::PointCloud;
 use glam::{Mat3, Vec3};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
+
+/// Source of [`Target`] ids (a GPU keeps a target uploaded while its id is the same).
+static NEXT_ID: AtomicU64 = AtomicU64::new(1);
 
 /// A target cloud prepared for registration: its points (downsampled if configured), their
 /// nearest-neighbour structure and, for point-to-plane and GICP, their normals and
@@ -22,6 +26,8 @@ pub struct Target {
     method: Method,
     oriented: bool,
     build_ms: f64,
+    bucket_size_m: f64,
+    id: u64,
 }
 
 impl Target {
@@ -117,6 +123,8 @@ impl Target {
             method: config.method,
             oriented,
             build_ms: start.elapsed().as_secs_f64() * 1e3,
+            bucket_size_m: config.bucket_size_m,
+            id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
         })
     }
 
@@ -157,6 +165,18 @@ impl Target {
     /// The method the target was prepared for.
     pub fn prepared_for(&self) -> Method {
         self.method
+    }
+
+    /// The bucket edge the target was prepared with.
+    #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+    pub(crate) fn bucket_size_m(&self) -> f64 {
+        self.bucket_size_m
+    }
+
+    /// Unique per prepared target (a target never changes after preparation).
+    #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
+    pub(crate) fn id(&self) -> u64 {
+        self.id
     }
 
     pub(crate) fn index(&self) -> &NnIndex {

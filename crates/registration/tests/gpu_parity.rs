@@ -1,0 +1,366 @@
+//! The GPU path of the ICP loop against the CPU path: the same loop with the per-iteration
+//! sums from the GPU must end at the same transform (within 1e-4 m and 1e-3 degrees), on
+//! synthetic and real pairs voxelised to a few thousand points so that a software adapter
+//! (Mesa's lavapipe, the only one in CI) stays fast. Each test skips, saying so, only where
+//! there is no Vulkan adapter at all.
+//!
+//! The stop criteria are tightened (steps below 1 um / 1e-5 degrees, no RMSE criterion) so both
+//! paths run to the loop's fixed point: with the default criteria a path may stop one iteration
+//! earlier than the other, up to `translation_epsilon_m` (0.1 mm) away, because the f32 GPU
+//! sums and the f64 CPU sums differ in the last digits.
+
+#![cfg(feature = "gpu")]
+
+mod common;
+
+use cloud::PointCloud;
+use common::{pose_error, real_data, scan_pair_at, standard_start};
+use glam::{DAffine3, DQuat, DVec3};
+use registration::*;
+use scanner::ScanPose;
+
+/// Opens the GPU path, or says why the test is skipped (no adapter at all).
+fn gpu_or_skip(test: &str) -> bool {
+    let config = IcpConfig {
+        method: Method::PointToPoint,
+        device: Device::Gpu,
+        ..IcpConfig::default()
+    };
+    match Registrar::new(&config) {
+        Ok(r) => {
+            eprintln!("{test}: {}", r.description());
+            true
+        }
+        Err(RegistrationError::Gpu {
+            error: gpu::GpuError::NoAdapter(why),
+            ..
+        }) => {
+            eprintln!("{test}: SKIPPED: no GPU adapter at all ({why})");
+            false
+        }
+        Err(e) => panic!("{test}: opening the GPU failed: {e}"),
+    }
+}
+
+/// `config` with stop criteria tight enough to reach the fixed point.
+fn tight(config: IcpConfig) -> IcpConfig {
+    IcpConfig {
+        translation_epsilon_m: 1e-6,
+        rotation_epsilon_deg: 1e-5,
+        rmse_relative_epsilon: 0.0,
+        max_iterations: 100,
+        ..config
+    }
+}
+
+fn voxel(config: IcpConfig, v: f64) -> IcpConfig {
+    IcpConfig {
+        source_voxel_m: Some(v),
+        target_voxel_m: Some(v),
+        normal_voxel_m: config.normal_voxel_m.max(v),
+        ..config
+    }
+}
+
+/// Registers on both devices and checks the transforms agree within 1e-4 m and 1e-3 degrees.
+fn assert_parity(
+    name: &str,
+    source: &PointCloud,
+    target: &PointCloud,
+    guess: DAffine3,
+    config: &IcpConfig,
+) -> IcpResult {
+    let on = |device| {
+        let c = IcpConfig {
+            device,
+            ..config.clone()
+        };
+        let mut registrar = Registrar::new(&c).expect("device opens");
+        match registrar.register(source, target, guess, &c) {
+            Ok(r) => r,
+            Err(e) => panic!("{name} on {device}: {e}"),
+        }
+    };
+    let cpu = on(Device::Cpu);
+    let gpu = on(Device::Gpu);
+    let (dt, dr) = pose_error(&gpu.target_from_source, &cpu.target_from_source);
+    // Median iteration time (the whole call also prepares the target and uploads it).
+    let ms = |r: &IcpResult| {
+        let mut t: Vec<f64> = r.iterations.iter().map(|i| i.time_ms).collect();
+        t.sort_by(f64::total_cmp);
+        t.get(t.len() / 2).copied().unwrap_or(f64::NAN)
+    };
+    eprintln!(
+        "{name}: GPU vs CPU {dt:.2e} m {dr:.2e} deg; iterations {} / {}, {} / {} pairs, \
+         {:.1} / {:.1} ms per iteration (median), RMSE {:.5} / {:.5} m",
+        gpu.iterations.len(),
+        cpu.iterations.len(),
+        gpu.iterations.last().map_or(0, |i| i.correspondences),
+        cpu.iterations.last().map_or(0, |i| i.correspondences),
+        ms(&gpu),
+        ms(&cpu),
+        gpu.rmse_m,
+        cpu.rmse_m,
+    );
+    let slowest = gpu.iterations.iter().map(|i| i.time_ms).fold(0.0, f64::max);
+    eprintln!(
+        "{name}: GPU call {:.0} ms in all, slowest iteration {slowest:.0} ms",
+        gpu.total_ms
+    );
+    assert!(
+        dt < 1e-4 && dr < 1e-3,
+        "{name}: GPU and CPU results differ by {dt} m, {dr} deg"
+    );
+    assert!((gpu.fitness - cpu.fitness).abs() < 0.01, "{name}: fitness");
+    cpu
+}
+
+/// Room B of the default building, scanned 1 m and 5 degrees apart.
+fn room_pair() -> (PointCloud, PointCloud, DAffine3) {
+    scan_pair_at(
+        181,
+        91,
+        ScanPose {
+            x_m: 8.5,
+            y_m: 3.8,
+            yaw_deg: 0.0,
+        },
+        ScanPose {
+            x_m: 9.5,
+            y_m: 3.8,
+            yaw_deg: 5.0,
+        },
+    )
+}
+
+#[test]
+fn gpu_point_to_point_equals_cpu_on_a_synthetic_room() {
+    if !gpu_or_skip("synthetic p2p") {
+        return;
+    }
+    let (target, source, truth) = room_pair();
+    let config = tight(voxel(IcpConfig::point_to_point(), 0.1));
+    let r = assert_parity(
+        "synthetic room, p2p",
+        &source,
+        &target,
+        standard_start(&truth),
+        &config,
+    );
+    let (et, er) = pose_error(&r.target_from_source, &truth);
+    assert!(et < 0.05 && er < 0.5, "{et} m {er} deg from the truth");
+}
+
+#[test]
+fn gpu_point_to_plane_equals_cpu_on_a_synthetic_room_also_with_a_kernel() {
+    if !gpu_or_skip("synthetic p2plane") {
+        return;
+    }
+    let (target, source, truth) = room_pair();
+    for kernel in [RobustKernel::None, RobustKernel::Huber { k_m: 0.05 }] {
+        let config = tight(voxel(
+            IcpConfig {
+                method: Method::PointToPlane,
+                kernel,
+                ..IcpConfig::default()
+            },
+            0.1,
+        ));
+        let r = assert_parity(
+            &format!("synthetic room, p2plane, {kernel:?}"),
+            &source,
+            &target,
+            standard_start(&truth),
+            &config,
+        );
+        let (et, er) = pose_error(&r.target_from_source, &truth);
+        assert!(et < 0.01 && er < 0.1, "{et} m {er} deg from the truth");
+    }
+}
+
+#[test]
+fn gpu_point_to_point_with_a_cauchy_kernel_equals_cpu() {
+    if !gpu_or_skip("synthetic p2p cauchy") {
+        return;
+    }
+    let (target, source, truth) = room_pair();
+    let config = tight(voxel(
+        IcpConfig {
+            kernel: RobustKernel::Cauchy { k_m: 0.1 },
+            ..IcpConfig::point_to_point()
+        },
+        0.15,
+    ));
+    assert_parity(
+        "synthetic room, p2p, Cauchy",
+        &source,
+        &target,
+        standard_start(&truth),
+        &config,
+    );
+}
+
+#[test]
+fn gpu_equals_cpu_on_small_gicps_outdoor_pair() {
+    let Some(dir) = real_data("gpu small_gicp pair") else {
+        return;
+    };
+    if !gpu_or_skip("small_gicp pair") {
+        return;
+    }
+    let dir = dir.join("small-gicp");
+    let source = cloud::read_cloud(&dir.join("source.ply")).expect("source");
+    let target = cloud::read_cloud(&dir.join("target.ply")).expect("target");
+    for method in [Method::PointToPlane, Method::PointToPoint] {
+        let config = tight(voxel(
+            IcpConfig {
+                method,
+                neighbours_k: 10,
+                ..IcpConfig::default()
+            },
+            0.5,
+        ));
+        assert_parity(
+            &format!("small_gicp outdoor pair, {method}"),
+            &source,
+            &target,
+            DAffine3::IDENTITY,
+            &config,
+        );
+    }
+}
+
+#[test]
+fn gpu_equals_cpu_on_pcls_room_pair() {
+    let Some(dir) = real_data("gpu pcl room pair") else {
+        return;
+    };
+    if !gpu_or_skip("pcl room pair") {
+        return;
+    }
+    let dir = dir.join("pcl-room");
+    let target = cloud::read_cloud(&dir.join("room_scan1.pcd")).expect("scan1");
+    let source = cloud::read_cloud(&dir.join("room_scan2.pcd")).expect("scan2");
+    #[allow(clippy::approx_constant)]
+    let guess = DAffine3::from_rotation_translation(
+        DQuat::from_rotation_z(0.6931),
+        DVec3::new(1.79387, 0.720047, 0.0),
+    );
+    for method in [Method::PointToPlane, Method::PointToPoint] {
+        let config = tight(voxel(
+            IcpConfig {
+                method,
+                ..IcpConfig::default()
+            },
+            0.2,
+        ));
+        assert_parity(
+            &format!("pcl room pair, {method}"),
+            &source,
+            &target,
+            guess,
+            &config,
+        );
+    }
+}
+
+#[test]
+fn gpu_sequence_equals_cpu_sequence_with_one_device_for_every_scan() {
+    if !gpu_or_skip("sequence") {
+        return;
+    }
+    let poses = [(6.5, 0.0, 0.0), (7.3, 0.1, 3.0), (8.1, -0.1, 6.0)];
+    let building = scanner::Building::default_building().expect("building");
+    let geometry = scanner::BuildingGeometry::new(&building);
+    let laser = scanner::VirtualLaser::new(scanner::LaserConfig {
+        beams: 121,
+        rotation_steps: 61,
+        ..Default::default()
+    })
+    .expect("laser");
+    let scans: Vec<PointCloud> = poses
+        .iter()
+        .enumerate()
+        .map(|(k, &(x_m, y_m, yaw_deg))| {
+            laser.scan(&geometry, &ScanPose { x_m, y_m, yaw_deg }, k as u64)
+        })
+        .collect();
+    let config = |device| SequenceConfig {
+        icp: tight(IcpConfig {
+            method: Method::PointToPlane,
+            device,
+            // The back-face test runs on the CPU only.
+            reject_back_faces: false,
+            ..IcpConfig::default()
+        }),
+        scan_voxel_m: 0.1,
+        map_voxel_m: 0.1,
+    };
+    let cpu = register_sequence(&scans, &[], &config(Device::Cpu), &mut |_, _| {}).expect("cpu");
+    let c = config(Device::Gpu);
+    let mut registrar = Registrar::new(&c.icp).expect("gpu");
+    assert!(registrar.uses_gpu());
+    let gpu = register_sequence_with(&mut registrar, &scans, &[], &c, &mut |_, _| {}).expect("gpu");
+    for (k, (a, b)) in cpu
+        .world_from_scan
+        .iter()
+        .zip(&gpu.world_from_scan)
+        .enumerate()
+    {
+        let (dt, dr) = pose_error(b, a);
+        eprintln!("sequence scan {k}: GPU vs CPU {dt:.2e} m {dr:.2e} deg");
+        assert!(dt < 1e-4 && dr < 1e-3, "scan {k}: {dt} m {dr} deg");
+    }
+}
+
+#[test]
+fn device_choices_are_explained_and_checked() {
+    let gicp_on_gpu = IcpConfig {
+        device: Device::Gpu,
+        ..IcpConfig::default()
+    };
+    match Registrar::new(&gicp_on_gpu) {
+        Err(RegistrationError::InvalidParameter { name, msg, .. }) => {
+            assert_eq!(name, "device");
+            assert!(msg.contains("GICP"), "{msg}");
+        }
+        other => panic!("GICP on the GPU: {other:?}"),
+    }
+    let rejecting = IcpConfig {
+        method: Method::PointToPoint,
+        device: Device::Gpu,
+        reject_worst_fraction: 0.1,
+        ..IcpConfig::default()
+    };
+    assert!(matches!(
+        Registrar::new(&rejecting),
+        Err(RegistrationError::InvalidParameter {
+            name: "reject_worst_fraction",
+            ..
+        })
+    ));
+    // Auto with GICP never probes a GPU.
+    let auto = Registrar::new(&IcpConfig::default()).expect("auto");
+    assert!(!auto.uses_gpu() && auto.description().contains("GICP"));
+    // Auto with point-to-point: a hardware GPU, else the CPU with the reason (a software
+    // adapter such as lavapipe is not used).
+    let p2p = IcpConfig {
+        method: Method::PointToPoint,
+        ..IcpConfig::default()
+    };
+    let auto = Registrar::new(&p2p).expect("auto");
+    eprintln!("auto chose: {}", auto.description());
+    if auto.uses_gpu() {
+        assert!(!auto.description().contains("software"));
+    } else {
+        assert!(auto.description().starts_with("CPU (auto: "));
+    }
+    let text = toml::to_string(&IcpConfig {
+        device: Device::Gpu,
+        ..p2p
+    })
+    .expect("toml");
+    assert!(text.contains("device = \"gpu\""), "{text}");
+    assert_eq!("GPU".parse::<Device>(), Ok(Device::Gpu));
+    assert!("tpu".parse::<Device>().is_err());
+}

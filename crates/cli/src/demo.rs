@@ -46,7 +46,7 @@ pub fn run(a: DemoArgs, cfg: &SemsimConfig) -> anyhow::Result<()> {
     let summary = crate::scan::write_scans(&building, &demo_poses(), cfg, &a.out)?;
     summary.print();
     println!("  wrote {}", building_path.display());
-    let input = crate::register::collect_sequence(&[a.out.clone()], None, None)?;
+    let input = crate::register::collect_sequence(std::slice::from_ref(&a.out), None, None)?;
     let scans = crate::map::read_scans(&input.files, None)?;
     let scenario = sim::Scenario::default_scenario()?;
     let text = sim::Scenario::default_scenario_toml();

@@ -71,6 +71,88 @@ fn demo_writes_scans_ground_truth_odometry_and_config() {
     );
     let b = Building::load(&d.join("demo/building.toml")).expect("building reloads");
     assert_eq!(b, Building::default_building().expect("default"));
+    // The map stage: its files, a map that loads again, labels for every point.
+    let map_files = d.listing("demo/map");
+    for f in [
+        "semantic_map.json",
+        "labels.pcd",
+        "projection.png",
+        "filtered.png",
+        "dilated.png",
+        "skeleton.png",
+        "segments.png",
+        "merged_segments.png",
+        "top_view.png",
+        "labels.png",
+        "config.toml",
+    ] {
+        assert!(
+            map_files.contains(&f.to_string()),
+            "{f} missing: {map_files:?}"
+        );
+    }
+    let map = semantic::SemanticMap::load(&d.join("demo/map/semantic_map.json")).expect("loads");
+    assert!(map.of_class(semantic::EntityClass::Wall).count() >= 4);
+    let labelled = cloud::read_cloud(&d.join("demo/map/labels.pcd")).expect("labels.pcd");
+    assert!(labelled.labels.is_some() && labelled.len() > 10_000);
+    // eval map against the truth: floor and ceiling found, the JSON parses.
+    let ev = d
+        .run(&[
+            "eval",
+            "map",
+            "demo/map/semantic_map.json",
+            "--building",
+            "demo/building.toml",
+            "--cloud",
+            "demo/map/labels.pcd",
+            "--json",
+        ])
+        .ok();
+    let ev: serde_json::Value = serde_json::from_str(&ev).expect("one JSON object");
+    assert_eq!(ev["floor"]["matched"], 1, "{ev}");
+    assert_eq!(ev["ceiling"]["matched"], 1, "{ev}");
+    assert!(ev["walls"]["f1"].as_f64().expect("f1") > 0.8, "{ev}");
+    // The simulation ran in the map's world and left its scenario; rerunning it from the map
+    // gives the same events byte for byte.
+    let sim_files = d.listing("demo/simulation");
+    assert!(
+        sim_files.contains(&"scenario.toml".to_string()),
+        "{sim_files:?}"
+    );
+    let rerun = d.run(&[
+        "simulate",
+        "--map",
+        "demo/map/semantic_map.json",
+        "--scenario",
+        "demo/simulation/scenario.toml",
+        "--out",
+        "rerun",
+    ]);
+    assert!(rerun.code() == 0 || rerun.code() == 1, "{}", rerun.stderr());
+    assert_eq!(
+        std::fs::read(d.join("demo/simulation/events.jsonl")).expect("events"),
+        std::fs::read(d.join("rerun/events.jsonl")).expect("rerun events")
+    );
+}
+
+#[test]
+fn map_eval_and_run_reject_bad_input() {
+    let d = Dir::new();
+    d.write("empty.xyz", "");
+    d.write("bad.json", "{\"format\": \"semsim.semantic_map\", \"version\": 1, \"entities\": [{\"id\": 1, \"class\": \"window\"}]}");
+    d.run(&["map", "nope.pcd", "--out", "m"])
+        .bad_input(&["nope.pcd"]);
+    d.run(&["map", "empty.xyz", "--out", "m"]).bad_input(&[]);
+    d.run(&["map", "empty.xyz", "--voxel-m", "-1", "--out", "m"])
+        .bad_input(&["--voxel-m"]);
+    d.run(&["eval", "map", "bad.json", "--building", "default"])
+        .bad_input(&["bad.json"]);
+    d.run(&["simulate", "--map", "bad.json", "--out", "s"])
+        .bad_input(&["bad.json"]);
+    d.write("s.toml", "name = \"x\"\ntime_limit_s = -1.0\n");
+    d.run(&["run", "empty.xyz", "--scenario", "s.toml", "--out", "r"])
+        .bad_input(&[]);
+    assert!(!d.join("m/semantic_map.json").exists());
 }
 
 #[test]

@@ -230,8 +230,16 @@ fn gpu_ms_per_iteration(
     let source_upload_ms = t0.elapsed().as_secs_f64() * 1e3;
     let mut sum = gpu::StageTimes::default();
     let reference = target.iter().copied().sum::<Vec3>() / target.len() as f32;
-    for _ in 0..iterations {
-        let (_, t) = g.p2p_sums(start(), 0.5, reference)?;
+    // Alternate between the start and a transform 2 cm / 0.2 degrees away, as consecutive ICP
+    // iterations move: each search starts from the previous iteration's pairs (its hints) but
+    // never from the answer itself.
+    let nudge = Mat4::from_rotation_translation(
+        Quat::from_rotation_z(0.2f32.to_radians()),
+        Vec3::new(0.02, -0.01, 0.005),
+    );
+    for i in 0..iterations {
+        let t = if i % 2 == 0 { start() } else { start() * nudge };
+        let (_, t) = g.p2p_sums(t, 0.5, reference)?;
         sum.upload_ms += t.upload_ms;
         sum.search_ms += t.search_ms;
         sum.reduce_ms += t.reduce_ms;

@@ -15,6 +15,7 @@ struct Params {
     dims: vec4<u32>,          // buckets per axis, w: hash mask
     counts: vec4<u32>,        // x: source points, y: mode (0 p2p, 1 p2plane), z: kernel (0 none, 1 huber, 2 cauchy), w: partials
     kernel: vec4<f32>,        // x: kernel width k (m), z: sub-cells per bucket axis
+    sensor: vec4<f32>,        // xyz: the source's sensor in the source frame, w: 1 = reject back faces
 };
 
 @group(0) @binding(0) var<uniform> params: Params;
@@ -90,8 +91,16 @@ fn scan_bucket(p: vec3<f32>, cc: vec3<i32>, best: ptr<function, Hit>) {
 // The paper's bucket search: the query's bucket first, then its 26 neighbours (faces, edges,
 // corners), skipping buckets and sub-cells farther than the best point so far. Exact for every
 // neighbour within one bucket edge; with the bucket edge >= the correspondence gate, exact.
-fn nearest(p: vec3<f32>) -> Hit {
+// `hint` (the point's correspondence in the previous iteration) is any model point: inside the
+// gate it bounds the search from the start, which prunes almost every sub-cell once the
+// transform changes little; the result is the same (smallest distance, then smallest index).
+fn nearest(p: vec3<f32>, hint: u32) -> Hit {
     var best = Hit(NONE, params.reference.w);
+    if (hint < arrayLength(&model)) {
+        let d = model[hint].xyz - p;
+        let d2 = dot(d, d);
+        if (d2 < best.d2) { best = Hit(hint, d2); }
+    }
     let g = clamp((p - params.origin.xyz) * params.origin.w, vec3<f32>(-4.0), vec3<f32>(params.dims.xyz) + vec3<f32>(4.0));
     let c = vec3<i32>(floor(g));
     scan_bucket(p, c, &best);
@@ -126,10 +135,19 @@ fn search_reduce(@builtin(global_invocation_id) gid: vec3<u32>,
     if (i < params.counts.x) {
         let s = source[i].xyz;
         let p = (params.transform * vec4<f32>(s, 1.0)).xyz;
-        let hit = nearest(p);
+        let hit = nearest(p, corr[i]);
+        // The nearest point stays the next iteration's hint even when the back-face test
+        // rejects the pair; dist2 < 0 marks "no pair".
         corr[i] = hit.index;
-        dist2[i] = select(-1.0, hit.d2, hit.index != NONE);
-        if (hit.index != NONE) {
+        var paired = hit.index != NONE;
+        if (paired && params.sensor.w > 0.5) {
+            // A model surface whose oriented normal points away from the source's sensor is
+            // seen from behind (the far face of a wall): no pair.
+            let eye = (params.transform * vec4<f32>(params.sensor.xyz, 1.0)).xyz;
+            paired = dot(normals[hit.index].xyz, eye - model[hit.index].xyz) >= 0.0;
+        }
+        dist2[i] = select(-1.0, hit.d2, paired);
+        if (paired) {
             let q = model[hit.index].xyz - params.reference.xyz;
             let pc = p - params.reference.xyz;
             let o = lid * K;

@@ -21,6 +21,7 @@ struct Params {
     dims: [u32; 4],
     counts: [u32; 4],
     kernel: [f32; 4],
+    sensor: [f32; 4],
 }
 
 /// Robust kernel for point-to-plane (IRLS weight computed on the GPU).
@@ -116,6 +117,10 @@ pub struct GpuIcp {
     target: Option<TargetBuffers>,
     source: Option<SourceBuffers>,
     bind: Option<wgpu::BindGroup>,
+    /// The source's sensor (source frame) for the back-face test, if on.
+    sensor: Option<Vec3>,
+    /// The per-point correspondences (the next search's hints) belong to other clouds.
+    hints_stale: bool,
 }
 
 impl GpuIcp {
@@ -134,6 +139,8 @@ impl GpuIcp {
             target: None,
             source: None,
             bind: None,
+            sensor: None,
+            hints_stale: true,
         })
     }
 
@@ -277,6 +284,30 @@ impl GpuIcp {
         if reallocated {
             self.bind = None;
         }
+        self.hints_stale = true;
+        self.sensor = None;
+        Ok(())
+    }
+
+    /// Turns the back-face test on (`Some(sensor)`, the source's sensor position in the source
+    /// frame) or off (`None`, the default; a new target turns it off). With it on, a nearest
+    /// model point whose normal points away from the sensor (moved into the model frame by
+    /// each iteration's transform) is no pair: its surface is seen from behind. The model's
+    /// normals must be oriented toward the sensors that saw them.
+    pub fn set_back_face_test(&mut self, sensor_in_source: Option<Vec3>) -> Result<()> {
+        if let Some(s) = sensor_in_source {
+            if !s.is_finite() {
+                return Err(GpuError::Invalid(format!(
+                    "the sensor position {s} is not finite"
+                )));
+            }
+            if !self.target_has_normals() {
+                return Err(GpuError::Invalid(
+                    "the back-face test needs a target with (oriented) normals".into(),
+                ));
+            }
+        }
+        self.sensor = sensor_in_source;
         Ok(())
     }
 
@@ -326,7 +357,9 @@ impl GpuIcp {
                     .write_buffer(&s.source, 0, bytemuck::cast_slice(&data));
             }
             Ok(())
-        })
+        })?;
+        self.hints_stale = true;
+        Ok(())
     }
 
     /// One point-to-point iteration's sums for `target_from_source` with the correspondence gate.
@@ -418,7 +451,8 @@ impl GpuIcp {
             .iter()
             .zip(&d2)
             .map(|(&i, &d)| {
-                (i != NONE).then(|| (t.grid.original.get(i as usize).copied().unwrap_or(NONE), d))
+                (i != NONE && d >= 0.0)
+                    .then(|| (t.grid.original.get(i as usize).copied().unwrap_or(NONE), d))
             })
             .collect())
     }
@@ -467,6 +501,10 @@ impl GpuIcp {
             dims: [g.dims[0], g.dims[1], g.dims[2], g.keys.len() as u32 - 1],
             counts: [s.len, mode, kind, groups],
             kernel: [k, 0.0, g.sub as f32, 0.0],
+            sensor: match self.sensor {
+                Some(v) => [v.x, v.y, v.z, 1.0],
+                None => [0.0; 4],
+            },
         };
         let mut times = StageTimes::default();
         let t0 = Instant::now();
@@ -480,7 +518,14 @@ impl GpuIcp {
             return Err(GpuError::Invalid("no bind group".into()));
         };
         let ctx = &self.ctx;
-        ctx.scoped("running the ICP kernels", || {
+        let stale = self.hints_stale;
+        let out = ctx.scoped("running the ICP kernels", || {
+            if stale {
+                // No hints yet: every search starts from the gate.
+                let none = vec![NONE; s.len as usize];
+                ctx.queue
+                    .write_buffer(&s.corr, 0, bytemuck::cast_slice(&none));
+            }
             ctx.queue
                 .write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
             times.upload_ms = ms(t0);
@@ -494,7 +539,11 @@ impl GpuIcp {
             let v: Vec<f32> = read_back_via(ctx, &self.totals, &self.readback, (K * 4) as u64)?;
             times.download_ms = ms(t3);
             Ok((v, times))
-        })
+        });
+        if out.is_ok() {
+            self.hints_stale = false;
+        }
+        out
     }
 
     fn dispatch(
@@ -638,4 +687,93 @@ fn read_back_via<T: Pod>(
     drop(view);
     staging.unmap();
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    //! wgpu's validation errors, forced on purpose, come back as typed errors naming what was
+    //! being done (not as wgpu's default panic), and the device stays usable afterwards.
+    use super::*;
+    use crate::context::AdapterChoice;
+
+    fn open(test: &str) -> Option<GpuIcp> {
+        match GpuContext::new(AdapterChoice::Any) {
+            Ok(ctx) => Some(GpuIcp::new(ctx).expect("kernels compile")),
+            Err(GpuError::NoAdapter(why)) => {
+                eprintln!("{test}: SKIPPED: no GPU adapter at all ({why})");
+                None
+            }
+            Err(e) => panic!("{test}: opening the GPU failed: {e}"),
+        }
+    }
+
+    fn line(n: usize) -> Vec<Vec3> {
+        (0..n)
+            .map(|i| Vec3::new(i as f32 * 0.01, 0.0, 0.0))
+            .collect()
+    }
+
+    #[test]
+    fn a_validation_error_inside_a_scope_is_a_typed_error_and_the_device_recovers() {
+        let Some(mut icp) = open("validation_error") else {
+            return;
+        };
+        let points = line(500);
+        icp.set_target(&points, None, 0.2).expect("target");
+        icp.set_source(&points).expect("source");
+        let (before, _) = icp.p2p_sums(Mat4::IDENTITY, 0.5, Vec3::ZERO).expect("sums");
+        assert_eq!(before.count as usize, 500);
+        // More workgroups than one dispatch may have: wgpu rejects the dispatch.
+        let too_many = icp.ctx.limits.max_compute_workgroups_per_dimension + 1;
+        let bind = icp.bind.clone().expect("bound");
+        let err = icp
+            .ctx
+            .scoped("dispatching too many workgroups", || {
+                icp.dispatch(&bind, &icp.search, too_many)
+            })
+            .expect_err("wgpu must reject the dispatch");
+        match &err {
+            GpuError::Validation { during, msg } => {
+                assert_eq!(during, "dispatching too many workgroups");
+                assert!(!msg.is_empty());
+            }
+            other => panic!("expected a validation error, got {other:?}"),
+        }
+        assert!(
+            !err.is_bad_input(),
+            "a kernel misuse is not the user's input"
+        );
+        // Nothing is lost: the next iteration runs and gives the same sums.
+        let (after, _) = icp.p2p_sums(Mat4::IDENTITY, 0.5, Vec3::ZERO).expect("sums");
+        assert_eq!(after, before);
+    }
+
+    #[test]
+    fn an_error_outside_every_scope_is_reported_by_the_next_operation() {
+        let Some(mut icp) = open("uncaptured_error") else {
+            return;
+        };
+        // A buffer larger than the device allows, created outside any error scope: wgpu hands
+        // the error to the uncaptured-error handler (whose default would panic).
+        let too_big = icp.ctx.limits.max_buffer_size.saturating_add(16);
+        let _ = icp.ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("too big"),
+            size: too_big,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        let points = line(100);
+        let err = icp
+            .set_target(&points, None, 0.2)
+            .expect_err("the recorded error comes back");
+        assert!(
+            matches!(&err, GpuError::Validation { msg, .. } if !msg.is_empty()),
+            "{err:?}"
+        );
+        // Reported once: the retry succeeds.
+        icp.set_target(&points, None, 0.2).expect("target");
+        icp.set_source(&points).expect("source");
+        let (sums, _) = icp.p2p_sums(Mat4::IDENTITY, 0.5, Vec3::ZERO).expect("sums");
+        assert_eq!(sums.count as usize, 100);
+    }
 }

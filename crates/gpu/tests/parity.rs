@@ -69,29 +69,38 @@ fn gpu_correspondences_equal_brute_force_within_the_bucket() {
     icp.set_target(&target, None, bucket).expect("target");
     icp.set_source(&source).expect("source");
     let t = Mat4::from_rotation_translation(Quat::from_rotation_z(0.08), Vec3::new(0.7, 0.45, 0.0));
+    let moved =
+        Mat4::from_rotation_translation(Quat::from_rotation_z(0.05), Vec3::new(0.6, 0.5, 0.02));
     let gate = bucket; // within one bucket edge the 27-bucket search is exact
-    let corr = icp.correspondences(t, gate).expect("search");
-    assert_eq!(corr.len(), source.len());
-    let mut found = 0;
-    for (s, c) in source.iter().zip(&corr) {
-        let p = t.transform_point3(*s);
-        let truth = brute(p, &target, gate * gate);
-        match (truth, c) {
-            (None, None) => {}
-            (Some(d), Some((idx, d2))) => {
-                assert!(
-                    (d.sqrt() - d2.sqrt()).abs() < 1e-6,
-                    "distance {} vs {}",
-                    d.sqrt(),
-                    d2.sqrt()
-                );
-                assert!(((target[*idx as usize] - p).length_squared() - d).abs() < 1e-6);
-                found += 1;
+                       // The first search has no hints; the later ones start from the previous iteration's
+                       // correspondences (a transform that moved, then one that did not): all must be exact.
+    for (k, t) in [t, moved, moved].into_iter().enumerate() {
+        let corr = icp.correspondences(t, gate).expect("search");
+        assert_eq!(corr.len(), source.len());
+        let mut found = 0;
+        for (s, c) in source.iter().zip(&corr) {
+            let p = t.transform_point3(*s);
+            let truth = brute(p, &target, gate * gate);
+            match (truth, c) {
+                (None, None) => {}
+                (Some(d), Some((idx, d2))) => {
+                    assert!(
+                        (d.sqrt() - d2.sqrt()).abs() < 1e-6,
+                        "search {k}: distance {} vs {}",
+                        d.sqrt(),
+                        d2.sqrt()
+                    );
+                    assert!(((target[*idx as usize] - p).length_squared() - d).abs() < 1e-6);
+                    found += 1;
+                }
+                other => panic!("search {k}: GPU and brute force disagree on {p}: {other:?}"),
             }
-            other => panic!("GPU and brute force disagree on {p}: {other:?}"),
         }
+        assert!(
+            found > source.len() / 2,
+            "search {k}: only {found} correspondences"
+        );
     }
-    assert!(found > source.len() / 2, "only {found} correspondences");
 }
 
 #[test]
@@ -170,4 +179,64 @@ fn bad_inputs_are_errors() {
         "no normals"
     );
     assert!(icp.p2p_sums(Mat4::IDENTITY, -1.0, Vec3::ZERO).is_err());
+    assert!(
+        icp.set_back_face_test(Some(Vec3::ZERO)).is_err(),
+        "the back-face test needs normals"
+    );
+    icp.set_target(&[Vec3::ZERO, Vec3::X], Some(&[Vec3::Z, Vec3::Z]), 0.5)
+        .expect("target");
+    assert!(icp.set_back_face_test(Some(Vec3::NAN)).is_err());
+}
+
+#[test]
+fn back_faces_are_no_pairs_exactly_as_brute_force_says() {
+    let Some(mut icp) = open() else { return };
+    let (target, source) = scans();
+    // Normals pointing toward +y or -y by the point's index: about half the surfaces are seen
+    // from behind by any sensor.
+    let normals: Vec<Vec3> = (0..target.len())
+        .map(|i| if i % 3 == 0 { Vec3::Y } else { -Vec3::Y })
+        .collect();
+    let gate = 0.25f32;
+    icp.set_target(&target, Some(&normals), gate)
+        .expect("target");
+    icp.set_source(&source).expect("source");
+    let sensor_in_source = Vec3::new(0.1, -0.2, 0.3);
+    icp.set_back_face_test(Some(sensor_in_source))
+        .expect("normals are there");
+    let t = Mat4::from_rotation_translation(Quat::from_rotation_z(0.08), Vec3::new(0.7, 0.45, 0.0));
+    let eye = t.transform_point3(sensor_in_source);
+    let (mut kept, mut rejected) = (0, 0);
+    for round in 0..2 {
+        let corr = icp.correspondences(t, gate).expect("search");
+        for (s, c) in source.iter().zip(&corr) {
+            let p = t.transform_point3(*s);
+            // The nearest point (smallest distance, then smallest index) and its facing.
+            let nearest = target
+                .iter()
+                .enumerate()
+                .map(|(j, q)| ((*q - p).length_squared(), j))
+                .filter(|(d, _)| *d < gate * gate)
+                .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            let facing = |j: usize| normals[j].dot(eye - target[j]) >= 0.0;
+            match (nearest, c) {
+                (None, None) => {}
+                (Some((_, j)), None) if !facing(j) => rejected += 1,
+                (Some((d, j)), Some((i, d2))) if facing(j) => {
+                    assert_eq!(*i as usize, j, "round {round}: {p}");
+                    assert!((d - d2).abs() < 1e-6);
+                    kept += 1;
+                }
+                other => panic!("round {round}: {p}: brute force and GPU disagree: {other:?}"),
+            }
+        }
+    }
+    assert!(
+        kept > 1000 && rejected > 1000,
+        "{kept} kept, {rejected} rejected"
+    );
+    // Off again: every nearest point pairs.
+    icp.set_back_face_test(None).expect("off");
+    let all = icp.correspondences(t, gate).expect("search");
+    assert_eq!(all.iter().flatten().count(), (kept + rejected) / 2);
 }

@@ -197,8 +197,7 @@ pub struct IcpConfig {
     pub device: Device,
     /// Against a target prepared with viewpoints (every sequence map, see
     /// `Target::with_viewpoints`), pairs whose target surface faces away from the source's
-    /// sensor are no pairs. Runs on the CPU only: with it on, such registrations run on the CPU
-    /// under `device = auto` and are an error under `device = gpu`.
+    /// sensor are no pairs (on the CPU and on the GPU alike).
     pub reject_back_faces: bool,
 }
 

@@ -146,26 +146,19 @@ impl Registrar {
         let points = prepare_source(target, source, &target_from_source_guess, config)?;
         let result = match &mut self.backend {
             #[cfg(feature = "gpu")]
-            Backend::Gpu(g)
-                if config.device != Device::Cpu
-                    && cpu_only(config).is_none()
-                    && !back_face_test(config, target) =>
-            {
-                g.register(target, &points, target_from_source_guess, config)?
+            Backend::Gpu(g) if config.device != Device::Cpu && cpu_only(config).is_none() => {
+                let sensor = back_face_test(config, target).then_some(source.sensor_origin);
+                g.register(target, &points, sensor, target_from_source_guess, config)?
             }
             _ => {
                 if config.device == Device::Gpu {
-                    let why = if back_face_test(config, target) {
-                        "the back-face test against a map with viewpoints runs on the CPU only \
-                         (set reject_back_faces = false to run it on the GPU)"
-                            .to_string()
-                    } else {
-                        format!("this Registrar runs on the {}", self.description)
-                    };
                     return Err(crate::error::RegistrationError::invalid(
                         "device",
                         f64::NAN,
-                        format!("device = gpu, but {why}"),
+                        format!(
+                            "device = gpu, but this Registrar runs on the {}",
+                            self.description
+                        ),
                     ));
                 }
                 register_points_cpu(
@@ -189,7 +182,8 @@ impl std::fmt::Debug for Registrar {
     }
 }
 
-/// Whether registering against `target` with `config` applies the back-face test (CPU only).
+/// Whether registering against `target` with `config` applies the back-face test.
+#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
 fn back_face_test(config: &IcpConfig, target: &Target) -> bool {
     config.reject_back_faces && target.oriented_normals().is_some()
 }
@@ -267,6 +261,7 @@ mod gpu_path {
             &mut self,
             target: &Target,
             points: &[Vec3],
+            sensor: Option<Vec3>,
             guess: DAffine3,
             config: &IcpConfig,
         ) -> Result<IcpResult> {
@@ -286,6 +281,9 @@ mod gpu_path {
             self.icp
                 .set_source(points)
                 .map_err(RegistrationError::gpu("uploading the source cloud"))?;
+            self.icp
+                .set_back_face_test(sensor)
+                .map_err(RegistrationError::gpu("setting up the back-face test"))?;
             let kernel = match config.kernel {
                 RobustKernel::None => GpuKernel::None,
                 RobustKernel::Huber { k_m } => GpuKernel::Huber(k_m as f32),

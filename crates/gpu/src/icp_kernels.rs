@@ -35,7 +35,8 @@ pub enum GpuKernel {
     Cauchy(f32),
 }
 
-/// Wall-clock split of one GPU iteration, in milliseconds.
+/// Wall-clock split of one GPU iteration, in milliseconds. Without stage timing (see
+/// [`GpuIcp::set_stage_timing`]) everything after the upload counts as `search_ms`.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct StageTimes {
     /// Writing the parameters (and, on the first iteration, the data points).
@@ -117,6 +118,8 @@ pub struct GpuIcp {
     target: Option<TargetBuffers>,
     source: Option<SourceBuffers>,
     bind: Option<wgpu::BindGroup>,
+    /// Separate submissions (and waits) per stage, to time them; else one per iteration.
+    stage_timing: bool,
     /// The source's sensor (source frame) for the back-face test, if on.
     sensor: Option<Vec3>,
     /// The per-point correspondences (the next search's hints) belong to other clouds.
@@ -141,6 +144,7 @@ impl GpuIcp {
             bind: None,
             sensor: None,
             hints_stale: true,
+            stage_timing: false,
         })
     }
 
@@ -309,6 +313,14 @@ impl GpuIcp {
         }
         self.sensor = sensor_in_source;
         Ok(())
+    }
+
+    /// Times the stages apart (`true`: the search, the final reduction and the copy back are
+    /// submitted and waited for one by one, as `semsim bench icp` reports them) or not
+    /// (`false`, the default and the ICP loop's way: one submission and one wait per iteration;
+    /// [`StageTimes::search_ms`] then covers all the GPU work and the copy back).
+    pub fn set_stage_timing(&mut self, on: bool) {
+        self.stage_timing = on;
     }
 
     /// Whether a target with normals (as point-to-plane needs) is uploaded.
@@ -529,6 +541,25 @@ impl GpuIcp {
             ctx.queue
                 .write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
             times.upload_ms = ms(t0);
+            let bytes = (K * 4) as u64;
+            if !self.stage_timing {
+                // One submission and one wait per iteration: both kernels and the copy back.
+                let t1 = Instant::now();
+                let mut enc = ctx.device.create_command_encoder(&Default::default());
+                {
+                    let mut pass = enc.begin_compute_pass(&Default::default());
+                    pass.set_bind_group(0, bind, &[]);
+                    pass.set_pipeline(&self.search);
+                    pass.dispatch_workgroups(groups, 1, 1);
+                    pass.set_pipeline(&self.sum);
+                    pass.dispatch_workgroups(1, 1, 1);
+                }
+                enc.copy_buffer_to_buffer(&self.totals, 0, &self.readback, 0, bytes);
+                ctx.queue.submit([enc.finish()]);
+                let v: Vec<f32> = map_read(ctx, &self.readback, bytes)?;
+                times.search_ms = ms(t1);
+                return Ok((v, times));
+            }
             let t1 = Instant::now();
             self.dispatch(bind, &self.search, groups)?;
             times.search_ms = ms(t1);
@@ -536,7 +567,7 @@ impl GpuIcp {
             self.dispatch(bind, &self.sum, 1)?;
             times.reduce_ms = ms(t2);
             let t3 = Instant::now();
-            let v: Vec<f32> = read_back_via(ctx, &self.totals, &self.readback, (K * 4) as u64)?;
+            let v: Vec<f32> = read_back_via(ctx, &self.totals, &self.readback, bytes)?;
             times.download_ms = ms(t3);
             Ok((v, times))
         });
@@ -669,6 +700,11 @@ fn read_back_via<T: Pod>(
     let mut enc = ctx.device.create_command_encoder(&Default::default());
     enc.copy_buffer_to_buffer(src, 0, staging, 0, bytes);
     ctx.queue.submit([enc.finish()]);
+    map_read(ctx, staging, bytes)
+}
+
+/// Maps `staging` (after the submission that fills it), waits and copies it out.
+fn map_read<T: Pod>(ctx: &GpuContext, staging: &wgpu::Buffer, bytes: u64) -> Result<Vec<T>> {
     let slice = staging.slice(0..bytes);
     let (tx, rx) = std::sync::mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |r| {
@@ -723,6 +759,12 @@ mod tests {
         icp.set_source(&points).expect("source");
         let (before, _) = icp.p2p_sums(Mat4::IDENTITY, 0.5, Vec3::ZERO).expect("sums");
         assert_eq!(before.count as usize, 500);
+        // Submitted stage by stage (to time them) or at once, the sums are the same.
+        icp.set_stage_timing(true);
+        let (split, times) = icp.p2p_sums(Mat4::IDENTITY, 0.5, Vec3::ZERO).expect("sums");
+        assert_eq!(split, before);
+        assert!(times.reduce_ms > 0.0 && times.download_ms > 0.0, "{times:?}");
+        icp.set_stage_timing(false);
         // More workgroups than one dispatch may have: wgpu rejects the dispatch.
         let too_many = icp.ctx.limits.max_compute_workgroups_per_dimension + 1;
         let bind = icp.bind.clone().expect("bound");

@@ -264,27 +264,42 @@ fn gpu_equals_cpu_on_pcls_room_pair() {
     }
 }
 
+/// Scans of the default building from `(x_m, y_m, yaw_deg)` poses with a `beams` x `steps`
+/// laser, and their true `world_from_scan`.
+fn default_building_scans(
+    poses: &[(f64, f64, f64)],
+    beams: usize,
+    steps: usize,
+) -> (Vec<PointCloud>, Vec<DAffine3>) {
+    let building = scanner::Building::default_building().expect("building");
+    let geometry = scanner::BuildingGeometry::new(&building);
+    let laser = scanner::VirtualLaser::new(scanner::LaserConfig {
+        beams,
+        rotation_steps: steps,
+        ..Default::default()
+    })
+    .expect("laser");
+    poses
+        .iter()
+        .enumerate()
+        .map(|(k, &(x_m, y_m, yaw_deg))| {
+            let scan = laser.scan(&geometry, &ScanPose { x_m, y_m, yaw_deg }, k as u64);
+            let truth = DAffine3::from_rotation_translation(
+                DQuat::from_rotation_z(yaw_deg.to_radians()),
+                DVec3::new(x_m, y_m, 0.0),
+            );
+            (scan, truth)
+        })
+        .unzip()
+}
+
 #[test]
 fn gpu_sequence_equals_cpu_sequence_with_one_device_for_every_scan() {
     if !gpu_or_skip("sequence") {
         return;
     }
     let poses = [(6.5, 0.0, 0.0), (7.3, 0.1, 3.0), (8.1, -0.1, 6.0)];
-    let building = scanner::Building::default_building().expect("building");
-    let geometry = scanner::BuildingGeometry::new(&building);
-    let laser = scanner::VirtualLaser::new(scanner::LaserConfig {
-        beams: 121,
-        rotation_steps: 61,
-        ..Default::default()
-    })
-    .expect("laser");
-    let scans: Vec<PointCloud> = poses
-        .iter()
-        .enumerate()
-        .map(|(k, &(x_m, y_m, yaw_deg))| {
-            laser.scan(&geometry, &ScanPose { x_m, y_m, yaw_deg }, k as u64)
-        })
-        .collect();
+    let (scans, _) = default_building_scans(&poses, 121, 61);
     let config = |device| SequenceConfig {
         icp: tight(IcpConfig {
             method: Method::PointToPlane,
@@ -431,30 +446,7 @@ fn gpu_back_face_test_keeps_the_room_scan_off_the_far_face_of_the_wall() {
         return;
     }
     let poses = [(14.4, 0.0, 45.0), (14.45, 1.2, 80.0), (14.9, 2.2, 0.0)];
-    let building = scanner::Building::default_building().expect("building");
-    let geometry = scanner::BuildingGeometry::new(&building);
-    let laser = scanner::VirtualLaser::new(scanner::LaserConfig {
-        beams: 181,
-        rotation_steps: 91,
-        ..Default::default()
-    })
-    .expect("laser");
-    let scans: Vec<PointCloud> = poses
-        .iter()
-        .enumerate()
-        .map(|(k, &(x_m, y_m, yaw_deg))| {
-            laser.scan(&geometry, &ScanPose { x_m, y_m, yaw_deg }, k as u64)
-        })
-        .collect();
-    let truth: Vec<DAffine3> = poses
-        .iter()
-        .map(|&(x, y, yaw): &(f64, f64, f64)| {
-            DAffine3::from_rotation_translation(
-                DQuat::from_rotation_z(yaw.to_radians()),
-                DVec3::new(x, y, 0.0),
-            )
-        })
-        .collect();
+    let (scans, truth) = default_building_scans(&poses, 181, 91);
     // Odometry off by 4 cm, 3 cm and 1 degree per scan.
     let guess: Vec<DAffine3> = truth
         .iter()

@@ -104,9 +104,9 @@ pub fn run(c: BenchCommand) -> anyhow::Result<()> {
         };
         // The split needs a wait after each stage; the total is measured as the loop runs
         // (one submission and one wait per iteration).
-        let gpu_split = on_gpu(true)?;
+        let (gpu_split, target_ms) = on_gpu(true)?.unzip();
         let gpu_ms =
-            on_gpu(false)?.map(|s| s.upload_ms + s.search_ms + s.reduce_ms + s.download_ms);
+            on_gpu(false)?.map(|(s, _)| s.upload_ms + s.search_ms + s.reduce_ms + s.download_ms);
         let loop_ms = gpu
             .is_some()
             .then(|| ms_per_iteration(&target, &source, a.iterations, Device::Gpu))
@@ -132,11 +132,19 @@ pub fn run(c: BenchCommand) -> anyhow::Result<()> {
             "gpu_loop_ms_per_iteration": loop_ms,
             "gpu_upload_ms": gpu_split.map(|s| s.upload_ms), "gpu_search_ms": gpu_split.map(|s| s.search_ms),
             "gpu_reduce_ms": gpu_split.map(|s| s.reduce_ms), "gpu_download_ms": gpu_split.map(|s| s.download_ms),
-            "gpu_speedup": speedup,
+            "gpu_speedup": speedup, "gpu_target_grid_ms": target_ms,
         }));
     }
     let adapter = gpu.as_ref().map(|g| g.context().adapter_name());
     println!("GPU adapter: {}", adapter.as_deref().unwrap_or("none"));
+    for row in &rows {
+        if let Some(ms) = row["gpu_target_grid_ms"].as_f64() {
+            println!(
+                "{}: target grid built on the CPU and uploaded in {ms:.1} ms (once per target)",
+                row["case"].as_str().unwrap_or("?")
+            );
+        }
+    }
     println!("CPU threads: {}", rayon::current_num_threads());
     if let Some(path) = &a.json {
         let report = serde_json::json!({ "adapter": adapter, "cpu_threads": rayon::current_num_threads(), "iterations": a.iterations, "cases": rows });
@@ -233,8 +241,10 @@ fn gpu_ms_per_iteration(
     source: &[Vec3],
     iterations: usize,
     bucket_m: f32,
-) -> anyhow::Result<gpu::StageTimes> {
+) -> anyhow::Result<(gpu::StageTimes, f64)> {
+    let t0 = Instant::now();
     g.set_target(target, None, bucket_m)?;
+    let target_ms = t0.elapsed().as_secs_f64() * 1e3;
     let t0 = Instant::now();
     g.set_source(source)?;
     let source_upload_ms = t0.elapsed().as_secs_f64() * 1e3;
@@ -256,10 +266,11 @@ fn gpu_ms_per_iteration(
         sum.download_ms += t.download_ms;
     }
     let n = iterations as f64;
-    Ok(gpu::StageTimes {
+    let times = gpu::StageTimes {
         upload_ms: sum.upload_ms / n + source_upload_ms / n,
         search_ms: sum.search_ms / n,
         reduce_ms: sum.reduce_ms / n,
         download_ms: sum.download_ms / n,
-    })
+    };
+    Ok((times, target_ms))
 }

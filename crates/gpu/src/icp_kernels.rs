@@ -763,7 +763,10 @@ mod tests {
         icp.set_stage_timing(true);
         let (split, times) = icp.p2p_sums(Mat4::IDENTITY, 0.5, Vec3::ZERO).expect("sums");
         assert_eq!(split, before);
-        assert!(times.reduce_ms > 0.0 && times.download_ms > 0.0, "{times:?}");
+        assert!(
+            times.reduce_ms > 0.0 && times.download_ms > 0.0,
+            "{times:?}"
+        );
         icp.set_stage_timing(false);
         // More workgroups than one dispatch may have: wgpu rejects the dispatch.
         let too_many = icp.ctx.limits.max_compute_workgroups_per_dimension + 1;

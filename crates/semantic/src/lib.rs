@@ -91,6 +91,8 @@ mod stairs;
 mod wall_extent;
 mod wall_faces;
 mod wall_fit;
+mod wall_glimpses;
+mod wall_joins;
 mod walls;
 
 pub use dilation::{dilate, DilationConfig};

@@ -22,12 +22,17 @@
 //!
 //! Duplicates (the same wall found twice) merge into the longer one. Collinear walls join
 //! across a stretch of up to `max_join_gap_m` through which nothing was seen: a wall runs on
-//! behind the partitions that meet it and the furniture that hid it.
+//! behind the partitions that meet it and the furniture that hid it (`wall_joins`). A wall's
+//! ends then move on to its face points glimpsed beyond a stretch of up to
+//! `max_glimpse_gap_m` that nobody saw (`wall_glimpses`: through the doorway of a room not
+//! entered).
 
 use crate::error::{check_range, Result};
 use crate::merge::Segment;
 use crate::points::{median, undirected_angle_deg, Line2, XyIndex};
 use crate::wall_fit::fit_wall;
+use crate::wall_glimpses::extend_to_glimpses;
+use crate::wall_joins::merge_through_gaps;
 use glam::{DVec2, Vec3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -61,6 +66,9 @@ pub struct WallConfig {
     pub max_top_below_ceiling_m: f64,
     /// Collinear walls this far apart are one wall if nothing was seen through the gap.
     pub max_join_gap_m: f64,
+    /// A wall's end moves on to its face points glimpsed beyond a gap this wide at most
+    /// through which nothing was seen (e.g. through a doorway of a room not entered).
+    pub max_glimpse_gap_m: f64,
     /// Walls whose lines are this near (and directions within `merge.max_angle_deg`) and that
     /// overlap are one wall.
     pub duplicate_offset_m: f64,
@@ -81,6 +89,7 @@ impl Default for WallConfig {
             max_bottom_above_floor_m: 1.5,
             max_top_below_ceiling_m: 0.3,
             max_join_gap_m: 2.0,
+            max_glimpse_gap_m: 1.5,
             duplicate_offset_m: 0.15,
         }
     }
@@ -155,6 +164,13 @@ impl WallConfig {
         check_range(
             "walls.max_join_gap_m",
             self.max_join_gap_m,
+            0.0,
+            100.0,
+            "within 0..100 m",
+        )?;
+        check_range(
+            "walls.max_glimpse_gap_m",
+            self.max_glimpse_gap_m,
             0.0,
             100.0,
             "within 0..100 m",
@@ -276,6 +292,7 @@ pub(crate) fn identify_walls(
         kept.push(w);
     }
     merge_through_gaps(&mut kept, sc, c, max_angle_deg);
+    extend_to_glimpses(&mut kept, sc, c);
     let mut measured: Vec<f64> = kept
         .iter()
         .filter(|w| w.measured)
@@ -297,75 +314,6 @@ pub(crate) fn identify_walls(
     }
     kept.retain(|w| w.length >= c.min_length_m);
     kept
-}
-
-/// Joins collinear walls across a gap of up to `max_join_gap_m` through which the scans saw
-/// nothing (no floor within a two-sided wall's footprint, nothing behind a one-sided wall's
-/// face): a wall runs on behind the partitions that meet it and behind whatever hid it, while
-/// a real gap (a corridor between two rooms' walls) shows its floor.
-fn merge_through_gaps(walls: &mut Vec<WallFit>, sc: &Scene, c: &WallConfig, max_angle_deg: f64) {
-    loop {
-        let mut join = None;
-        'search: for i in 0..walls.len() {
-            for j in 0..walls.len() {
-                if i == j {
-                    continue;
-                }
-                let (a, b) = (&walls[i], &walls[j]);
-                if undirected_angle_deg(a.line.dir, b.line.dir) > max_angle_deg {
-                    continue;
-                }
-                let tol = c.duplicate_offset_m + (a.thickness + b.thickness) / 4.0;
-                let (s0, d0) = a.line.coords(b.start());
-                let (s1, d1) = a.line.coords(b.end());
-                if d0.abs() > tol || d1.abs() > tol {
-                    continue;
-                }
-                // b must start after a ends, within the gap.
-                let (lo, hi) = (s0.min(s1), s0.max(s1));
-                let gap = lo - a.length;
-                if gap > 0.0 && gap <= c.max_join_gap_m && !seen_through(a, a.length, lo, sc) {
-                    join = Some((i, j, hi, gap));
-                    break 'search;
-                }
-            }
-        }
-        let Some((i, j, hi, gap)) = join else {
-            return;
-        };
-        let b = walls.remove(j);
-        let a = &mut walls[if j < i { i - 1 } else { i }];
-        a.coverage = (a.coverage * a.length + b.coverage * b.length) / hi.max(1e-9);
-        a.length = hi;
-        a.support += b.support;
-        a.rules.push(format!(
-            "joined with a collinear piece across {gap:.2} m through which nothing was seen"
-        ));
-    }
-}
-
-/// True if the scans saw through wall `w` between `s0` and `s1` along it: floor within its
-/// footprint (two faces), or anything behind its face (one face; `w.line` is the face here).
-fn seen_through(w: &WallFit, s0: f64, s1: f64, sc: &Scene) -> bool {
-    let mut n = 0;
-    sc.index.for_each_near_line(
-        sc.points,
-        &w.line,
-        s0 + 0.05,
-        s1 - 0.05,
-        w.thickness / 2.0 + 1.0,
-        |i, _, d| {
-            let z = sc.z(i);
-            let hit = if w.measured {
-                (z - sc.floor).abs() <= 0.04 && d.abs() <= w.thickness / 2.0 - 0.02
-            } else {
-                let behind = -w.free_side * d;
-                behind >= 0.05 && z >= sc.floor - 0.05 && z <= sc.ceiling - 0.05
-            };
-            n += usize::from(hit);
-        },
-    );
-    n >= 5
 }
 
 fn duplicate(k: &WallFit, w: &WallFit, c: &WallConfig, max_angle_deg: f64) -> bool {

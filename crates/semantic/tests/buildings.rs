@@ -59,11 +59,10 @@ fn ten_generated_buildings_meet_the_criteria() {
 }
 
 /// The surveyor's path (corridor, doorway, room; rooms behind a leaf open 60 degrees or more),
-/// registered from noisy odometry, then mapped. Registration is within 3 cm everywhere; the
-/// map meets the issue's F1 criteria, but partially seen walls (seen only through doorways,
-/// rooms not entered) leave their far ends short: the endpoint mean is 7.5 cm (criterion
-/// 5 cm, met from the true poses above), and seed 10's staircase, seen only through a doorway,
-/// is missed.
+/// registered from noisy odometry, then mapped. Registration is within 3 cm everywhere and the
+/// map meets the issue's criteria (walls glimpsed through the doorways of rooms not entered
+/// reach their glimpsed ends, see `wall_glimpses`), except that seed 10's staircase, seen
+/// only through a doorway, is missed.
 #[test]
 fn ten_generated_buildings_scanned_and_registered() {
     check(
@@ -73,7 +72,6 @@ fn ten_generated_buildings_scanned_and_registered() {
             (b, c, worst)
         },
         &Criteria {
-            endpoint_mean_m: 0.08,
             min_stairs_found: |expected| expected.saturating_sub(1),
             ..ISSUE
         },
@@ -225,4 +223,32 @@ fn the_default_building_is_mapped() {
             assert!(h && sw, "{}: hinge {h} swing {sw}", d.truth);
         }
     }
+}
+
+/// The wall of `walls[wall]` in generated building `seed` scanned along the surveyor's path
+/// (true poses): its match and the map's spurious walls.
+fn surveyed_wall(seed: u64, wall: usize) -> Option<semantic::WallMatch> {
+    let b = scanner::generate_building(seed, &scanner::GeneratorConfig::default())
+        .expect("valid building");
+    let g = scanner::BuildingGeometry::new(&b);
+    let poses = common::survey_path(&b, &g);
+    let cloud = common::scan_building(&b, &poses, &common::test_laser(), 0.03);
+    let out = build_semantic_map(&cloud, &SemanticConfig::default()).expect("map");
+    let ev = evaluate(&out.map, &b, Some(&cloud));
+    let name = format!("walls[{wall}]");
+    let m = ev.wall_matches.iter().find(|m| m.truth == name).cloned();
+    eprintln!("seed {seed} {name}: {m:?}, spurious {:?}", ev.spurious);
+    m
+}
+
+/// Regression: a wall seen whole from one room and glimpsed further on through the doorway of
+/// a room not entered ended where the dense face points did, 3.5 m short of the last glimpse.
+/// Now it reaches the glimpses (the last 7 points, 1 m further on beyond 0.7 m of nothing, are
+/// too few to count).
+#[test]
+fn a_wall_reaches_its_face_points_glimpsed_beyond_an_unseen_stretch() {
+    let m = surveyed_wall(7, 3);
+    let m = m.expect("walls[3] matched");
+    assert!(m.endpoint_errors_m[0] < 0.05, "{:?}", m.endpoint_errors_m);
+    assert!(m.endpoint_errors_m[1] < 1.0, "{:?}", m.endpoint_errors_m);
 }

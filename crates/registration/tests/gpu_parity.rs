@@ -230,14 +230,9 @@ fn gpu_equals_cpu_on_small_gicps_outdoor_pair() {
     }
 }
 
-#[test]
-fn gpu_equals_cpu_on_pcls_room_pair() {
-    let Some(dir) = real_data("gpu pcl room pair") else {
-        return;
-    };
-    if !gpu_or_skip("pcl room pair") {
-        return;
-    }
+/// PCL's two room scans (target, source) from the real-data folder `dir`, and the rough guess
+/// of `target_from_source` PCL's tutorial starts from.
+fn pcl_room_pair(dir: &std::path::Path) -> (PointCloud, PointCloud, DAffine3) {
     let dir = dir.join("pcl-room");
     let target = cloud::read_cloud(&dir.join("room_scan1.pcd")).expect("scan1");
     let source = cloud::read_cloud(&dir.join("room_scan2.pcd")).expect("scan2");
@@ -246,6 +241,18 @@ fn gpu_equals_cpu_on_pcls_room_pair() {
         DQuat::from_rotation_z(0.6931),
         DVec3::new(1.79387, 0.720047, 0.0),
     );
+    (target, source, guess)
+}
+
+#[test]
+fn gpu_equals_cpu_on_pcls_room_pair() {
+    let Some(dir) = real_data("gpu pcl room pair") else {
+        return;
+    };
+    if !gpu_or_skip("pcl room pair") {
+        return;
+    }
+    let (target, source, guess) = pcl_room_pair(&dir);
     for method in [Method::PointToPlane, Method::PointToPoint] {
         let config = tight(voxel(
             IcpConfig {
@@ -412,14 +419,7 @@ fn gpu_correspondences_equal_the_cpu_grid_search_on_synthetic_and_real_pairs() {
     let Some(dir) = real_data("gpu correspondences, real pairs") else {
         return;
     };
-    let pcl = dir.join("pcl-room");
-    let target = cloud::read_cloud(&pcl.join("room_scan1.pcd")).expect("scan1");
-    let source = cloud::read_cloud(&pcl.join("room_scan2.pcd")).expect("scan2");
-    #[allow(clippy::approx_constant)]
-    let guess = DAffine3::from_rotation_translation(
-        DQuat::from_rotation_z(0.6931),
-        DVec3::new(1.79387, 0.720047, 0.0),
-    );
+    let (target, source, guess) = pcl_room_pair(&dir);
     let nudged = DAffine3::from_translation(DVec3::new(0.02, -0.01, 0.0)) * guess;
     assert_same_correspondences("pcl room pair", &target, &source, [guess, nudged], 0.3);
     let sg = dir.join("small-gicp");

@@ -1,7 +1,9 @@
 //! Door openings and the walls above them. Along each wall, in `bin_m` bins:
 //!
 //! - a bin is *blocked* if a face of the wall has points at door level (`door_level_m` above
-//!   the floor), and *open* otherwise;
+//!   the floor), at least three and a third of its door-level points within half a wall of the
+//!   face (fewer are the noise tail of a closed leaf recessed in the opening), and *open*
+//!   otherwise;
 //! - a run of open bins between blocked ones (blocked slivers up to `max_pier_m` inside it are
 //!   a door leaf crossing the face plane, and ignored) of `min_width_m..max_width_m` is an
 //!   opening candidate;
@@ -181,10 +183,17 @@ pub(crate) fn find_openings(
         face_tol
     };
     let mut blocking = vec![0u16; n];
+    // Door-level points within half a wall of a face: a bin's wall surface, or a closed leaf
+    // recessed behind it (whose noise tail reaches the face).
+    let mut at_wall = vec![0u16; n];
+    let near_wall = face_tol.max(half_t);
     sc.index
         .for_each_near_line(sc.points, &w.line, 0.0, w.length, reach, |i, s, d| {
             let z = sc.points[i].z as f64;
             let b = ((s / c.bin_m) as usize).min(n - 1);
+            if z >= lvl0 && z <= lvl1 && w.faces.iter().any(|f| (d - f).abs() <= near_wall) {
+                at_wall[b] = at_wall[b].saturating_add(1);
+            }
             let bin = &mut bins[b];
             let on_face = w.faces.iter().any(|f| (d - f).abs() <= face_tol);
             if on_face {
@@ -197,7 +206,9 @@ pub(crate) fn find_openings(
                     bin.lintel = true;
                     bin.lintel_points += 1;
                 }
-                if z > sc.floor + 0.1 {
+                // The lintel's underside: the lowest face point above door level (below it,
+                // face points in an opening are the noise tail of a closed leaf).
+                if z > lvl1 {
                     bin.lintel_low_z = bin.lintel_low_z.min(z);
                 }
                 return;
@@ -215,9 +226,11 @@ pub(crate) fn find_openings(
                 bin.evidence = true;
             }
         });
-    // A bin is blocked by three face points at door level (one is noise).
-    for (bin, &k) in bins.iter_mut().zip(&blocking) {
-        bin.blocked = k >= 3;
+    // A bin is blocked by three face points at door level (one is noise) that are at least a
+    // third of its door-level points at the wall (else they are the noise tail of a closed
+    // leaf recessed behind the face).
+    for ((bin, &k), &m) in bins.iter_mut().zip(&blocking).zip(&at_wall) {
+        bin.blocked = k >= 3 && 3 * k >= m;
     }
     // Runs of open bins; slivers of blocked bins up to max_pier inside them are ignored.
     let pier = (c.max_pier_m / c.bin_m).round() as usize;

@@ -225,20 +225,31 @@ fn the_default_building_is_mapped() {
     }
 }
 
-/// The wall of `walls[wall]` in generated building `seed` scanned along the surveyor's path
-/// (true poses): its match and the map's spurious walls.
-fn surveyed_wall(seed: u64, wall: usize) -> Option<semantic::WallMatch> {
+/// Generated building `seed` scanned along the surveyor's path (true poses), mapped and
+/// evaluated.
+fn surveyed(seed: u64) -> semantic::Evaluation {
     let b = scanner::generate_building(seed, &scanner::GeneratorConfig::default())
         .expect("valid building");
     let g = scanner::BuildingGeometry::new(&b);
     let poses = common::survey_path(&b, &g);
     let cloud = common::scan_building(&b, &poses, &common::test_laser(), 0.03);
     let out = build_semantic_map(&cloud, &SemanticConfig::default()).expect("map");
-    let ev = evaluate(&out.map, &b, Some(&cloud));
-    let name = format!("walls[{wall}]");
-    let m = ev.wall_matches.iter().find(|m| m.truth == name).cloned();
-    eprintln!("seed {seed} {name}: {m:?}, spurious {:?}", ev.spurious);
-    m
+    evaluate(&out.map, &b, Some(&cloud))
+}
+
+/// Regression: closed doors in a wall seen from one side only (the corridor's, rooms behind
+/// them not entered) were missed: the noise tail of the leaf, recessed 4.5 cm behind the face,
+/// blocked the opening's bins, and its low points were taken for the lintel's underside.
+#[test]
+fn closed_doors_in_a_wall_seen_from_one_side_are_openings_with_leaves() {
+    let ev = surveyed(8);
+    eprintln!("seed 8: missed {:?}", ev.missed);
+    assert!(
+        !ev.missed.iter().any(|m| m.starts_with("walls[11].doors")),
+        "{:?}",
+        ev.missed
+    );
+    assert_eq!(ev.doors.matched, ev.doors.expected, "leaves");
 }
 
 /// Regression: a wall seen whole from one room and glimpsed further on through the doorway of
@@ -247,7 +258,12 @@ fn surveyed_wall(seed: u64, wall: usize) -> Option<semantic::WallMatch> {
 /// too few to count).
 #[test]
 fn a_wall_reaches_its_face_points_glimpsed_beyond_an_unseen_stretch() {
-    let m = surveyed_wall(7, 3);
+    let ev = surveyed(7);
+    let m = ev
+        .wall_matches
+        .iter()
+        .find(|m| m.truth == "walls[3]")
+        .cloned();
     let m = m.expect("walls[3] matched");
     assert!(m.endpoint_errors_m[0] < 0.05, "{:?}", m.endpoint_errors_m);
     assert!(m.endpoint_errors_m[1] < 1.0, "{:?}", m.endpoint_errors_m);

@@ -50,10 +50,15 @@ pub struct EvalMapArgs {
     /// The building description (TOML/JSON) it was scanned in; "default" for the built-in one.
     #[arg(long, value_name = "FILE")]
     building: PathBuf,
-    /// The cloud the map was made from (e.g. its labels.pcd): only what it saw is expected.
-    /// Without it every element of the building is expected.
-    #[arg(long, value_name = "FILE")]
-    cloud: Option<PathBuf>,
+    /// The scans the map was made from, with their ground-truth labels (as `semsim scan` and
+    /// `semsim demo` write them; not the map's labels.pcd, whose labels are the map's own):
+    /// only what they saw is expected. Without them every element of the building is expected.
+    #[arg(long, value_name = "FILE", num_args = 1..)]
+    cloud: Vec<PathBuf>,
+    /// World poses of the `--cloud` scans (as for `semsim map`); without it they are taken as
+    /// given (already in the world frame).
+    #[arg(long, value_name = "FILE", requires = "cloud")]
+    poses: Option<PathBuf>,
     /// Print the full evaluation as JSON instead of the table.
     #[arg(long)]
     json: bool,
@@ -259,6 +264,40 @@ pub fn summary(map: &SemanticMap) -> String {
 }
 
 /// Runs `semsim eval ...`.
+/// Checks that `cloud`'s labels are `building`'s ground truth: a sample of the labelled points
+/// must lie on the building's entities of those ids (a map's labels.pcd carries the map's own
+/// ids, which name other entities elsewhere).
+fn check_ground_truth(cloud: &PointCloud, building: &scanner::Building) -> anyhow::Result<()> {
+    let Some(labels) = &cloud.labels else {
+        return Err(bad_input(
+            "--cloud: the scans carry no labels; give the scans with their ground-truth labels",
+        ));
+    };
+    let geometry = scanner::BuildingGeometry::new(building);
+    let labelled: Vec<usize> = (0..labels.len())
+        .filter(|&i| labels[i].entity != 0 && cloud.points[i].is_finite())
+        .collect();
+    let sample: Vec<usize> = labelled
+        .iter()
+        .copied()
+        .step_by((labelled.len() / 2000).max(1))
+        .collect();
+    let on = sample
+        .iter()
+        .filter(|&&i| geometry.distance_to_entity(cloud.points[i], labels[i].entity) <= 0.1)
+        .count();
+    if sample.is_empty() || (on as f64) < 0.9 * sample.len() as f64 {
+        return Err(bad_input(format!(
+            "--cloud: only {on} of {} sampled labelled points lie on the building's entity of \
+             their label: these are not its ground-truth labels (a map's labels.pcd holds the \
+             map's own ids), or the scans are not placed (give --poses); give the scans as \
+             `semsim scan` or `semsim demo` wrote them",
+            sample.len()
+        )));
+    }
+    Ok(())
+}
+
 pub fn run_eval(c: EvalCommand) -> anyhow::Result<()> {
     let EvalCommand::Map(a) = c;
     let map = SemanticMap::load(&a.map)?;
@@ -267,7 +306,13 @@ pub fn run_eval(c: EvalCommand) -> anyhow::Result<()> {
     } else {
         scanner::Building::load(&a.building)?
     };
-    let observed = a.cloud.as_deref().map(cloud::read_cloud).transpose()?;
+    let observed = if a.cloud.is_empty() {
+        None
+    } else {
+        let merged = merge_scans(&a.cloud, a.poses.as_deref(), None)?;
+        check_ground_truth(&merged, &building)?;
+        Some(merged)
+    };
     let ev = semantic::evaluate(&map, &building, observed.as_ref());
     if a.json {
         println!(

@@ -2,8 +2,8 @@
 //!
 //! - a bin is *blocked* if a face of the wall has points at door level (`door_level_m` above
 //!   the floor), at least three and a third of its door-level points within half a wall of the
-//!   face (fewer are the noise tail of a closed leaf recessed in the opening), and *open*
-//!   otherwise;
+//!   face (fewer are the noise tail of a closed leaf recessed in the opening, or the stretch
+//!   of a leaf open at a small angle that crosses the face plane), and *open* otherwise;
 //! - a run of open bins between blocked ones (blocked slivers up to `max_pier_m` inside it are
 //!   a door leaf crossing the face plane, and ignored) of `min_width_m..max_width_m` is an
 //!   opening candidate;
@@ -173,7 +173,9 @@ pub(crate) fn find_openings(
     let half_t = w.thickness / 2.0;
     let two_sided = w.measured;
     let sigma = w.free_side;
-    let reach = half_t + if two_sided { 0.0 } else { c.behind_m } + face_tol;
+    // (Out to half a wall in front of the faces too: see `at_wall`.)
+    let reach =
+        (half_t + if two_sided { 0.0 } else { c.behind_m } + face_tol).max(2.0 * half_t + face_tol);
     let top = w.z_range.1;
     // A closed leaf is recessed from the faces by half the wall less half the leaf: at door
     // level, only points nearer the face than half that recess block a bin.
@@ -183,9 +185,11 @@ pub(crate) fn find_openings(
         face_tol
     };
     let mut blocking = vec![0u16; n];
-    // Door-level points within half a wall of a face: a bin's wall surface, or a closed leaf
-    // recessed behind it (whose noise tail reaches the face).
+    // Door-level points within half a wall of a face, behind or in front of it: a bin's wall
+    // surface, a closed leaf recessed behind it (whose noise tail reaches the face), or a leaf
+    // open at a small angle, crossing the face plane near its hinge.
     let mut at_wall = vec![0u16; n];
+
     let near_wall = face_tol.max(half_t);
     sc.index
         .for_each_near_line(sc.points, &w.line, 0.0, w.length, reach, |i, s, d| {

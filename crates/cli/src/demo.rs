@@ -4,7 +4,7 @@
 
 use crate::config::SemsimConfig;
 use clap::Args;
-use scanner::{Building, ScanPose};
+use scanner::Building;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -16,24 +16,6 @@ pub struct DemoArgs {
     out: PathBuf,
 }
 
-/// The demo's scan poses: down the corridor, through the half-open door, into the stair room.
-pub fn demo_poses() -> Vec<ScanPose> {
-    [
-        (1.5, 0.0, 0.0),
-        (4.0, 0.1, 0.0),
-        (6.5, -0.1, 0.0),
-        (9.0, 0.0, 0.0),
-        (11.5, 0.1, 0.0),
-        (14.4, 0.0, 45.0),
-        (14.45, 1.2, 80.0),
-        (14.9, 2.2, 0.0),
-        (17.5, 2.5, 0.0),
-    ]
-    .into_iter()
-    .map(|(x_m, y_m, yaw_deg)| ScanPose { x_m, y_m, yaw_deg })
-    .collect()
-}
-
 /// Runs the demo.
 pub fn run(a: DemoArgs, cfg: &SemsimConfig) -> anyhow::Result<()> {
     let t0 = Instant::now();
@@ -43,7 +25,8 @@ pub fn run(a: DemoArgs, cfg: &SemsimConfig) -> anyhow::Result<()> {
     building.save(&building_path)?;
     println!("semsim demo -> {}", a.out.display());
     println!("building: {}", crate::building_cmd::summary(&building));
-    let summary = crate::scan::write_scans(&building, &demo_poses(), cfg, &a.out)?;
+    let summary =
+        crate::scan::write_scans(&building, &Building::default_survey_poses(), cfg, &a.out)?;
     summary.print();
     println!("  wrote {}", building_path.display());
     let input = crate::register::collect_sequence(std::slice::from_ref(&a.out), None, None)?;

@@ -179,6 +179,25 @@ impl Building {
         Building::from_toml_str(BUILTIN, Path::new("<built-in default building>"))
     }
 
+    /// Scan poses through the default building: down the corridor, through the stair room's
+    /// door, into the stair room (the demo's survey).
+    pub fn default_survey_poses() -> Vec<crate::ScanPose> {
+        [
+            (1.5, 0.0, 0.0),
+            (4.0, 0.1, 0.0),
+            (6.5, -0.1, 0.0),
+            (9.0, 0.0, 0.0),
+            (11.5, 0.1, 0.0),
+            (14.4, 0.0, 45.0),
+            (14.45, 1.2, 80.0),
+            (14.9, 2.2, 0.0),
+            (17.5, 2.5, 0.0),
+        ]
+        .into_iter()
+        .map(|(x_m, y_m, yaw_deg)| crate::ScanPose { x_m, y_m, yaw_deg })
+        .collect()
+    }
+
     /// Parses and validates a TOML description; `path` only names the source in errors.
     pub fn from_toml_str(text: &str, path: &Path) -> Result<Building> {
         let b: Building = toml::from_str(text).map_err(|e| ScannerError::Syntax {

@@ -2,7 +2,7 @@
 
 mod common;
 
-use scanner::{Building, ScanPose};
+use scanner::Building;
 use semantic::{build_semantic_map, evaluate, SemanticConfig};
 
 /// Regression: a leaf open 30 degrees crosses the face plane over 20 cm near its hinge; those
@@ -17,20 +17,7 @@ fn a_leaf_open_30_degrees_leaves_the_opening_its_full_width() {
         .expect("the stair room's door has a leaf");
     leaf.open_deg = 30.0;
     // The demo's scans (full resolution).
-    let poses: Vec<ScanPose> = [
-        (1.5, 0.0, 0.0),
-        (4.0, 0.1, 0.0),
-        (6.5, -0.1, 0.0),
-        (9.0, 0.0, 0.0),
-        (11.5, 0.1, 0.0),
-        (14.4, 0.0, 45.0),
-        (14.45, 1.2, 80.0),
-        (14.9, 2.2, 0.0),
-        (17.5, 2.5, 0.0),
-    ]
-    .into_iter()
-    .map(|(x_m, y_m, yaw_deg)| ScanPose { x_m, y_m, yaw_deg })
-    .collect();
+    let poses = Building::default_survey_poses();
     let cloud = common::scan_building(&b, &poses, &scanner::LaserConfig::default(), 0.03);
     let out = build_semantic_map(&cloud, &SemanticConfig::default()).expect("map");
     let ev = evaluate(&out.map, &b, Some(&cloud));

@@ -43,6 +43,46 @@ impl Default for ImportConfig {
     }
 }
 
+impl ImportConfig {
+    /// Checks every field's range (the door's physics and the free space's margin).
+    pub(crate) fn validate(&self) -> Result<()> {
+        let el = "import config";
+        check_range(
+            el,
+            "door_mass_kg",
+            self.door_mass_kg,
+            0.1,
+            1.0e4,
+            "0.1 kg to 10 t",
+        )?;
+        check_range(
+            el,
+            "door_max_deg",
+            self.door_max_deg,
+            1.0,
+            180.0,
+            "1 to 180 degrees",
+        )?;
+        check_range(
+            el,
+            "free_space_margin_m",
+            self.free_space_margin_m,
+            0.0,
+            10.0,
+            "0 to 10 m",
+        )?;
+        check_range(
+            el,
+            "door_break_force_n",
+            self.door_break_force_n,
+            0.0,
+            1.0e9,
+            "0 (unbreakable) or a force in N",
+        )?;
+        Ok(())
+    }
+}
+
 impl WorldSpec {
     /// The ground-truth world of a (validated) building, with default door properties.
     pub fn from_building(b: &Building) -> Result<WorldSpec> {
@@ -51,39 +91,7 @@ impl WorldSpec {
 
     /// The ground-truth world of a (validated) building.
     pub fn from_building_with(b: &Building, cfg: &ImportConfig) -> Result<WorldSpec> {
-        let el = "import config";
-        check_range(
-            el,
-            "door_mass_kg",
-            cfg.door_mass_kg,
-            0.1,
-            1.0e4,
-            "0.1 kg to 10 t",
-        )?;
-        check_range(
-            el,
-            "door_max_deg",
-            cfg.door_max_deg,
-            1.0,
-            180.0,
-            "1 to 180 degrees",
-        )?;
-        check_range(
-            el,
-            "free_space_margin_m",
-            cfg.free_space_margin_m,
-            0.0,
-            10.0,
-            "0 to 10 m",
-        )?;
-        check_range(
-            el,
-            "door_break_force_n",
-            cfg.door_break_force_n,
-            0.0,
-            1.0e9,
-            "0 (unbreakable) or a force in N",
-        )?;
+        cfg.validate()?;
         let geometry = BuildingGeometry::new(b);
         let ids: HashMap<&str, u32> = geometry
             .entities()

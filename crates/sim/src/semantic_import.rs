@@ -6,7 +6,7 @@
 //! Semantic entities have ids but no names: each gets `<class>_<id>` (e.g. `door_13`,
 //! `free_space_for_door_14`, `stairs_21`), usable in scenarios like the ids themselves.
 
-use crate::error::{check_range, Result};
+use crate::error::Result;
 use crate::import::ImportConfig;
 use crate::spec::{
     BoxSpec, DoorSpec, EntityClass, FixedBox, FreeSpaceSpec, HingeEnd, OpeningSense, StairsSpec,
@@ -36,23 +36,7 @@ impl WorldSpec {
     /// The world of a semantic map. A door not `connected_via_joint` to a wall is an error
     /// ([`crate::SimError::DoorWithoutWall`]), as are degenerate boxes.
     pub fn from_semantic_map_with(map: &SemanticMap, cfg: &ImportConfig) -> Result<WorldSpec> {
-        let el = "import config";
-        check_range(
-            el,
-            "door_mass_kg",
-            cfg.door_mass_kg,
-            0.1,
-            1.0e4,
-            "0.1 kg to 10 t",
-        )?;
-        check_range(
-            el,
-            "door_max_deg",
-            cfg.door_max_deg,
-            1.0,
-            180.0,
-            "1 to 180 degrees",
-        )?;
+        cfg.validate()?;
         let related = |kind: RelationType, a: u32, class: Sc| {
             map.relations_of(kind)
                 .filter(|r| r.a == a)

@@ -5,8 +5,9 @@
 //!   face (fewer are the noise tail of a closed leaf recessed in the opening, or the stretch
 //!   of a leaf open at a small angle that crosses the face plane), and *open* otherwise;
 //! - a run of open bins between blocked ones (blocked slivers up to `max_pier_m` inside it are
-//!   a door leaf crossing the face plane, and ignored) of `min_width_m..max_width_m` is an
-//!   opening candidate;
+//!   a door leaf crossing the face plane, and ignored; up to 40 cm where the open bins either
+//!   side hold the leaf's points near the face too, a leaf ajar) of `min_width_m..max_width_m`
+//!   is an opening candidate;
 //! - it is an opening if the wall continues above it (a lintel: face points above door level
 //!   in `min_lintel_coverage` of its bins), and, for a wall seen from one side only (which
 //!   could be hidden behind furniture at door level), if the scans saw into it: points inside
@@ -128,6 +129,9 @@ impl OpeningConfig {
     }
 }
 
+/// The widest blocked sliver of an opening that a leaf ajar crossing the face plane may explain.
+const LEAF_SLIVER_M: f64 = 0.4;
+
 /// A door opening in a wall.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Opening {
@@ -236,8 +240,22 @@ pub(crate) fn find_openings(
     for ((bin, &k), &m) in bins.iter_mut().zip(&blocking).zip(&at_wall) {
         bin.blocked = k >= 3 && 3 * k >= m;
     }
-    // Runs of open bins; slivers of blocked bins up to max_pier inside them are ignored.
+    // Runs of open bins; slivers of blocked bins up to max_pier inside them are ignored, and
+    // up to `LEAF_SLIVER_M` where a leaf ajar crosses the face plane: the open bins either
+    // side of such a sliver hold the leaf's points near the face (behind it towards the hinge,
+    // in front of it beyond), as much as a third of the sliver's, where a pier between two
+    // doorways has empty openings beside it.
     let pier = (c.max_pier_m / c.bin_m).round() as usize;
+    let leaf_sliver = (LEAF_SLIVER_M / c.bin_m).round() as usize;
+    let crossing_leaf = |from: usize, to: usize| {
+        let mut inside: Vec<f64> = (from..to).map(|k| at_wall[k] as f64).collect();
+        let level = median(&mut inside).unwrap_or(0.0);
+        let beside = [from.checked_sub(1), Some(to).filter(|&k| k < n)];
+        level > 0.0
+            && beside
+                .iter()
+                .all(|k| k.is_some_and(|k| 3.0 * at_wall[k] as f64 >= level))
+    };
     let mut runs: Vec<(usize, usize)> = Vec::new(); // [a, b) open-bin runs
     let mut b = 0;
     while b < n {
@@ -251,6 +269,7 @@ pub(crate) fn find_openings(
         }
         match runs.last_mut() {
             Some(r) if a - r.1 <= pier => r.1 = b,
+            Some(r) if a - r.1 <= leaf_sliver && crossing_leaf(r.1, a) => r.1 = b,
             _ => runs.push((a, b)),
         }
     }

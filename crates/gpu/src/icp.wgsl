@@ -46,6 +46,18 @@ fn bucket_of(key: u32) -> u32 {
 
 struct Hit { index: u32, d2: f32 };
 
+// The 26 neighbour buckets, faces first, then edges, then corners (nearest first, so the bound
+// shrinks early).
+var<private> NEIGHBOURS: array<vec3<i32>, 26> = array<vec3<i32>, 26>(
+    vec3<i32>(-1, 0, 0), vec3<i32>(1, 0, 0), vec3<i32>(0, -1, 0), vec3<i32>(0, 1, 0),
+    vec3<i32>(0, 0, -1), vec3<i32>(0, 0, 1),
+    vec3<i32>(-1, -1, 0), vec3<i32>(1, -1, 0), vec3<i32>(-1, 1, 0), vec3<i32>(1, 1, 0),
+    vec3<i32>(-1, 0, -1), vec3<i32>(1, 0, -1), vec3<i32>(-1, 0, 1), vec3<i32>(1, 0, 1),
+    vec3<i32>(0, -1, -1), vec3<i32>(0, 1, -1), vec3<i32>(0, -1, 1), vec3<i32>(0, 1, 1),
+    vec3<i32>(-1, -1, -1), vec3<i32>(1, -1, -1), vec3<i32>(-1, 1, -1), vec3<i32>(1, 1, -1),
+    vec3<i32>(-1, -1, 1), vec3<i32>(1, -1, 1), vec3<i32>(-1, 1, 1), vec3<i32>(1, 1, 1),
+);
+
 // Squared distance from p to the box [lo, lo + size].
 fn box_d2(p: vec3<f32>, lo: vec3<f32>, size: f32) -> f32 {
     let d = max(max(lo - p, p - (lo + vec3<f32>(size))), vec3<f32>(0.0));
@@ -104,16 +116,8 @@ fn nearest(p: vec3<f32>, hint: u32) -> Hit {
     let g = clamp((p - params.origin.xyz) * params.origin.w, vec3<f32>(-4.0), vec3<f32>(params.dims.xyz) + vec3<f32>(4.0));
     let c = vec3<i32>(floor(g));
     scan_bucket(p, c, &best);
-    for (var order = 1; order <= 3; order++) {
-        for (var dz = -1; dz <= 1; dz++) {
-            for (var dy = -1; dy <= 1; dy++) {
-                for (var dx = -1; dx <= 1; dx++) {
-                    if (abs(dx) + abs(dy) + abs(dz) == order) {
-                        scan_bucket(p, c + vec3<i32>(dx, dy, dz), &best);
-                    }
-                }
-            }
-        }
+    for (var k = 0u; k < 26u; k++) {
+        scan_bucket(p, c + NEIGHBOURS[k], &best);
     }
     return best;
 }

@@ -263,7 +263,6 @@ pub fn summary(map: &SemanticMap) -> String {
     )
 }
 
-/// Runs `semsim eval ...`.
 /// Checks that `cloud`'s labels are `building`'s ground truth: a sample of the labelled points
 /// must lie on the building's entities of those ids (a map's labels.pcd carries the map's own
 /// ids, which name other entities elsewhere).
@@ -298,6 +297,7 @@ fn check_ground_truth(cloud: &PointCloud, building: &scanner::Building) -> anyho
     Ok(())
 }
 
+/// Runs `semsim eval ...`.
 pub fn run_eval(c: EvalCommand) -> anyhow::Result<()> {
     let EvalCommand::Map(a) = c;
     let map = SemanticMap::load(&a.map)?;

@@ -545,15 +545,7 @@ impl GpuIcp {
             if !self.stage_timing {
                 // One submission and one wait per iteration: both kernels and the copy back.
                 let t1 = Instant::now();
-                let mut enc = ctx.device.create_command_encoder(&Default::default());
-                {
-                    let mut pass = enc.begin_compute_pass(&Default::default());
-                    pass.set_bind_group(0, bind, &[]);
-                    pass.set_pipeline(&self.search);
-                    pass.dispatch_workgroups(groups, 1, 1);
-                    pass.set_pipeline(&self.sum);
-                    pass.dispatch_workgroups(1, 1, 1);
-                }
+                let mut enc = self.encode(bind, &[(&self.search, groups), (&self.sum, 1)]);
                 enc.copy_buffer_to_buffer(&self.totals, 0, &self.readback, 0, bytes);
                 ctx.queue.submit([enc.finish()]);
                 let v: Vec<f32> = map_read(ctx, &self.readback, bytes)?;
@@ -583,13 +575,7 @@ impl GpuIcp {
         pipeline: &wgpu::ComputePipeline,
         groups: u32,
     ) -> Result<()> {
-        let mut enc = self.ctx.device.create_command_encoder(&Default::default());
-        {
-            let mut pass = enc.begin_compute_pass(&Default::default());
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, bind, &[]);
-            pass.dispatch_workgroups(groups, 1, 1);
-        }
+        let enc = self.encode(bind, &[(pipeline, groups)]);
         self.ctx.queue.submit([enc.finish()]);
         self.ctx
             .device
@@ -599,6 +585,24 @@ impl GpuIcp {
                 msg: e.to_string(),
             })?;
         Ok(())
+    }
+
+    /// A command encoder with one compute pass running `stages` (pipeline, workgroups) in order.
+    fn encode(
+        &self,
+        bind: &wgpu::BindGroup,
+        stages: &[(&wgpu::ComputePipeline, u32)],
+    ) -> wgpu::CommandEncoder {
+        let mut enc = self.ctx.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = enc.begin_compute_pass(&Default::default());
+            pass.set_bind_group(0, bind, &[]);
+            for (pipeline, groups) in stages {
+                pass.set_pipeline(pipeline);
+                pass.dispatch_workgroups(*groups, 1, 1);
+            }
+        }
+        enc
     }
 
     fn bind_group(&self) -> wgpu::BindGroup {

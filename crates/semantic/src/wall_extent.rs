@@ -43,7 +43,7 @@ pub(crate) fn find_extent(
                     face_pts.push((k, s, z));
                 } else if d < f_lo || d > f_hi {
                     let x = &mut across[k];
-                    x.0 |= 1 << ((((d + hw) / bin) as usize).min(31));
+                    x.0 |= across_mark(d, hw);
                     x.1 = x.1.min(z);
                     x.2 = x.2.max(z);
                 }
@@ -54,7 +54,7 @@ pub(crate) fn find_extent(
         let hidden = |k: usize, z: f64| {
             (k.saturating_sub(1)..(k + 2).min(nb)).any(|j| {
                 let x = &across[j];
-                x.0.count_ones() >= 5 && z >= x.1 - 0.1 && z <= x.2 + 0.1
+                crossing(x.0) && z >= x.1 - 0.1 && z <= x.2 + 0.1
             })
         };
         let s_vals: Vec<f64> = face_pts
@@ -68,7 +68,7 @@ pub(crate) fn find_extent(
         let crossing: Vec<(f64, f64, f64, f64)> = across
             .iter()
             .enumerate()
-            .filter(|(_, m)| m.0.count_ones() >= 5)
+            .filter(|(_, m)| crossing(m.0))
             .map(|(k, m)| {
                 (
                     r0 + k as f64 * bin,
@@ -102,6 +102,17 @@ pub(crate) fn find_extent(
         }
     }
     found
+}
+
+/// The bit of a point `d` off the plane (within `hw` of it) in a mask of 3 cm distance bins.
+pub(crate) fn across_mark(d: f64, hw: f64) -> u32 {
+    1 << ((((d + hw) / 0.03) as usize).min(31))
+}
+
+/// Whether the points off the plane marked in `mask` (see [`across_mark`]) spread over 15 cm or
+/// more across it: a surface crossing the plane (another wall's face), not noise.
+pub(crate) fn crossing(mask: u32) -> bool {
+    mask.count_ones() >= 5
 }
 
 /// The union of the runs of the values `s` (gaps at most `max_gap`) that overlap `[a, b]`.

@@ -6,6 +6,7 @@
 //! anything behind a one-sided wall's face) is a real end, and bins where another surface
 //! crosses the plane (a wall meeting this one) are no glimpse of this wall.
 
+use crate::wall_extent::{across_mark, crossing};
 use crate::wall_joins::seen_through;
 use crate::walls::{Scene, WallConfig, WallFit};
 
@@ -68,7 +69,7 @@ fn reach(w: &WallFit, faces: &[f64], direction: f64, sc: &Scene, c: &WallConfig)
             if faces.iter().any(|f| (d - f).abs() <= tol) {
                 bins[k].0 += 1;
             } else if d < f_lo - 2.0 * tol || d > f_hi + 2.0 * tol {
-                bins[k].1 |= 1 << ((((d + hw) / 0.03) as usize).min(31));
+                bins[k].1 |= across_mark(d, hw);
             }
         });
     let mut reached = 0.0f64;
@@ -77,7 +78,7 @@ fn reach(w: &WallFit, faces: &[f64], direction: f64, sc: &Scene, c: &WallConfig)
         if b0 - reached > c.max_glimpse_gap_m {
             break;
         }
-        if n < MIN_BIN_POINTS || across.count_ones() >= 5 {
+        if n < MIN_BIN_POINTS || crossing(across) {
             continue;
         }
         // Only a gap wider than the extent's own may hide a real end.

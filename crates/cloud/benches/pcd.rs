@@ -1,7 +1,7 @@
 //! PCD I/O benchmark: binary and binary_compressed read/write of 162,841 labelled points
 //! (one 541 x 301 scan). Run: `cargo bench -p cloud --bench pcd`.
 
-use cloud::{io::pcd, Label, Organized, PcdEncoding, PointCloud, SurfaceClass};
+use cloud::{io::pcd, Label, Organized, PcdEncoding, PointCloud, EntityClass};
 use criterion::{criterion_group, criterion_main, Criterion};
 use glam::Vec3;
 
@@ -19,7 +19,7 @@ fn scan_like() -> PointCloud {
         (0..rows * cols)
             .map(|i| Label {
                 entity: (i % 40) as u32,
-                class: SurfaceClass::Wall,
+                class: EntityClass::Wall,
             })
             .collect(),
     );

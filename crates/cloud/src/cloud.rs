@@ -3,70 +3,8 @@
 
 use crate::error::{CloudError, Result};
 use glam::{Affine3A, DAffine3, Quat, Vec3};
+use crate::class::EntityClass;
 use serde::{Deserialize, Serialize};
-
-/// The surface class carried by a point's label (ground truth from the virtual laser,
-/// or the output of semantic identification).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-#[repr(u8)]
-pub enum SurfaceClass {
-    /// No label, or a missing return.
-    #[default]
-    Unknown = 0,
-    /// The floor slab.
-    Floor = 1,
-    /// The ceiling slab.
-    Ceiling = 2,
-    /// A wall (beside openings).
-    Wall = 3,
-    /// The part of a wall above a door opening (the lintel).
-    WallAboveDoor = 4,
-    /// A door leaf.
-    Door = 5,
-    /// A stair step or landing.
-    Stairs = 6,
-    /// Furniture and clutter.
-    Furniture = 7,
-}
-
-impl SurfaceClass {
-    /// All classes, in code order.
-    pub const ALL: [SurfaceClass; 8] = [
-        SurfaceClass::Unknown,
-        SurfaceClass::Floor,
-        SurfaceClass::Ceiling,
-        SurfaceClass::Wall,
-        SurfaceClass::WallAboveDoor,
-        SurfaceClass::Door,
-        SurfaceClass::Stairs,
-        SurfaceClass::Furniture,
-    ];
-
-    /// The class for a stored code; `None` for codes no class has.
-    pub fn from_code(code: u8) -> Option<Self> {
-        Self::ALL.get(code as usize).copied()
-    }
-
-    /// The stored code.
-    pub fn code(self) -> u8 {
-        self as u8
-    }
-
-    /// A lower-case name, as used in files.
-    pub fn name(self) -> &'static str {
-        match self {
-            SurfaceClass::Unknown => "unknown",
-            SurfaceClass::Floor => "floor",
-            SurfaceClass::Ceiling => "ceiling",
-            SurfaceClass::Wall => "wall",
-            SurfaceClass::WallAboveDoor => "wall_above_door",
-            SurfaceClass::Door => "door",
-            SurfaceClass::Stairs => "stairs",
-            SurfaceClass::Furniture => "furniture",
-        }
-    }
-}
 
 /// A per-point label: which entity of the building the point lies on, and its class.
 /// Entity 0 means "no entity".
@@ -74,8 +12,8 @@ impl SurfaceClass {
 pub struct Label {
     /// Entity id (0 = none).
     pub entity: u32,
-    /// Surface class.
-    pub class: SurfaceClass,
+    /// Entity class.
+    pub class: EntityClass,
 }
 
 /// The grid shape of an organised cloud: point `(row, col)` is at index `row * cols + col`.
@@ -292,13 +230,5 @@ mod tests {
         c.transform(&t);
         assert!((c.points[0] - Vec3::new(1.0, 1.0, 0.5)).length() < 1e-6);
         assert!((c.sensor_origin - Vec3::new(1.0, 0.0, 0.5)).length() < 1e-6);
-    }
-
-    #[test]
-    fn class_codes_round_trip() {
-        for c in SurfaceClass::ALL {
-            assert_eq!(SurfaceClass::from_code(c.code()), Some(c));
-        }
-        assert_eq!(SurfaceClass::from_code(200), None);
     }
 }

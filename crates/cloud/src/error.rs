@@ -57,15 +57,8 @@ pub enum CloudError {
         msg: String,
     },
     /// A parameter outside its sensible range (e.g. a voxel size of 0).
-    #[error("invalid parameter {name} = {value}: {msg}")]
-    InvalidParameter {
-        /// Parameter name, with its unit.
-        name: &'static str,
-        /// The value given.
-        value: f64,
-        /// What would be valid.
-        msg: &'static str,
-    },
+    #[error(transparent)]
+    InvalidParameter(#[from] crate::param::InvalidParameter),
     /// A cloud whose parts disagree (e.g. label count != point count).
     #[error("inconsistent cloud: {0}")]
     Inconsistent(String),
@@ -89,8 +82,12 @@ impl CloudError {
         }
     }
 
-    /// True where the input (a file or a parameter) is at fault rather than the system.
-    pub fn is_bad_input(&self) -> bool {
+}
+
+impl crate::BadInput for CloudError {
+    /// True where the input (a file or a parameter) is at fault rather than the system: every
+    /// error but one the operating system raised reading or writing (other than a missing file).
+    fn is_bad_input(&self) -> bool {
         !matches!(self, CloudError::Io { source, .. } if source.kind() != std::io::ErrorKind::NotFound && source.kind() != std::io::ErrorKind::InvalidData && source.kind() != std::io::ErrorKind::UnexpectedEof)
     }
 }

@@ -3,7 +3,7 @@
 
 use crate::atomic::write_atomically;
 use crate::error::{CloudError, Result};
-use glam::{DAffine3, DMat4};
+use glam::{DAffine3, DMat4, DQuat};
 use std::io::Write;
 use std::path::Path;
 
@@ -105,6 +105,24 @@ pub fn affine_from_mat4(m: DMat4, path: &Path, line: usize) -> Result<DAffine3> 
         ));
     }
     Ok(a)
+}
+
+/// How far pose `b` is from pose `a`: the translation (m) and the rotation angle (deg) of
+/// `a⁻¹ b`. Used to score registered poses against ground truth.
+///
+/// ```
+/// use glam::{DAffine3, DVec3};
+/// let a = DAffine3::IDENTITY;
+/// let b = DAffine3::from_rotation_z(2f64.to_radians()) * DAffine3::from_translation(DVec3::X * 0.1);
+/// let (m, deg) = cloud::pose_error(&a, &b);
+/// assert!((m - 0.1).abs() < 1e-12 && (deg - 2.0).abs() < 1e-9);
+/// ```
+pub fn pose_error(a: &DAffine3, b: &DAffine3) -> (f64, f64) {
+    let d = a.inverse() * *b;
+    let angle = DQuat::from_mat3(&d.matrix3)
+        .angle_between(DQuat::IDENTITY)
+        .to_degrees();
+    (d.translation.length(), angle)
 }
 
 #[cfg(test)]

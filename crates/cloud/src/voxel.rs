@@ -1,9 +1,12 @@
 //! Voxel-grid downsampling: one point per occupied voxel, at the centroid of the points in it.
 
 use crate::cloud::{Label, PointCloud};
-use crate::error::{CloudError, Result};
+use crate::error::Result;
 use glam::{DVec3, Vec3};
 use std::collections::HashMap;
+
+/// The smallest voxel edge: below it f32 coordinates would not separate voxels.
+const MIN_VOXEL_M: f64 = 1e-6;
 
 /// Downsamples `cloud` to one point per cubic voxel of edge `voxel_size_m`.
 ///
@@ -12,13 +15,13 @@ use std::collections::HashMap;
 /// Output order follows each voxel's first point in the input, so the result is deterministic.
 /// Missing returns are dropped and the output is unorganised.
 pub fn voxel_downsample(cloud: &PointCloud, voxel_size_m: f64) -> Result<PointCloud> {
-    if !(voxel_size_m.is_finite() && voxel_size_m > 1e-6) {
-        return Err(CloudError::InvalidParameter {
-            name: "voxel_size_m",
-            value: voxel_size_m,
-            msg: "must be a finite length above 1 micrometre",
-        });
-    }
+    crate::check_range(
+        "voxel_size_m",
+        voxel_size_m,
+        MIN_VOXEL_M,
+        f64::MAX,
+        "must be a finite length of at least 1 micrometre",
+    )?;
     let inv = 1.0 / voxel_size_m;
     let mut slot_of: HashMap<(i64, i64, i64), usize> = HashMap::new();
     let mut acc: Vec<Accumulator> = Vec::new();
@@ -95,7 +98,7 @@ impl Accumulator {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::cloud::SurfaceClass;
+    use crate::class::EntityClass;
 
     #[test]
     fn merges_points_per_voxel_at_their_centroid() {
@@ -107,7 +110,7 @@ mod tests {
         ]);
         let wall = Label {
             entity: 3,
-            class: SurfaceClass::Wall,
+            class: EntityClass::Wall,
         };
         c.labels = Some(vec![wall, wall, Label::default(), Label::default()]);
         c.organized = Some(crate::Organized { rows: 2, cols: 2 });

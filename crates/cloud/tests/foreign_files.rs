@@ -2,7 +2,7 @@
 //! PLY with extra elements and list properties, 3DTK shape lines, poses and frames.
 
 use cloud::io::threedtk::{read_3d, read_frames_3dtk, read_pose_3dtk};
-use cloud::{read_cloud, Label, Organized, SurfaceClass};
+use cloud::{read_cloud, Label, Organized, EntityClass};
 use glam::{DVec3, Quat, Vec3};
 use std::path::PathBuf;
 
@@ -57,7 +57,7 @@ fn check_pcl_cloud(path: &std::path::Path) {
         .labels
         .expect("labels")
         .iter()
-        .all(|l| l.class == SurfaceClass::Unknown));
+        .all(|l| l.class == EntityClass::Unknown));
     assert_eq!(c.sensor_origin, Vec3::new(1.0, 2.0, 3.0));
     assert!(
         c.sensor_orientation
@@ -106,7 +106,7 @@ fn pcd_ascii_with_counts_and_class_without_label() {
         c.labels.expect("labels")[0],
         Label {
             entity: 0,
-            class: SurfaceClass::Wall
+            class: EntityClass::Wall
         }
     );
     assert_eq!((c.organized, c.intensity), (None, None));
@@ -137,8 +137,8 @@ fn ply_big_endian_with_extra_elements_and_lists() {
     let (_dir, path) = file("lists_ascii.ply", ascii.as_bytes());
     let d = read_cloud(&path).expect("valid");
     assert_eq!((&d.points, &d.intensity), (&c.points, &c.intensity));
-    let classes: Vec<SurfaceClass> = d.labels.expect("labels").iter().map(|l| l.class).collect();
-    assert_eq!(classes, [SurfaceClass::Floor, SurfaceClass::Stairs]);
+    let classes: Vec<EntityClass> = d.labels.expect("labels").iter().map(|l| l.class).collect();
+    assert_eq!(classes, [EntityClass::Floor, EntityClass::Stairs]);
 }
 
 #[test]

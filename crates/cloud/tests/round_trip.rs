@@ -3,7 +3,7 @@
 use cloud::io::{pcd, ply, threedtk, xyz};
 use cloud::{
     read_cloud, write_cloud, CloudFormat, Label, Organized, PcdEncoding, PlyEncoding, PointCloud,
-    SurfaceClass,
+    EntityClass,
 };
 use glam::{Quat, Vec3};
 use std::path::Path;
@@ -39,7 +39,7 @@ fn sample() -> PointCloud {
     let labels = (0..rows * cols)
         .map(|i| Label {
             entity: if i == 5 { u32::MAX } else { i as u32 * 7 },
-            class: SurfaceClass::ALL[i % SurfaceClass::ALL.len()],
+            class: EntityClass::ALL[i % EntityClass::ALL.len()],
         })
         .collect();
     PointCloud {
@@ -255,7 +255,7 @@ fn time_pcd_162k() {
         (0..n)
             .map(|i| Label {
                 entity: i as u32 % 40,
-                class: SurfaceClass::Wall,
+                class: EntityClass::Wall,
             })
             .collect(),
     );

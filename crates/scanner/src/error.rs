@@ -27,31 +27,20 @@ pub enum ScannerError {
         msg: String,
     },
     /// A parameter outside its sensible range.
-    #[error("invalid parameter {name} = {value}: {msg}")]
-    InvalidParameter {
-        /// Parameter name with unit.
-        name: &'static str,
-        /// The value given.
-        value: f64,
-        /// What would be valid.
-        msg: &'static str,
-    },
+    #[error(transparent)]
+    InvalidParameter(#[from] cloud::InvalidParameter),
 }
 
 /// Result with [`ScannerError`].
 pub type Result<T, E = ScannerError> = std::result::Result<T, E>;
 
-/// Checks `lo <= value <= hi` (and finiteness) for a named parameter.
-pub(crate) fn check_range(
-    name: &'static str,
-    value: f64,
-    lo: f64,
-    hi: f64,
-    msg: &'static str,
-) -> Result<()> {
-    if value.is_finite() && value >= lo && value <= hi {
-        Ok(())
-    } else {
-        Err(ScannerError::InvalidParameter { name, value, msg })
+impl cloud::BadInput for ScannerError {
+    fn is_bad_input(&self) -> bool {
+        match self {
+            ScannerError::Cloud(c) => c.is_bad_input(),
+            ScannerError::Syntax { .. }
+            | ScannerError::InvalidBuilding { .. }
+            | ScannerError::InvalidParameter(_) => true,
+        }
     }
 }

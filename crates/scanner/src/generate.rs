@@ -6,7 +6,7 @@ use crate::building::{
     Building, Ceiling, Door, Floor, Furniture, Hinge, Leaf, Staircase, Swing, Wall,
 };
 use crate::error::Result;
-use crate::rng::Rng;
+use cloud::Rng;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 

@@ -3,7 +3,7 @@
 
 use crate::building::{Building, Hinge, Swing, Wall};
 use crate::validate::wall_length_m;
-use cloud::{Label, SurfaceClass};
+use cloud::{Label, EntityClass};
 use glam::{Quat, Vec3};
 use parry3d::math::Pose;
 use parry3d::query::Ray;
@@ -25,11 +25,11 @@ pub struct BoxPart {
 
 /// A semantic entity of the building (ground truth): id, class and a name for people.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Entity {
+pub struct TruthEntity {
     /// Entity id, as stored in point labels (never 0).
     pub id: u32,
     /// Its class.
-    pub class: SurfaceClass,
+    pub class: EntityClass,
     /// A name, e.g. `walls[2]` or `walls[2].doors[0].leaf`.
     pub name: String,
 }
@@ -37,7 +37,7 @@ pub struct Entity {
 /// The building as labelled boxes with a ray-cast acceleration structure.
 pub struct BuildingGeometry {
     parts: Vec<BoxPart>,
-    entities: Vec<Entity>,
+    entities: Vec<TruthEntity>,
     compound: Compound,
 }
 
@@ -47,14 +47,14 @@ impl BuildingGeometry {
         let mut g = Builder::default();
         let f = &b.floor;
         let (min, max) = (f.min_m, f.max_m);
-        let floor = g.entity(SurfaceClass::Floor, "floor".into());
+        let floor = g.entity(EntityClass::Floor, "floor".into());
         g.aabb(
             floor,
             [min[0], min[1], -f.thickness_m],
             [max[0], max[1], 0.0],
         );
         let c = &b.ceiling;
-        let ceiling = g.entity(SurfaceClass::Ceiling, "ceiling".into());
+        let ceiling = g.entity(EntityClass::Ceiling, "ceiling".into());
         g.aabb(
             ceiling,
             [min[0], min[1], c.height_m],
@@ -64,7 +64,7 @@ impl BuildingGeometry {
             add_wall(&mut g, w, b.wall_height_m(w), i);
         }
         for (i, s) in b.stairs.iter().enumerate() {
-            let id = g.entity(SurfaceClass::Stairs, format!("stairs[{i}]"));
+            let id = g.entity(EntityClass::Stairs, format!("stairs[{i}]"));
             let yaw = s.direction_deg.to_radians();
             let dir = [yaw.cos(), yaw.sin()];
             for k in 0..s.steps {
@@ -89,7 +89,7 @@ impl BuildingGeometry {
             }
         }
         for (i, f) in b.boxes.iter().enumerate() {
-            let id = g.entity(SurfaceClass::Furniture, format!("boxes[{i}]"));
+            let id = g.entity(EntityClass::Furniture, format!("boxes[{i}]"));
             let h = [f.size_m[0] / 2.0, f.size_m[1] / 2.0, f.size_m[2] / 2.0];
             g.oriented(id, f.center_m, h, f.yaw_deg.to_radians());
         }
@@ -102,7 +102,7 @@ impl BuildingGeometry {
     }
 
     /// The entities, by ascending id.
-    pub fn entities(&self) -> &[Entity] {
+    pub fn entities(&self) -> &[TruthEntity] {
         &self.entities
     }
 
@@ -114,7 +114,7 @@ impl BuildingGeometry {
     }
 
     /// The entity whose solid contains `point`, if any (e.g. a scan pose inside a wall).
-    pub fn entity_containing(&self, point: Vec3) -> Option<&Entity> {
+    pub fn entity_containing(&self, point: Vec3) -> Option<&TruthEntity> {
         let i = self
             .compound
             .shapes()
@@ -144,7 +144,7 @@ fn add_wall(g: &mut Builder, w: &Wall, height: f64, i: usize) {
     let yaw = u[1].atan2(u[0]);
     let at = |s: f64| [w.start_m[0] + u[0] * s, w.start_m[1] + u[1] * s];
     let half_t = w.thickness_m / 2.0;
-    let wall = g.entity(SurfaceClass::Wall, format!("walls[{i}]"));
+    let wall = g.entity(EntityClass::Wall, format!("walls[{i}]"));
     let mut doors: Vec<_> = w.doors.iter().enumerate().collect();
     doors.sort_by(|a, b| a.1.offset_m.total_cmp(&b.1.offset_m));
     let piece = |g: &mut Builder, id: u32, s0: f64, s1: f64, z0: f64, z1: f64| {
@@ -167,7 +167,7 @@ fn add_wall(g: &mut Builder, w: &Wall, height: f64, i: usize) {
     for (j, d) in doors {
         if d.height_m < height - 1e-4 {
             let lintel = g.entity(
-                SurfaceClass::WallAboveDoor,
+                EntityClass::WallAboveDoor,
                 format!("walls[{i}].doors[{j}].lintel"),
             );
             piece(
@@ -180,7 +180,7 @@ fn add_wall(g: &mut Builder, w: &Wall, height: f64, i: usize) {
             );
         }
         let Some(leaf) = &d.leaf else { continue };
-        let id = g.entity(SurfaceClass::Door, format!("walls[{i}].doors[{j}].leaf"));
+        let id = g.entity(EntityClass::Door, format!("walls[{i}].doors[{j}].leaf"));
         let (hinge_s, closed_yaw, sign) = match (leaf.hinge, leaf.swing) {
             (Hinge::Start, Swing::Left) => (d.offset_m, yaw, 1.0),
             (Hinge::Start, Swing::Right) => (d.offset_m, yaw, -1.0),
@@ -207,13 +207,13 @@ fn add_wall(g: &mut Builder, w: &Wall, height: f64, i: usize) {
 #[derive(Default)]
 struct Builder {
     parts: Vec<BoxPart>,
-    entities: Vec<Entity>,
+    entities: Vec<TruthEntity>,
 }
 
 impl Builder {
-    fn entity(&mut self, class: SurfaceClass, name: String) -> u32 {
+    fn entity(&mut self, class: EntityClass, name: String) -> u32 {
         let id = self.entities.len() as u32 + 1;
-        self.entities.push(Entity { id, class, name });
+        self.entities.push(TruthEntity { id, class, name });
         id
     }
 

@@ -7,9 +7,10 @@
 //! in that plane, so the default 270 degree fan centred on the zenith sees everything but a 45
 //! degree cone under the robot, and 180 degrees of rotation cover all azimuths.
 
-use crate::error::{check_range, Result};
+use crate::error::Result;
+use cloud::check_range;
 use crate::geometry::BuildingGeometry;
-use crate::rng::Rng;
+use cloud::Rng;
 use cloud::{Label, Organized, PointCloud};
 use glam::{DAffine3, DQuat, DVec3, Quat, Vec3};
 use rayon::prelude::*;

@@ -22,7 +22,6 @@ mod generate;
 mod geometry;
 mod laser;
 mod odometry;
-mod rng;
 mod validate;
 
 pub use building::{
@@ -30,7 +29,6 @@ pub use building::{
 };
 pub use error::{Result, ScannerError};
 pub use generate::{generate_building, GeneratorConfig};
-pub use geometry::{BoxPart, BuildingGeometry, Entity};
+pub use geometry::{BoxPart, BuildingGeometry, TruthEntity};
 pub use laser::{LaserConfig, ScanPose, VirtualLaser};
 pub use odometry::{odometry_from_truth, OdometryConfig};
-pub use rng::Rng;

@@ -1,9 +1,10 @@
 //! Simulated wheel odometry: the ground-truth poses with drift and noise accumulated
 //! step by step, as a robot's dead reckoning would report them.
 
-use crate::error::{check_range, Result};
+use crate::error::Result;
+use cloud::check_range;
 use crate::laser::ScanPose;
-use crate::rng::Rng;
+use cloud::Rng;
 use serde::{Deserialize, Serialize};
 
 /// How wrong the odometry is.

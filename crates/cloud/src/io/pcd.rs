@@ -2,7 +2,7 @@
 //!
 //! Reading accepts any field layout PCL writes (padding fields `_`, `COUNT > 1`, rgb, normals...)
 //! and takes `x y z` (F4 or F8), an optional `intensity` (any numeric type), an optional `label`
-//! (unsigned, the entity id) and an optional `class` (U1, a [`crate::SurfaceClass`] code; class
+//! (unsigned, the entity id) and an optional `class` (U1, a [`crate::EntityClass`] code; class
 //! `Unknown` where only `label` is present, entity 0 where only `class` is). `HEIGHT > 1` makes
 //! the cloud organised (`HEIGHT` rows of `WIDTH` columns; `HEIGHT 1` means unorganised), and
 //! `VIEWPOINT tx ty tz qw qx qy qz` is the sensor pose. Missing returns are NaN points, allowed
@@ -19,7 +19,8 @@
 use super::lzf;
 use super::scalar::{class_from_value, entity_from_value, Scalar};
 use crate::atomic::write_atomically;
-use crate::cloud::{Label, Organized, PointCloud, SurfaceClass};
+use crate::class::EntityClass;
+use crate::cloud::{Label, Organized, PointCloud};
 use crate::error::{CloudError, Result};
 use glam::{Quat, Vec3};
 use std::io::Write;
@@ -266,7 +267,7 @@ fn decode_binary(
             .decode_column(src, stride, n, |v| v as u8)
             .ok_or_else(|| short(index))?;
         for (i, (l, &c)) in labels.iter_mut().zip(&codes).enumerate() {
-            l.class = SurfaceClass::from_code(c).ok_or_else(|| {
+            l.class = EntityClass::from_code(c).ok_or_else(|| {
                 let msg = format!("point {i}: unknown surface class code {c}");
                 CloudError::parse(path, 0, msg)
             })?;

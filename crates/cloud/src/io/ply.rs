@@ -3,7 +3,7 @@
 //! Reading takes the `vertex` element: `x y z` (any scalar type; `float`, `double` and the
 //! `float32`/`float64` aliases are the usual ones), an optional intensity (`intensity` or
 //! `scalar_intensity`, any scalar type) and optional `label` (entity id) and `class`
-//! ([`crate::SurfaceClass`] code). Other vertex properties, list properties included, are
+//! ([`crate::EntityClass`] code). Other vertex properties, list properties included, are
 //! skipped, as are the elements before `vertex`; reading stops after the vertex element
 //! (faces and the like are ignored). PLY has no organised shape, so a non-finite point is an
 //! error, and writing an organised cloud drops its missing returns.

@@ -135,9 +135,9 @@ impl Scalar {
 }
 
 /// A stored surface-class value as a class: `Err` with a message for a code no class has.
-pub(crate) fn class_from_value(v: f64) -> Result<crate::SurfaceClass, String> {
+pub(crate) fn class_from_value(v: f64) -> Result<crate::EntityClass, String> {
     let code = (v.fract() == 0.0 && (0.0..=255.0).contains(&v)).then_some(v as u8);
-    code.and_then(crate::SurfaceClass::from_code)
+    code.and_then(crate::EntityClass::from_code)
         .ok_or_else(|| format!("unknown surface class code {v}"))
 }
 

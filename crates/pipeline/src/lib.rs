@@ -1,0 +1,2 @@
+//! semsim's chain as a library (placeholder).
+#![warn(missing_docs)]

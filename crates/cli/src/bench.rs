@@ -1,18 +1,12 @@
-//! `semsim bench icp`: ms per ICP iteration on the CPU and on the GPU for two 162,841-point
-//! virtual scans and a 1.6 M-point pair: the GPU kernels' iteration as the loop submits it (one
-//! submission and one wait), the same split into upload, search, reduction and download (a wait
-//! after each stage), and the whole ICP loop on the GPU (`registration::register` with `device = gpu`:
-//! the kernels' sums, the SVD on the CPU, the stop criteria) per iteration. Writes a JSON report;
-//! figures are ratios against the CPU measured in the same run.
+//! `semsim bench icp`: ms per ICP iteration on the CPU and on the GPU (`pipeline::bench_icp_case`
+//! measures; this prints the table and writes the JSON report). Figures are ratios against the
+//! CPU measured in the same run.
 
 use crate::exit::bad_input;
 use anyhow::Context;
 use clap::{Args, Subcommand, ValueEnum};
-use glam::{Mat4, Quat, Vec3};
-use registration::{Device, IcpConfig, Method};
-use scanner::{Building, BuildingGeometry, LaserConfig, ScanPose, VirtualLaser};
+use pipeline::{bench_icp_case, icp_bench_cases, open_bench_gpu};
 use std::path::PathBuf;
-use std::time::Instant;
 
 /// Benchmark subcommands.
 #[derive(Subcommand)]
@@ -58,90 +52,43 @@ pub fn run(c: BenchCommand) -> anyhow::Result<()> {
     if a.iterations == 0 || a.iterations > 1000 {
         return Err(bad_input("--iterations must be within 1..1000"));
     }
-    let gpu = match a.device {
+    let mut gpu = match a.device {
         BenchDevice::Cpu => None,
-        BenchDevice::Gpu => Some(open_gpu(gpu::AdapterChoice::Any)?),
-        BenchDevice::Auto => open_gpu(gpu::AdapterChoice::Any).ok(),
+        BenchDevice::Gpu => Some(open_bench_gpu(gpu::AdapterChoice::Any)?),
+        BenchDevice::Auto => open_bench_gpu(gpu::AdapterChoice::Any).ok(),
     };
-    let mut cases = vec![("162,841-point scans", LaserConfig::default())];
-    if !a.small_only {
-        cases.push((
-            "1.6 M-point scans",
-            LaserConfig {
-                beams: 1623,
-                rotation_steps: 1003,
-                ..Default::default()
-            },
-        ));
-    }
-    let mut gpu = gpu;
-    let mut rows = Vec::new();
+    let cpu = matches!(a.device, BenchDevice::Cpu | BenchDevice::Auto);
     println!(
         "{:<22} {:>8} {:>10} {:>10} {:>10} {:>9} {:>9} {:>9} {:>9} {:>8}",
-        "case",
-        "points",
-        "cpu ms/it",
-        "gpu ms/it",
-        "loop ms/it",
-        "upload",
-        "search",
-        "reduce",
-        "download",
-        "speedup"
+        "case", "points", "cpu ms/it", "gpu ms/it", "loop ms/it", "upload", "search", "reduce",
+        "download", "speedup"
     );
-    for (name, laser) in cases {
-        let (target, source) = pair(laser)?;
-        let cpu_ms = matches!(a.device, BenchDevice::Cpu | BenchDevice::Auto)
-            .then(|| ms_per_iteration(&target, &source, a.iterations, Device::Cpu))
-            .transpose()?;
-        let mut on_gpu = |stage_timing| {
-            gpu.as_mut()
-                .map(|g| {
-                    g.set_stage_timing(stage_timing);
-                    gpu_ms_per_iteration(g, &target, &source, a.iterations, a.bucket)
-                })
-                .transpose()
-        };
-        // The split needs a wait after each stage; the total is measured as the loop runs
-        // (one submission and one wait per iteration).
-        let (gpu_split, target_ms) = on_gpu(true)?.unzip();
-        let gpu_ms =
-            on_gpu(false)?.map(|(s, _)| s.upload_ms + s.search_ms + s.reduce_ms + s.download_ms);
-        let loop_ms = gpu
-            .is_some()
-            .then(|| ms_per_iteration(&target, &source, a.iterations, Device::Gpu))
-            .transpose()?;
-        let speedup = cpu_ms.zip(gpu_ms).map(|(c, g)| c / g);
+    let mut rows = Vec::new();
+    for (name, laser) in icp_bench_cases(a.small_only) {
+        let r = bench_icp_case(name, laser, cpu, gpu.as_mut(), a.iterations, a.bucket)?;
         let f = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.3}"));
-        let s = gpu_split.unwrap_or_default();
+        let z = |v: Option<f64>| v.unwrap_or(0.0);
         println!(
             "{name:<22} {:>8} {:>10} {:>10} {:>10} {:>9.3} {:>9.3} {:>9.3} {:>9.3} {:>8}",
-            source.len(),
-            f(cpu_ms),
-            f(gpu_ms),
-            f(loop_ms),
-            s.upload_ms,
-            s.search_ms,
-            s.reduce_ms,
-            s.download_ms,
-            speedup.map_or("-".into(), |x| format!("{x:.1}x"))
+            r.source_points,
+            f(r.cpu_ms_per_iteration),
+            f(r.gpu_ms_per_iteration),
+            f(r.gpu_loop_ms_per_iteration),
+            z(r.gpu_upload_ms),
+            z(r.gpu_search_ms),
+            z(r.gpu_reduce_ms),
+            z(r.gpu_download_ms),
+            r.gpu_speedup.map_or("-".into(), |x| format!("{x:.1}x"))
         );
-        rows.push(serde_json::json!({
-            "case": name, "source_points": source.len(), "target_points": target.len(),
-            "cpu_ms_per_iteration": cpu_ms, "gpu_ms_per_iteration": gpu_ms,
-            "gpu_loop_ms_per_iteration": loop_ms,
-            "gpu_upload_ms": gpu_split.map(|s| s.upload_ms), "gpu_search_ms": gpu_split.map(|s| s.search_ms),
-            "gpu_reduce_ms": gpu_split.map(|s| s.reduce_ms), "gpu_download_ms": gpu_split.map(|s| s.download_ms),
-            "gpu_speedup": speedup, "gpu_target_grid_ms": target_ms,
-        }));
+        rows.push(r);
     }
     let adapter = gpu.as_ref().map(|g| g.context().adapter_name());
     println!("GPU adapter: {}", adapter.as_deref().unwrap_or("none"));
-    for row in &rows {
-        if let Some(ms) = row["gpu_target_grid_ms"].as_f64() {
+    for r in &rows {
+        if let Some(ms) = r.gpu_target_grid_ms {
             println!(
                 "{}: target grid built on the CPU and uploaded in {ms:.1} ms (once per target)",
-                row["case"].as_str().unwrap_or("?")
+                r.case
             );
         }
     }
@@ -153,124 +100,4 @@ pub fn run(c: BenchCommand) -> anyhow::Result<()> {
         println!("wrote {}", path.display());
     }
     Ok(())
-}
-
-/// Opens a GPU; "no adapter" is bad input (exit 2) for `--device gpu`.
-pub fn open_gpu(choice: gpu::AdapterChoice) -> anyhow::Result<gpu::GpuIcp> {
-    let ctx = gpu::GpuContext::new(choice).map_err(|e| bad_input(e.to_string()))?;
-    Ok(gpu::GpuIcp::new(ctx)?)
-}
-
-/// Two scans of the default building 0.8 m and 5 degrees apart (target, source), missing returns dropped.
-fn pair(laser: LaserConfig) -> anyhow::Result<(Vec<Vec3>, Vec<Vec3>)> {
-    let b = Building::default_building()?;
-    let g = BuildingGeometry::new(&b);
-    let l = VirtualLaser::new(laser)?;
-    let t = l
-        .scan(
-            &g,
-            &ScanPose {
-                x_m: 6.5,
-                y_m: 0.0,
-                yaw_deg: 0.0,
-            },
-            0,
-        )
-        .without_invalid();
-    let s = l
-        .scan(
-            &g,
-            &ScanPose {
-                x_m: 7.3,
-                y_m: 0.6,
-                yaw_deg: 5.0,
-            },
-            1,
-        )
-        .without_invalid();
-    Ok((t.points, s.points))
-}
-
-/// The truth of `pair` perturbed by 0.3 m / 5 degrees, as the starting transform.
-fn start() -> Mat4 {
-    let truth = Mat4::from_rotation_translation(
-        Quat::from_rotation_z(5f32.to_radians()),
-        Vec3::new(0.8, 0.6, 0.0),
-    );
-    truth
-        * Mat4::from_rotation_translation(
-            Quat::from_rotation_z(5f32.to_radians()),
-            Vec3::new(0.25, 0.15, 0.05),
-        )
-}
-
-/// Mean iteration time of `registration::register` (point-to-point, full resolution, 0.5 m
-/// gate) on `device`.
-fn ms_per_iteration(
-    target: &[Vec3],
-    source: &[Vec3],
-    iterations: usize,
-    device: Device,
-) -> anyhow::Result<f64> {
-    let config = IcpConfig {
-        method: Method::PointToPoint,
-        device,
-        max_iterations: iterations,
-        translation_epsilon_m: 0.0,
-        rotation_epsilon_deg: 0.0,
-        rmse_relative_epsilon: 0.0,
-        min_fitness: 0.0,
-        ..IcpConfig::point_to_point()
-    };
-    let t = cloud::PointCloud::from_points(target.to_vec());
-    let s = cloud::PointCloud::from_points(source.to_vec());
-    let guess = glam::DAffine3::from_mat4(start().as_dmat4());
-    let result = match registration::register(&s, &t, guess, &config) {
-        Ok(r) => r,
-        Err(registration::RegistrationError::NotConverged { result, .. }) => *result,
-        Err(e) => return Err(e.into()),
-    };
-    let its = &result.iterations;
-    Ok(its.iter().map(|i| i.time_ms).sum::<f64>() / its.len().max(1) as f64)
-}
-
-/// Mean time of the GPU kernels' iterations (`p2p_sums`, 0.5 m gate), split into stages.
-fn gpu_ms_per_iteration(
-    g: &mut gpu::GpuIcp,
-    target: &[Vec3],
-    source: &[Vec3],
-    iterations: usize,
-    bucket_m: f32,
-) -> anyhow::Result<(gpu::StageTimes, f64)> {
-    let t0 = Instant::now();
-    g.set_target(target, None, bucket_m)?;
-    let target_ms = t0.elapsed().as_secs_f64() * 1e3;
-    let t0 = Instant::now();
-    g.set_source(source)?;
-    let source_upload_ms = t0.elapsed().as_secs_f64() * 1e3;
-    let mut sum = gpu::StageTimes::default();
-    let reference = target.iter().copied().sum::<Vec3>() / target.len() as f32;
-    // Alternate between the start and a transform 2 cm / 0.2 degrees away, as consecutive ICP
-    // iterations move: each search starts from the previous iteration's pairs (its hints) but
-    // never from the answer itself.
-    let nudge = Mat4::from_rotation_translation(
-        Quat::from_rotation_z(0.2f32.to_radians()),
-        Vec3::new(0.02, -0.01, 0.005),
-    );
-    for i in 0..iterations {
-        let t = if i % 2 == 0 { start() } else { start() * nudge };
-        let (_, t) = g.p2p_sums(t, 0.5, reference)?;
-        sum.upload_ms += t.upload_ms;
-        sum.search_ms += t.search_ms;
-        sum.reduce_ms += t.reduce_ms;
-        sum.download_ms += t.download_ms;
-    }
-    let n = iterations as f64;
-    let times = gpu::StageTimes {
-        upload_ms: sum.upload_ms / n + source_upload_ms / n,
-        search_ms: sum.search_ms / n,
-        reduce_ms: sum.reduce_ms / n,
-        download_ms: sum.download_ms / n,
-    };
-    Ok((times, target_ms))
 }

@@ -1,8 +1,8 @@
 //! `semsim building generate|check`.
 
-use crate::config::SemsimConfig;
+use pipeline::Config;
 use clap::{Args, Subcommand};
-use scanner::{generate_building, Building, BuildingGeometry};
+use scanner::{generate_building, Building};
 use std::path::PathBuf;
 
 /// Building subcommands.
@@ -33,35 +33,17 @@ pub struct CheckArgs {
 }
 
 /// Runs a building subcommand.
-pub fn run(c: BuildingCommand, cfg: &SemsimConfig) -> anyhow::Result<()> {
+pub fn run(c: BuildingCommand, cfg: &Config) -> anyhow::Result<()> {
     match c {
         BuildingCommand::Generate(a) => {
             let b = generate_building(a.seed, &cfg.generator)?;
             b.save(&a.out)?;
-            println!("wrote {}: {}", a.out.display(), summary(&b));
+            println!("wrote {}: {}", a.out.display(), b.summary());
         }
         BuildingCommand::Check(a) => {
             let b = Building::load(&a.file)?;
-            println!("{}: valid; {}", a.file.display(), summary(&b));
+            println!("{}: valid; {}", a.file.display(), b.summary());
         }
     }
     Ok(())
-}
-
-/// One line: what the building holds.
-pub fn summary(b: &Building) -> String {
-    let doors: Vec<_> = b.walls.iter().flat_map(|w| &w.doors).collect();
-    let leaves = doors.iter().filter(|d| d.leaf.is_some()).count();
-    let parts = BuildingGeometry::new(b).parts().len();
-    format!(
-        "{:.1} x {:.1} m, {} walls, {} door openings ({} with leaves), {} staircases, {} boxes, {} solid parts",
-        b.floor.max_m[0] - b.floor.min_m[0],
-        b.floor.max_m[1] - b.floor.min_m[1],
-        b.walls.len(),
-        doors.len(),
-        leaves,
-        b.stairs.len(),
-        b.boxes.len(),
-        parts
-    )
 }

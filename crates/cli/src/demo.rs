@@ -2,9 +2,8 @@
 //! with ground truth and noisy odometry -> registration from the odometry -> semantic map ->
 //! the default scenario judged in the map's world, each stage scored against ground truth.
 
-use crate::config::SemsimConfig;
 use clap::Args;
-use scanner::Building;
+use pipeline::{prepare_demo, scans_to_verdict, score_demo, Config, ScenarioSource};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -17,68 +16,38 @@ pub struct DemoArgs {
 }
 
 /// Runs the demo.
-pub fn run(a: DemoArgs, cfg: &SemsimConfig) -> anyhow::Result<()> {
+pub fn run(a: DemoArgs, cfg: &Config) -> anyhow::Result<()> {
     let t0 = Instant::now();
-    let building = Building::default_building()?;
-    std::fs::create_dir_all(&a.out).map_err(|e| cloud::CloudError::io(&a.out, e))?;
-    let building_path = a.out.join("building.toml");
-    building.save(&building_path)?;
     println!("semsim demo -> {}", a.out.display());
-    println!("building: {}", crate::building_cmd::summary(&building));
-    let summary =
-        crate::scan::write_scans(&building, &Building::default_survey_poses(), cfg, &a.out)?;
-    summary.print();
-    println!("  wrote {}", building_path.display());
-    let input = crate::register::collect_sequence(std::slice::from_ref(&a.out), None, None)?;
-    let scans = crate::map::read_scans(&input.files, None)?;
-    let scenario = sim::Scenario::default_scenario()?;
-    let text = sim::Scenario::default_scenario_toml();
-    let outcome = crate::run::scans_to_verdict(
-        &input,
-        scans,
-        (&scenario, text, std::path::Path::new(".")),
+    let bar = crate::progress::scan_bar(0, "scanning");
+    let mut demo = prepare_demo(&a.out, cfg, &mut |done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    })?;
+    bar.finish_and_clear();
+    println!("building: {}", demo.building.summary());
+    crate::scan::print_summary(&demo.scanned);
+    println!("  wrote {}", demo.building_file.display());
+
+    let scenario = ScenarioSource::load(None)?;
+    let chain_t0 = Instant::now();
+    let mut printer = crate::print::Printer::default();
+    let chain = scans_to_verdict(
+        &demo.input,
+        std::mem::take(&mut demo.scans),
+        &scenario,
         cfg,
         &a.out,
+        &mut printer,
     )?;
-    report_against_truth(&input, &a.out, &building, &outcome)?;
-    println!(
-        "verdict: {} (rerun: semsim simulate --map {} --scenario {} --out DIR)",
-        if outcome.passed { "PASSED" } else { "FAILED" },
-        a.out.join("map/semantic_map.json").display(),
-        a.out.join("simulation/scenario.toml").display()
-    );
-    println!("done in {:.1} s", t0.elapsed().as_secs_f64());
-    Ok(())
-}
+    println!("scans to verdict in {:.1} s", chain_t0.elapsed().as_secs_f64());
 
-/// Scores the demo's registration (pose errors of odometry and registration) and semantic map
-/// (per-class F1, wall endpoint error, stairs) against the ground truth.
-fn report_against_truth(
-    input: &crate::register::SequenceInput,
-    out: &std::path::Path,
-    building: &Building,
-    outcome: &crate::run::Outcome,
-) -> anyhow::Result<()> {
-    let registered = cloud::read_poses(&out.join("registration/poses.txt"))?;
-    let worst = |poses: &[glam::DAffine3]| {
-        poses
-            .iter()
-            .zip(&input.truth)
-            .fold((0.0f64, 0.0f64), |(m, d), (p, t)| {
-                let (em, ed) = crate::register::pose_error(
-                    &(input.truth[0].inverse() * *t),
-                    &(poses[0].inverse() * *p),
-                );
-                (m.max(em), d.max(ed))
-            })
-    };
-    let (om, od) = worst(&input.odometry);
-    let reg: Vec<glam::DAffine3> = registered.iter().map(|p| p.world_from_scan).collect();
-    let (rm, rd) = worst(&reg);
+    let score = score_demo(&demo, &chain);
+    let ((om, od), (rm, rd)) = (score.odometry_error, score.registered_error);
     println!(
         "against ground truth: worst pose error odometry {om:.3} m / {od:.2} deg -> registered {rm:.4} m / {rd:.3} deg"
     );
-    let ev = semantic::evaluate(&outcome.map, building, Some(&outcome.cloud));
+    let ev = &score.map;
     println!(
         "against ground truth: map walls F1 {:.3}, door openings F1 {:.3}, door leaves F1 {:.3}, wall endpoint error {:.3} m, floor {}, ceiling {}{}",
         ev.walls.f1,
@@ -92,5 +61,12 @@ fn report_against_truth(
             .map(|s| format!(", stairs {}/{} steps", s.steps, s.steps_truth))
             .collect::<String>()
     );
+    println!(
+        "verdict: {} (rerun: semsim simulate --map {} --scenario {} --out DIR)",
+        if chain.passed() { "PASSED" } else { "FAILED" },
+        a.out.join("map/semantic_map.json").display(),
+        a.out.join("simulation/scenario.toml").display()
+    );
+    println!("done in {:.1} s", t0.elapsed().as_secs_f64());
     Ok(())
 }

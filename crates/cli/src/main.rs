@@ -4,13 +4,13 @@
 
 mod bench;
 mod building_cmd;
-mod config;
 mod convert;
 mod demo;
 mod exit;
 mod info;
 mod map;
-mod plot;
+mod print;
+mod progress;
 mod register;
 mod run;
 mod scan;
@@ -71,8 +71,13 @@ fn main() -> ExitCode {
         }
     };
     let default_config = cli.config.is_none();
-    let result =
-        config::SemsimConfig::load(cli.config.as_deref()).and_then(|cfg| match cli.command {
+    let config = match cli.config.as_deref() {
+        Some(path) => pipeline::Config::load(path),
+        None => Ok(pipeline::Config::default()),
+    };
+    let result = config
+        .map_err(anyhow::Error::from)
+        .and_then(|cfg| match cli.command {
             Command::Demo(a) => demo::run(a, &cfg),
             Command::Convert(a) => convert::run(a),
             Command::Info(a) => info::run(a),

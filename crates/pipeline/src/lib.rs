@@ -1,2 +1,66 @@
-//! semsim's chain as a library (placeholder).
+//! semsim's chain as a library: from scans to a judged simulation without the command line.
+//!
+//! - [`scan_folder`]: the one owner of the scan-folder format (scans + `poses.txt` +
+//!   `odometry.txt` + `entities.json`), written by [`write_scan_folder`] and read as a
+//!   sequence by [`read_sequence`] (real sequences too: 3DTK `.pose` files, `--odometry`).
+//! - [`read_scans`], [`place_and_merge`]: scans read with a range limit, placed by their poses
+//!   and merged.
+//! - The stages: [`register_scans`], [`build_map`], [`simulate`], each with a writer of its
+//!   files; [`scans_to_verdict`] runs all three in memory (no stage reads what the one before
+//!   wrote) and reports to an [`Observer`] as it goes.
+//! - Ground truth: [`relative_pose_errors`], [`worst_pose_error`]; the demo
+//!   ([`prepare_demo`], [`score_demo`]); the ICP benchmark ([`bench_icp_case`]); charts
+//!   ([`plot_rmse`], drawn with an embedded DejaVu Sans, `assets/LICENSE.DejaVu`).
+//! - [`Config`]: one section per stage, as `--config` files hold it.
+//!
+//! ```no_run
+//! use pipeline::{read_scans, read_sequence, scans_to_verdict, Config, Quiet, ScenarioSource};
+//! use std::path::{Path, PathBuf};
+//!
+//! # fn main() -> pipeline::Result<()> {
+//! let input = read_sequence(&[PathBuf::from("semsim-demo")], None, None)?;
+//! let scans = read_scans(&input.files, Some(30.0))?;
+//! let scenario = ScenarioSource::load(None)?;
+//! let outcome = scans_to_verdict(&input, scans, &scenario, &Config::default(), Path::new("out"), &mut Quiet)?;
+//! println!("{} walls, verdict {}", outcome.map.map.of_class(cloud::EntityClass::Wall).count(), outcome.passed());
+//! # Ok(())
+//! # }
+//! ```
+//!
+//! ```
+//! // Pose errors against ground truth are taken relative to each sequence's first pose.
+//! use glam::{DAffine3, DVec3};
+//! let truth = [DAffine3::IDENTITY, DAffine3::from_translation(DVec3::X)];
+//! let moved = [DAffine3::from_translation(DVec3::Y), DAffine3::from_translation(DVec3::new(1.02, 1.0, 0.0))];
+//! let (m, deg) = pipeline::worst_pose_error(&truth, &moved);
+//! assert!((m - 0.02).abs() < 1e-9 && deg < 1e-9);
+//! ```
 #![warn(missing_docs)]
+
+mod bench_icp;
+mod chain;
+mod config;
+mod demo;
+mod error;
+mod guess;
+mod map;
+mod plot;
+mod register;
+pub mod scan_folder;
+mod scans;
+mod simulate;
+mod truth;
+
+pub use bench_icp::{bench_icp_case, icp_bench_cases, open_bench_gpu, IcpBenchRow};
+pub use chain::{scans_to_verdict, ChainDirs, ChainOutcome, Observer, Quiet};
+pub use config::Config;
+pub use demo::{prepare_demo, score_demo, DemoScans, DemoScore};
+pub use error::{PipelineError, Result};
+pub use guess::parse_guess;
+pub use map::{build_map, map_summary, write_map, MAP_PICTURES};
+pub use plot::{line_chart, plot_rmse, Series};
+pub use register::{open_registrar, register_scans, write_registration, Registration, ScanRow};
+pub use scan_folder::{read_sequence, write_scan_folder, ScanFolderSummary, SequenceInput};
+pub use scans::{merge_scan_files, place_and_merge, read_scans};
+pub use simulate::{simulate, write_simulation, ScenarioSource};
+pub use truth::{relative_pose_errors, worst_pose_error};

@@ -77,6 +77,13 @@ pub struct Wall {
     pub doors: Vec<Door>,
 }
 
+impl Wall {
+    /// Length of the wall's centre line.
+    pub fn length_m(&self) -> f64 {
+        (self.end_m[0] - self.start_m[0]).hypot(self.end_m[1] - self.start_m[1])
+    }
+}
+
 /// A door opening in a wall, optionally with a leaf.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -181,7 +188,7 @@ impl Building {
 
     /// Scan poses through the default building: down the corridor, through the stair room's
     /// door, into the stair room (the demo's survey).
-    pub fn default_survey_poses() -> Vec<crate::ScanPose> {
+    pub fn default_survey_poses() -> Vec<crate::pose::ScanPose> {
         [
             (1.5, 0.0, 0.0),
             (4.0, 0.1, 0.0),
@@ -194,7 +201,7 @@ impl Building {
             (17.5, 2.5, 0.0),
         ]
         .into_iter()
-        .map(|(x_m, y_m, yaw_deg)| crate::ScanPose { x_m, y_m, yaw_deg })
+        .map(|(x_m, y_m, yaw_deg)| crate::pose::ScanPose { x_m, y_m, yaw_deg })
         .collect()
     }
 

@@ -2,7 +2,6 @@
 //! each carrying the ground-truth label of its entity; a BVH (parry3d `Compound`) answers rays.
 
 use crate::building::{Building, Hinge, Swing, Wall};
-use crate::validate::wall_length_m;
 use cloud::{Label, EntityClass};
 use glam::{Quat, Vec3};
 use parry3d::math::Pose;
@@ -136,7 +135,7 @@ impl BuildingGeometry {
 }
 
 fn add_wall(g: &mut Builder, w: &Wall, height: f64, i: usize) {
-    let len = wall_length_m(w);
+    let len = w.length_m();
     let u = [
         (w.end_m[0] - w.start_m[0]) / len,
         (w.end_m[1] - w.start_m[1]) / len,

@@ -8,11 +8,12 @@
 //! degree cone under the robot, and 180 degrees of rotation cover all azimuths.
 
 use crate::error::Result;
+use crate::pose::ScanPose;
 use cloud::check_range;
 use crate::geometry::BuildingGeometry;
 use cloud::Rng;
 use cloud::{Label, Organized, PointCloud};
-use glam::{DAffine3, DQuat, DVec3, Quat, Vec3};
+use glam::{DVec3, Quat, Vec3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -56,27 +57,6 @@ impl Default for LaserConfig {
             mount_height_m: 0.5,
             noise_seed: 1,
         }
-    }
-}
-
-/// Where the robot stands for a scan: position on the floor and heading.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct ScanPose {
-    /// X on the floor.
-    pub x_m: f64,
-    /// Y on the floor.
-    pub y_m: f64,
-    /// Heading about z (0 = +x).
-    pub yaw_deg: f64,
-}
-
-impl ScanPose {
-    /// The scan frame in the world, for a laser mounted `mount_height_m` above the floor.
-    pub fn world_from_scan(&self, mount_height_m: f64) -> DAffine3 {
-        DAffine3::from_rotation_translation(
-            DQuat::from_rotation_z(self.yaw_deg.to_radians()),
-            DVec3::new(self.x_m, self.y_m, mount_height_m),
-        )
     }
 }
 

@@ -15,6 +15,7 @@
 //! assert_eq!(scan.len(), 61 * 31);
 //! assert!(scan.valid_count() > 1000);
 //! ```
+#![warn(missing_docs)]
 
 mod building;
 mod error;
@@ -22,6 +23,8 @@ mod generate;
 mod geometry;
 mod laser;
 mod odometry;
+mod pose;
+mod summary;
 mod validate;
 
 pub use building::{
@@ -30,5 +33,6 @@ pub use building::{
 pub use error::{Result, ScannerError};
 pub use generate::{generate_building, GeneratorConfig};
 pub use geometry::{BoxPart, BuildingGeometry, TruthEntity};
-pub use laser::{LaserConfig, ScanPose, VirtualLaser};
+pub use laser::{LaserConfig, VirtualLaser};
+pub use pose::ScanPose;
 pub use odometry::{odometry_from_truth, OdometryConfig};

@@ -3,7 +3,7 @@
 
 use crate::error::Result;
 use cloud::check_range;
-use crate::laser::ScanPose;
+use crate::pose::ScanPose;
 use cloud::Rng;
 use serde::{Deserialize, Serialize};
 

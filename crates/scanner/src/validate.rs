@@ -116,7 +116,7 @@ impl Building {
             w.end_m[1],
             w.thickness_m,
         ])?;
-        let len = wall_length_m(w);
+        let len = w.length_m();
         if len < 0.01 {
             return Err("start_m and end_m must be at least 1 cm apart".into());
         }
@@ -134,14 +134,9 @@ impl Building {
     }
 }
 
-/// Length of a wall's centre line.
-pub(crate) fn wall_length_m(w: &Wall) -> f64 {
-    (w.end_m[0] - w.start_m[0]).hypot(w.end_m[1] - w.start_m[1])
-}
-
 fn check_door(w: &Wall, d: &Door, wall_h: f64, earlier: &[Door]) -> Result<(), String> {
     all_finite(&[d.offset_m, d.width_m, d.height_m])?;
-    let len = wall_length_m(w);
+    let len = w.length_m();
     positive("width_m", d.width_m)?;
     positive("height_m", d.height_m)?;
     if d.width_m > len {

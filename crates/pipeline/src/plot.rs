@@ -1,8 +1,9 @@
 //! Pictures: charts drawn with plotters into SVG or PNG (picked by extension), with an embedded
 //! font (DejaVu Sans, `assets/LICENSE.DejaVu`) so PNGs need no system fonts.
 
-use anyhow::Context;
+use crate::error::{PipelineError, Result};
 use plotters::prelude::*;
+use registration::IcpResult;
 use std::path::Path;
 use std::sync::Once;
 
@@ -31,13 +32,13 @@ pub fn line_chart(
     x_label: &str,
     y_label: &str,
     series: &[Series],
-) -> anyhow::Result<()> {
+) -> Result<()> {
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
     if ext != "svg" && ext != "png" {
-        return Err(crate::exit::bad_input(format!(
+        return Err(PipelineError::bad_input(format!(
             "{}: a plot must be .svg or .png",
             path.display()
         )));
@@ -67,9 +68,14 @@ pub fn line_chart(
             series,
         )
     };
-    let result = drawn.and_then(|()| {
-        std::fs::rename(&tmp, path).with_context(|| format!("writing {}", path.display()))
-    });
+    let result = drawn
+        .map_err(|msg| PipelineError::Plot {
+            path: path.to_path_buf(),
+            msg,
+        })
+        .and_then(|()| {
+            std::fs::rename(&tmp, path).map_err(|e| cloud::CloudError::io(path, e).into())
+        });
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }
@@ -82,11 +88,11 @@ fn draw<DB: DrawingBackend>(
     x_label: &str,
     y_label: &str,
     series: &[Series],
-) -> anyhow::Result<()>
+) -> std::result::Result<(), String>
 where
     DB::ErrorType: 'static,
 {
-    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow::anyhow!("drawing the chart: {e}");
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| format!("drawing the chart: {e}");
     root.fill(&WHITE).map_err(err)?;
     let all = series.iter().flat_map(|s| s.points.iter());
     let (mut x1, mut y0, mut y1) = (1.0f64, f64::INFINITY, f64::NEG_INFINITY);
@@ -134,4 +140,20 @@ where
     }
     root.present().map_err(err)?;
     Ok(())
+}
+
+/// Draws each run's RMSE per iteration (log scale) into `path` (`.svg` or `.png`).
+pub fn plot_rmse(path: &Path, runs: &[(String, &IcpResult)]) -> Result<()> {
+    let series: Vec<Series> = runs
+        .iter()
+        .map(|(name, r)| Series {
+            name: name.clone(),
+            points: r
+                .iterations
+                .iter()
+                .map(|it| (it.iteration as f64, it.rmse_m))
+                .collect(),
+        })
+        .collect();
+    line_chart(path, "ICP convergence", "iteration", "RMSE (m)", &series)
 }

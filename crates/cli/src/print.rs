@@ -1,0 +1,103 @@
+//! What the commands print about each stage of the chain, and the observer that prints it
+//! as [`pipeline::scans_to_verdict`] goes.
+
+use crate::progress::scan_bar;
+use indicatif::ProgressBar;
+use pipeline::{Observer, Registration};
+use semantic::MapOutput;
+use std::path::Path;
+
+/// Prints the registration table (with errors against ground truth where known) and what was written.
+pub fn registration(reg: &Registration, dir: &Path) {
+    println!(
+        "{:<10} {:>5} {:>10} {:>8} {:>9} {:>10} {:>10}",
+        "scan", "iters", "RMSE m", "fitness", "ms", "err m", "err deg"
+    );
+    for r in &reg.rows {
+        let (e_m, e_deg) = (r.error_m.unwrap_or(f64::NAN), r.error_deg.unwrap_or(f64::NAN));
+        println!(
+            "{:<10} {:>5} {:>10.4} {:>8.3} {:>9.1} {e_m:>10.4} {e_deg:>10.3}",
+            r.scan, r.iterations, r.rmse_m, r.fitness, r.total_ms
+        );
+    }
+    println!(
+        "wrote {}/poses.txt, map.pcd ({} points), registration.json",
+        dir.display(),
+        reg.sequence.map.len()
+    );
+}
+
+/// Prints the semantic map's stage times, what was written and its entity counts.
+pub fn map(output: &MapOutput, dir: &Path) {
+    let times: Vec<String> = output
+        .timings
+        .iter()
+        .map(|t| format!("{} {:.0}", t.stage, t.ms))
+        .collect();
+    println!(
+        "stages (ms): {} = {:.0} ms",
+        times.join(", "),
+        output.total_ms()
+    );
+    println!(
+        "wrote {}/semantic_map.json, labels.pcd, {}, config.toml",
+        dir.display(),
+        pipeline::MAP_PICTURES.join(", ")
+    );
+    println!("{}", pipeline::map_summary(&output.map));
+}
+
+/// Prints the simulation's report and what was written.
+pub fn simulation(report: &str, dir: &Path) {
+    println!("{report}");
+    println!(
+        "wrote {}/events.jsonl, trajectory.csv, report.md, scenario.toml",
+        dir.display()
+    );
+}
+
+/// `Ok` for a passed verdict; an error (exit 1) naming the report for a failed one.
+pub fn verdict(passed: bool, dir: &Path) -> anyhow::Result<()> {
+    if !passed {
+        anyhow::bail!("verdict: FAILED (see {})", dir.join("report.md").display());
+    }
+    println!("verdict: PASSED");
+    Ok(())
+}
+
+/// Prints the chain's stages as they finish, with a progress bar while scans register.
+#[derive(Default)]
+pub struct Printer {
+    bar: Option<ProgressBar>,
+}
+
+impl Observer for Printer {
+    fn stage_started(&mut self, step: usize, title: &str) {
+        println!("{step}/3 {title}:");
+    }
+
+    fn device_opened(&mut self, description: &str) {
+        eprintln!("device: {description}");
+    }
+
+    fn scans_registered(&mut self, done: usize, total: usize) {
+        self.bar
+            .get_or_insert_with(|| scan_bar(total, "registering"))
+            .set_position(done as u64);
+    }
+
+    fn registered(&mut self, reg: &Registration, dir: &Path) {
+        if let Some(bar) = self.bar.take() {
+            bar.finish_and_clear();
+        }
+        registration(reg, dir);
+    }
+
+    fn mapped(&mut self, output: &MapOutput, dir: &Path) {
+        map(output, dir);
+    }
+
+    fn simulated(&mut self, _outcome: &sim::Outcome, report: &str, dir: &Path) {
+        simulation(report, dir);
+    }
+}

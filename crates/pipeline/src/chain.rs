@@ -1,0 +1,143 @@
+//! The whole chain in memory: scans -> registration -> semantic map -> simulated world ->
+//! judged outcome. Each stage's files are written into its own folder as the chain goes, but
+//! no stage reads what the one before it wrote.
+
+use crate::config::Config;
+use crate::error::Result;
+use crate::map::{build_map, write_map};
+use crate::register::{open_registrar, register_scans, write_registration, Registration};
+use crate::scan_folder::SequenceInput;
+use crate::scans::place_and_merge;
+use crate::simulate::{simulate, write_simulation, ScenarioSource};
+use cloud::PointCloud;
+use semantic::MapOutput;
+use sim::{Outcome, WorldSpec};
+use std::path::{Path, PathBuf};
+
+/// What the chain reports as it goes (the CLI prints it; the console streams it). Every
+/// method has an empty default.
+pub trait Observer {
+    /// Stage `step` of 3 begins.
+    fn stage_started(&mut self, _step: usize, _title: &str) {}
+    /// The registration device is open (for `auto`: which one, and why).
+    fn device_opened(&mut self, _description: &str) {}
+    /// `done` of `total` scans registered.
+    fn scans_registered(&mut self, _done: usize, _total: usize) {}
+    /// The registration is done and written into `dir`.
+    fn registered(&mut self, _registration: &Registration, _dir: &Path) {}
+    /// The semantic map is done and written into `dir`.
+    fn mapped(&mut self, _map: &MapOutput, _dir: &Path) {}
+    /// The scenario ran, was judged and written into `dir`; `report` is `report.md`.
+    fn simulated(&mut self, _outcome: &Outcome, _report: &str, _dir: &Path) {}
+}
+
+/// An observer that reports nothing.
+pub struct Quiet;
+
+impl Observer for Quiet {}
+
+/// The output folders of a chain run.
+#[derive(Debug, Clone)]
+pub struct ChainDirs {
+    /// `registration/`: poses.txt, map.pcd, registration.json, config.toml.
+    pub registration: PathBuf,
+    /// `map/`: semantic_map.json, labels.pcd, the pictures, config.toml.
+    pub map: PathBuf,
+    /// `simulation/`: events.jsonl, trajectory.csv, report.md, scenario.toml.
+    pub simulation: PathBuf,
+}
+
+impl ChainDirs {
+    /// The three folders under `out`.
+    pub fn under(out: &Path) -> ChainDirs {
+        ChainDirs {
+            registration: out.join("registration"),
+            map: out.join("map"),
+            simulation: out.join("simulation"),
+        }
+    }
+}
+
+/// What [`scans_to_verdict`] made.
+#[derive(Debug)]
+pub struct ChainOutcome {
+    /// The registered sequence.
+    pub registration: Registration,
+    /// The registered scans, merged in the world frame (the map's input).
+    pub cloud: PointCloud,
+    /// The semantic map and its stage images.
+    pub map: MapOutput,
+    /// The simulation, judged.
+    pub simulation: Outcome,
+}
+
+impl ChainOutcome {
+    /// Whether the scenario's verdict passed.
+    pub fn passed(&self) -> bool {
+        self.simulation.verdict.passed
+    }
+}
+
+/// Scans to verdict: registers the scans (already read, in `input`'s order) from their
+/// odometry, maps the registered scans, builds the map's world and judges the scenario in it,
+/// writing each stage into its folder under `out`.
+pub fn scans_to_verdict(
+    input: &SequenceInput,
+    scans: Vec<PointCloud>,
+    scenario: &ScenarioSource,
+    cfg: &Config,
+    out: &Path,
+    observer: &mut dyn Observer,
+) -> Result<ChainOutcome> {
+    let dirs = ChainDirs::under(out);
+    // 1. Registration: scan k against the map of scans 0..k-1, from the odometry.
+    observer.stage_started(
+        1,
+        &format!(
+            "registration ({}) of {} scans",
+            cfg.registration.icp.method.short_name(),
+            scans.len()
+        ),
+    );
+    let mut registrar = open_registrar(&cfg.registration)?;
+    observer.device_opened(&registrar.description());
+    let registration = register_scans(input, &scans, &cfg.registration, &mut registrar, &mut |d, t| {
+        observer.scans_registered(d, t)
+    })?;
+    create_dir(&dirs.registration)?;
+    write_registration(&registration, &dirs.registration)?;
+    cfg.write_beside(&dirs.registration)?;
+    observer.registered(&registration, &dirs.registration);
+
+    // 2. Semantic map of the scans placed by their registered poses.
+    observer.stage_started(2, "semantic map of the registered scans");
+    let cloud = place_and_merge(&input.files, scans, Some(&registration.poses))?;
+    let map = build_map(&cloud, &cfg.semantic)?;
+    create_dir(&dirs.map)?;
+    write_map(&map, &cloud, &dirs.map)?;
+    cfg.write_beside(&dirs.map)?;
+    observer.mapped(&map, &dirs.map);
+
+    // 3. The map's world, the scenario run in it and judged.
+    observer.stage_started(
+        3,
+        &format!("simulation of \"{}\" in the map's world", scenario.scenario.name),
+    );
+    let world = WorldSpec::from_semantic_map(&map.map)?;
+    let simulation = simulate(&world, scenario)?;
+    create_dir(&dirs.simulation)?;
+    let report = write_simulation(&simulation, scenario, &dirs.simulation)?;
+    observer.simulated(&simulation, &report, &dirs.simulation);
+    Ok(ChainOutcome {
+        registration,
+        cloud,
+        map,
+        simulation,
+    })
+}
+
+/// Creates a folder and its parents.
+pub(crate) fn create_dir(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| cloud::CloudError::io(dir, e))?;
+    Ok(())
+}

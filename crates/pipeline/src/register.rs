@@ -1,0 +1,112 @@
+//! The registration stage of the chain: a sequence of scans registered one after another
+//! against the growing map, each scan scored against ground truth where it is known.
+
+use crate::error::{to_json, Result};
+use crate::scan_folder::SequenceInput;
+use crate::truth::relative_pose_errors;
+use cloud::{NamedPose, PointCloud};
+use registration::{IcpResult, Registrar, SequenceConfig, SequenceResult};
+use serde::Serialize;
+use std::path::Path;
+
+/// A registered sequence: the result and one row per scan.
+#[derive(Debug, Clone)]
+pub struct Registration {
+    /// Each scan's registered pose, by name (`poses.txt`).
+    pub poses: Vec<NamedPose>,
+    /// The registration itself (the merged map, each scan's ICP result).
+    pub sequence: SequenceResult,
+    /// One row per scan (`registration.json`).
+    pub rows: Vec<ScanRow>,
+    /// The device ICP ran on, in words.
+    pub device: String,
+}
+
+/// One scan's registration, scored against the truth where it is known.
+#[derive(Debug, Clone, Serialize)]
+pub struct ScanRow {
+    /// The scan's name.
+    pub scan: String,
+    /// ICP iterations (0 for scan 0, which defines the world).
+    pub iterations: usize,
+    /// Final RMSE of the pairs.
+    pub rmse_m: f64,
+    /// Fraction of the source paired.
+    pub fitness: f64,
+    /// Time spent on the scan.
+    pub total_ms: f64,
+    /// Translation error against the truth (relative to scan 0).
+    pub error_m: Option<f64>,
+    /// Rotation error against the truth (relative to scan 0).
+    pub error_deg: Option<f64>,
+}
+
+/// Opens the configured device (for `auto`: a hardware GPU if there is one, else the CPU).
+pub fn open_registrar(cfg: &SequenceConfig) -> Result<Registrar> {
+    Ok(Registrar::new(&cfg.icp)?)
+}
+
+/// Registers the scans of `input` (already read) from its odometry; `progress(done, total)`
+/// after each scan.
+pub fn register_scans(
+    input: &SequenceInput,
+    scans: &[PointCloud],
+    cfg: &SequenceConfig,
+    registrar: &mut Registrar,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Registration> {
+    // 1. Each scan against the map of the scans before it, from the odometry.
+    let sequence =
+        registration::register_sequence_with(registrar, scans, &input.odometry, cfg, progress)?;
+    // 2. Name the poses after the scans.
+    let names = input.names();
+    let poses: Vec<NamedPose> = names
+        .iter()
+        .zip(&sequence.world_from_scan)
+        .map(|(name, p)| NamedPose {
+            name: name.clone(),
+            world_from_scan: *p,
+        })
+        .collect();
+    // 3. Score each scan against the truth, where it is known.
+    let errors = relative_pose_errors(&input.truth, &sequence.world_from_scan);
+    let rows = names
+        .iter()
+        .enumerate()
+        .map(|(k, name)| scan_row(name, sequence.results.get(k).and_then(|r| r.as_ref()), errors.get(k)))
+        .collect();
+    Ok(Registration {
+        poses,
+        sequence,
+        rows,
+        device: registrar.description(),
+    })
+}
+
+fn scan_row(name: &str, r: Option<&IcpResult>, err: Option<&(f64, f64)>) -> ScanRow {
+    let (iterations, rmse_m, fitness, total_ms) = r.map_or((0, 0.0, 1.0, 0.0), |r| {
+        (r.iterations.len(), r.rmse_m, r.fitness, r.total_ms)
+    });
+    ScanRow {
+        scan: name.to_string(),
+        iterations,
+        rmse_m,
+        fitness,
+        total_ms,
+        error_m: err.map(|e| e.0),
+        error_deg: err.map(|e| e.1),
+    }
+}
+
+/// Writes `poses.txt`, `map.pcd` and `registration.json` into `out` (which must exist).
+pub fn write_registration(reg: &Registration, out: &Path) -> Result<()> {
+    cloud::write_poses(&out.join("poses.txt"), &reg.poses)?;
+    cloud::write_cloud_as(
+        &out.join("map.pcd"),
+        &reg.sequence.map,
+        cloud::CloudFormat::Pcd(cloud::PcdEncoding::BinaryCompressed),
+    )?;
+    let json = to_json("the registration report", &reg.rows)?;
+    cloud::write_bytes_atomically(&out.join("registration.json"), json.as_bytes())?;
+    Ok(())
+}

@@ -180,7 +180,9 @@ mod tests {
         let src = "use crate::a; // crate::b\n/* crate::c */ let s = \"crate::d\"; let c = '\"'; fn f<'a>(x: &'a crate::e::E) {}";
         let out = strip_comments_and_literals(src);
         assert!(out.contains("crate::a"));
-        assert!(!out.contains("crate::b") && !out.contains("crate::c") && !out.contains("crate::d"));
+        assert!(
+            !out.contains("crate::b") && !out.contains("crate::c") && !out.contains("crate::d")
+        );
         assert!(out.contains("&'a crate::e::E"));
         assert_eq!(out.lines().count(), src.lines().count());
     }

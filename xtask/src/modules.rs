@@ -100,7 +100,15 @@ fn declared_modules(code: &str) -> Vec<String> {
 /// Names of the items a file defines.
 fn defined_items(code: &str) -> Vec<String> {
     const KINDS: [&str; 9] = [
-        "fn", "struct", "enum", "trait", "type", "const", "static", "union", "macro_rules",
+        "fn",
+        "struct",
+        "enum",
+        "trait",
+        "type",
+        "const",
+        "static",
+        "union",
+        "macro_rules",
     ];
     let w = words(code);
     (0..w.len().saturating_sub(1))

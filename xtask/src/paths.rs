@@ -20,7 +20,7 @@ pub fn use_statements(code: &str) -> Vec<UsePath> {
     while i < w.len() {
         if w[i] == "use" {
             let end = (i..w.len()).find(|&j| w[j] == ";").unwrap_or(w.len());
-            expand(&w[i + 1..end], &mut Vec::new(), &mut out);
+            expand(&w[i + 1..end], &[], &mut out);
             i = end;
         }
         i += 1;
@@ -29,8 +29,8 @@ pub fn use_statements(code: &str) -> Vec<UsePath> {
 }
 
 /// Expands one use tree (`a::b::{c, d::e as f, self, *}`) with `prefix` already read.
-fn expand(tree: &[&str], prefix: &mut Vec<String>, out: &mut Vec<UsePath>) {
-    let mut segs: Vec<String> = prefix.clone();
+fn expand(tree: &[&str], prefix: &[String], out: &mut Vec<UsePath>) {
+    let mut segs: Vec<String> = prefix.to_vec();
     let mut i = 0;
     while i < tree.len() {
         match tree[i] {
@@ -45,13 +45,13 @@ fn expand(tree: &[&str], prefix: &mut Vec<String>, out: &mut Vec<UsePath>) {
                         "{" => depth += 1,
                         "}" => depth -= 1,
                         "," if depth == 0 => {
-                            expand(&tree[start..k], &mut segs.clone(), out);
+                            expand(&tree[start..k], &segs, out);
                             start = k + 1;
                         }
                         _ => {}
                     }
                 }
-                expand(&tree[start..close], &mut segs.clone(), out);
+                expand(&tree[start..close], &segs, out);
                 return;
             }
             "as" => {

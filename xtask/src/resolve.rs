@@ -26,10 +26,9 @@ fn resolve_hops(tree: &CrateTree, from: usize, segments: &[String], hops: usize)
                 c
             } else {
                 // A name the module imported (`use crate::walls; walls::fit(...)`).
-                let import = tree.modules[from]
-                    .imports
-                    .iter()
-                    .find(|u| u.name == name && u.segments.first().map(String::as_str) != Some(name))?;
+                let import = tree.modules[from].imports.iter().find(|u| {
+                    u.name == name && u.segments.first().map(String::as_str) != Some(name)
+                })?;
                 let mut path = import.segments.clone();
                 path.extend(rest.iter().cloned());
                 return resolve_hops(tree, from, &path, hops + 1);

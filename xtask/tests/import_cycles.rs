@@ -57,7 +57,11 @@ fn file_names(c: &xtask::Cycle) -> Vec<String> {
 fn the_workspace_has_no_import_cycle_inside_any_crate() {
     let ws = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let report = xtask::workspace_cycles(&ws).expect("the workspace reads");
-    assert!(report.crates.len() >= 8, "crates found: {:?}", report.crates);
+    assert!(
+        report.crates.len() >= 8,
+        "crates found: {:?}",
+        report.crates
+    );
     let listing: Vec<String> = report
         .cycles
         .iter()
@@ -74,16 +78,28 @@ fn the_workspace_has_no_import_cycle_inside_any_crate() {
 fn siblings_that_use_each_other_are_a_cycle_but_a_child_may_use_its_parent() {
     let (_d, root) = crate_from(&[
         ("lib.rs", "pub mod walls;\npub use walls::Wall;\n"),
-        ("walls/mod.rs", "mod fit;\nmod extent;\npub struct Wall;\npub fn run() { fit::fit(); }\n"),
-        ("walls/fit.rs", "use super::Wall;\nuse super::extent::extent;\npub fn fit() { extent(); }\n"),
+        (
+            "walls/mod.rs",
+            "mod fit;\nmod extent;\npub struct Wall;\npub fn run() { fit::fit(); }\n",
+        ),
+        (
+            "walls/fit.rs",
+            "use super::Wall;\nuse super::extent::extent;\npub fn fit() { extent(); }\n",
+        ),
         ("walls/extent.rs", "use crate::Wall;\npub fn extent() {}\n"),
     ]);
     assert!(xtask::crate_cycles(&root).expect("reads").is_empty());
     let (_d, root) = crate_from(&[
         ("lib.rs", "pub mod walls;\n"),
         ("walls/mod.rs", "mod fit;\nmod extent;\n"),
-        ("walls/fit.rs", "pub fn fit() { super::extent::extent(); }\n"),
-        ("walls/extent.rs", "pub fn extent() {}\npub fn again() { crate::walls::fit::fit(); }\n"),
+        (
+            "walls/fit.rs",
+            "pub fn fit() { super::extent::extent(); }\n",
+        ),
+        (
+            "walls/extent.rs",
+            "pub fn extent() {}\npub fn again() { crate::walls::fit::fit(); }\n",
+        ),
     ]);
     let c = xtask::crate_cycles(&root).expect("reads");
     assert_eq!(c.len(), 1);
@@ -100,7 +116,10 @@ fn a_cycle_through_a_re_export_of_the_crate_root_is_found() {
     ]);
     let c = xtask::crate_cycles(&root).expect("reads");
     assert_eq!(c.len(), 1, "{c:?}");
-    assert!(c[0].references.iter().any(|r| r.contains("via crate::IcpResult")));
+    assert!(c[0]
+        .references
+        .iter()
+        .any(|r| r.contains("via crate::IcpResult")));
 }
 
 #[test]

@@ -60,8 +60,16 @@ pub fn run(c: BenchCommand) -> anyhow::Result<()> {
     let cpu = matches!(a.device, BenchDevice::Cpu | BenchDevice::Auto);
     println!(
         "{:<22} {:>8} {:>10} {:>10} {:>10} {:>9} {:>9} {:>9} {:>9} {:>8}",
-        "case", "points", "cpu ms/it", "gpu ms/it", "loop ms/it", "upload", "search", "reduce",
-        "download", "speedup"
+        "case",
+        "points",
+        "cpu ms/it",
+        "gpu ms/it",
+        "loop ms/it",
+        "upload",
+        "search",
+        "reduce",
+        "download",
+        "speedup"
     );
     let mut rows = Vec::new();
     for (name, laser) in icp_bench_cases(a.small_only) {

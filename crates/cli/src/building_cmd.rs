@@ -1,7 +1,7 @@
 //! `semsim building generate|check`.
 
-use pipeline::Config;
 use clap::{Args, Subcommand};
+use pipeline::Config;
 use scanner::{generate_building, Building};
 use std::path::PathBuf;
 

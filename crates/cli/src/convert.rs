@@ -32,6 +32,10 @@ enum Encoding {
 /// Runs the conversion.
 pub fn run(a: ConvertArgs) -> anyhow::Result<()> {
     let format = output_format(&a)?;
+    pipeline::refuse_overwriting_inputs(
+        std::slice::from_ref(&a.output),
+        std::slice::from_ref(&a.input),
+    )?;
     let mut cloud = cloud::read_cloud(&a.input)?;
     if let Some(v) = a.voxel {
         cloud = cloud::voxel_downsample(&cloud, v)?;

@@ -40,7 +40,10 @@ pub fn run(a: DemoArgs, cfg: &Config) -> anyhow::Result<()> {
         &a.out,
         &mut printer,
     )?;
-    println!("scans to verdict in {:.1} s", chain_t0.elapsed().as_secs_f64());
+    println!(
+        "scans to verdict in {:.1} s",
+        chain_t0.elapsed().as_secs_f64()
+    );
 
     let score = score_demo(&demo, &chain);
     let ((om, od), (rm, rd)) = (score.odometry_error, score.registered_error);

@@ -87,7 +87,8 @@ pub fn run(a: MapArgs, cfg: &Config) -> anyhow::Result<()> {
     std::fs::create_dir_all(&a.out).map_err(|e| cloud::CloudError::io(&a.out, e))?;
     write_map(&output, &cloud, &a.out)?;
     cfg.write_beside(&a.out)?;
-    crate::print::map(&output, &a.out);
+    crate::print::map(&output);
+    crate::print::map_written(&a.out);
     Ok(())
 }
 

@@ -3,23 +3,30 @@
 
 use crate::progress::scan_bar;
 use indicatif::ProgressBar;
-use pipeline::{Observer, Registration};
+use pipeline::{ChainDirs, ChainOutcome, Observer, Registration};
 use semantic::MapOutput;
 use std::path::Path;
 
-/// Prints the registration table (with errors against ground truth where known) and what was written.
-pub fn registration(reg: &Registration, dir: &Path) {
+/// Prints the registration table (with errors against ground truth where known).
+pub fn registration(reg: &Registration) {
     println!(
         "{:<10} {:>5} {:>10} {:>8} {:>9} {:>10} {:>10}",
         "scan", "iters", "RMSE m", "fitness", "ms", "err m", "err deg"
     );
     for r in &reg.rows {
-        let (e_m, e_deg) = (r.error_m.unwrap_or(f64::NAN), r.error_deg.unwrap_or(f64::NAN));
+        let (e_m, e_deg) = (
+            r.error_m.unwrap_or(f64::NAN),
+            r.error_deg.unwrap_or(f64::NAN),
+        );
         println!(
             "{:<10} {:>5} {:>10.4} {:>8.3} {:>9.1} {e_m:>10.4} {e_deg:>10.3}",
             r.scan, r.iterations, r.rmse_m, r.fitness, r.total_ms
         );
     }
+}
+
+/// Prints what `write_registration` wrote.
+pub fn registration_written(reg: &Registration, dir: &Path) {
     println!(
         "wrote {}/poses.txt, map.pcd ({} points), registration.json",
         dir.display(),
@@ -27,8 +34,8 @@ pub fn registration(reg: &Registration, dir: &Path) {
     );
 }
 
-/// Prints the semantic map's stage times, what was written and its entity counts.
-pub fn map(output: &MapOutput, dir: &Path) {
+/// Prints the semantic map's stage times and its entity counts.
+pub fn map(output: &MapOutput) {
     let times: Vec<String> = output
         .timings
         .iter()
@@ -39,17 +46,20 @@ pub fn map(output: &MapOutput, dir: &Path) {
         times.join(", "),
         output.total_ms()
     );
+    println!("{}", pipeline::map_summary(&output.map));
+}
+
+/// Prints what `write_map` wrote (and the configuration beside it).
+pub fn map_written(dir: &Path) {
     println!(
         "wrote {}/semantic_map.json, labels.pcd, {}, config.toml",
         dir.display(),
         pipeline::MAP_PICTURES.join(", ")
     );
-    println!("{}", pipeline::map_summary(&output.map));
 }
 
-/// Prints the simulation's report and what was written.
-pub fn simulation(report: &str, dir: &Path) {
-    println!("{report}");
+/// Prints what `write_simulation` wrote.
+pub fn simulation_written(dir: &Path) {
     println!(
         "wrote {}/events.jsonl, trajectory.csv, report.md, scenario.toml",
         dir.display()
@@ -86,18 +96,24 @@ impl Observer for Printer {
             .set_position(done as u64);
     }
 
-    fn registered(&mut self, reg: &Registration, dir: &Path) {
+    fn registered(&mut self, reg: &Registration) {
         if let Some(bar) = self.bar.take() {
             bar.finish_and_clear();
         }
-        registration(reg, dir);
+        registration(reg);
     }
 
-    fn mapped(&mut self, output: &MapOutput, dir: &Path) {
-        map(output, dir);
+    fn mapped(&mut self, output: &MapOutput) {
+        map(output);
     }
 
-    fn simulated(&mut self, _outcome: &sim::Outcome, report: &str, dir: &Path) {
-        simulation(report, dir);
+    fn simulated(&mut self, _outcome: &sim::Outcome, report: &str) {
+        println!("{report}");
+    }
+
+    fn written(&mut self, outcome: &ChainOutcome, dirs: &ChainDirs) {
+        registration_written(&outcome.registration, &dirs.registration);
+        map_written(&dirs.map);
+        simulation_written(&dirs.simulation);
     }
 }

@@ -144,13 +144,14 @@ fn pair_json(r: &IcpResult) -> serde_json::Value {
     })
 }
 
-
 fn run_sequence(a: &RegisterArgs, cfg: &Config) -> anyhow::Result<()> {
     let out = a
         .out
         .clone()
         .ok_or_else(|| bad_input("--sequence needs --out DIR"))?;
     let input = pipeline::read_sequence(&a.inputs, a.odometry.as_deref(), a.truth.as_deref())?;
+    let outputs = ["poses.txt", "map.pcd", "registration.json", "config.toml"].map(|f| out.join(f));
+    pipeline::refuse_overwriting_inputs(&outputs, &input.read)?;
     let scans = input
         .files
         .iter()
@@ -159,12 +160,17 @@ fn run_sequence(a: &RegisterArgs, cfg: &Config) -> anyhow::Result<()> {
     std::fs::create_dir_all(&out).map_err(|e| cloud::CloudError::io(&out, e))?;
     let mut registrar = open_device(&cfg.registration.icp)?;
     let bar = crate::progress::scan_bar(scans.len(), "registering");
-    let reg = pipeline::register_scans(&input, &scans, &cfg.registration, &mut registrar, &mut |done, _| {
-        bar.set_position(done as u64)
-    })?;
+    let reg = pipeline::register_scans(
+        &input,
+        &scans,
+        &cfg.registration,
+        &mut registrar,
+        &mut |done, _| bar.set_position(done as u64),
+    )?;
     bar.finish_and_clear();
     pipeline::write_registration(&reg, &out)?;
-    crate::print::registration(&reg, &out);
+    crate::print::registration(&reg);
+    crate::print::registration_written(&reg, &out);
     if let Some(p) = &a.plot {
         let runs: Vec<(String, &IcpResult)> = reg
             .rows

@@ -35,6 +35,7 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
     let outcome = simulate(&world, &source)?;
     std::fs::create_dir_all(&a.out).map_err(|e| cloud::CloudError::io(&a.out, e))?;
     let report = write_simulation(&outcome, &source, &a.out)?;
-    crate::print::simulation(&report, &a.out);
+    println!("{report}");
+    crate::print::simulation_written(&a.out);
     crate::print::verdict(outcome.verdict.passed, &a.out)
 }

@@ -50,16 +50,18 @@ pub enum GpuError {
     },
 }
 
-impl GpuError {
+impl cloud::BadInput for GpuError {
     /// Whether the error is the caller's (no adapter, an unusable or too large input) rather
     /// than a failure of the device or driver.
-    pub fn is_bad_input(&self) -> bool {
+    fn is_bad_input(&self) -> bool {
         matches!(
             self,
             GpuError::NoAdapter(_) | GpuError::TooLarge(_) | GpuError::Invalid(_)
         )
     }
+}
 
+impl GpuError {
     pub(crate) fn from_wgpu(during: &str, e: wgpu::Error) -> GpuError {
         let during = during.to_string();
         match e {

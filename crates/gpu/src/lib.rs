@@ -21,6 +21,8 @@
 //! # Ok::<(), gpu::GpuError>(())
 //! ```
 
+#![warn(missing_docs)]
+
 mod context;
 mod error;
 mod grid;

@@ -135,7 +135,12 @@ fn start() -> Mat4 {
 
 /// Mean iteration time of `registration::register` (point-to-point, full resolution, 0.5 m
 /// gate) on `device`.
-fn ms_per_iteration(target: &[Vec3], source: &[Vec3], iterations: usize, device: Device) -> Result<f64> {
+fn ms_per_iteration(
+    target: &[Vec3],
+    source: &[Vec3],
+    iterations: usize,
+    device: Device,
+) -> Result<f64> {
     let config = IcpConfig {
         method: Method::PointToPoint,
         device,

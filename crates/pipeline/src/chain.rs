@@ -1,6 +1,7 @@
 //! The whole chain in memory: scans -> registration -> semantic map -> simulated world ->
-//! judged outcome. Each stage's files are written into its own folder as the chain goes, but
-//! no stage reads what the one before it wrote.
+//! judged outcome. No stage reads what the one before it wrote: every stage runs in memory, and
+//! only when the scenario has been judged are the stages' files written, so a run that fails
+//! (a scenario naming a door the map does not have, say) leaves no partial output.
 
 use crate::config::Config;
 use crate::error::Result;
@@ -23,12 +24,14 @@ pub trait Observer {
     fn device_opened(&mut self, _description: &str) {}
     /// `done` of `total` scans registered.
     fn scans_registered(&mut self, _done: usize, _total: usize) {}
-    /// The registration is done and written into `dir`.
-    fn registered(&mut self, _registration: &Registration, _dir: &Path) {}
-    /// The semantic map is done and written into `dir`.
-    fn mapped(&mut self, _map: &MapOutput, _dir: &Path) {}
-    /// The scenario ran, was judged and written into `dir`; `report` is `report.md`.
-    fn simulated(&mut self, _outcome: &Outcome, _report: &str, _dir: &Path) {}
+    /// The registration is done.
+    fn registered(&mut self, _registration: &Registration) {}
+    /// The semantic map is done.
+    fn mapped(&mut self, _map: &MapOutput) {}
+    /// The scenario ran and was judged; `report` is what `report.md` holds.
+    fn simulated(&mut self, _outcome: &Outcome, _report: &str) {}
+    /// Every stage's files are written into `dirs`.
+    fn written(&mut self, _outcome: &ChainOutcome, _dirs: &ChainDirs) {}
 }
 
 /// An observer that reports nothing.
@@ -89,7 +92,6 @@ pub fn scans_to_verdict(
     out: &Path,
     observer: &mut dyn Observer,
 ) -> Result<ChainOutcome> {
-    let dirs = ChainDirs::under(out);
     // 1. Registration: scan k against the map of scans 0..k-1, from the odometry.
     observer.stage_started(
         1,
@@ -100,40 +102,66 @@ pub fn scans_to_verdict(
         ),
     );
     let mut registrar = open_registrar(&cfg.registration)?;
-    observer.device_opened(&registrar.description());
-    let registration = register_scans(input, &scans, &cfg.registration, &mut registrar, &mut |d, t| {
-        observer.scans_registered(d, t)
-    })?;
-    create_dir(&dirs.registration)?;
-    write_registration(&registration, &dirs.registration)?;
-    cfg.write_beside(&dirs.registration)?;
-    observer.registered(&registration, &dirs.registration);
+    observer.device_opened(registrar.description());
+    let registration = register_scans(
+        input,
+        &scans,
+        &cfg.registration,
+        &mut registrar,
+        &mut |d, t| observer.scans_registered(d, t),
+    )?;
+    observer.registered(&registration);
 
     // 2. Semantic map of the scans placed by their registered poses.
     observer.stage_started(2, "semantic map of the registered scans");
     let cloud = place_and_merge(&input.files, scans, Some(&registration.poses))?;
     let map = build_map(&cloud, &cfg.semantic)?;
-    create_dir(&dirs.map)?;
-    write_map(&map, &cloud, &dirs.map)?;
-    cfg.write_beside(&dirs.map)?;
-    observer.mapped(&map, &dirs.map);
+    observer.mapped(&map);
 
     // 3. The map's world, the scenario run in it and judged.
     observer.stage_started(
         3,
-        &format!("simulation of \"{}\" in the map's world", scenario.scenario.name),
+        &format!(
+            "simulation of \"{}\" in the map's world",
+            scenario.scenario.name
+        ),
     );
     let world = WorldSpec::from_semantic_map(&map.map)?;
     let simulation = simulate(&world, scenario)?;
-    create_dir(&dirs.simulation)?;
-    let report = write_simulation(&simulation, scenario, &dirs.simulation)?;
-    observer.simulated(&simulation, &report, &dirs.simulation);
-    Ok(ChainOutcome {
+    observer.simulated(
+        &simulation,
+        &sim::report_markdown(&simulation, &sim::ReportConfig::default()),
+    );
+
+    // 4. Every stage's files, now that the whole chain has run.
+    let outcome = ChainOutcome {
         registration,
         cloud,
         map,
         simulation,
-    })
+    };
+    let dirs = ChainDirs::under(out);
+    write_chain(&outcome, scenario, cfg, &dirs)?;
+    observer.written(&outcome, &dirs);
+    Ok(outcome)
+}
+
+/// Writes each stage's files (and the configuration) into its folder.
+pub fn write_chain(
+    outcome: &ChainOutcome,
+    scenario: &ScenarioSource,
+    cfg: &Config,
+    dirs: &ChainDirs,
+) -> Result<()> {
+    for dir in [&dirs.registration, &dirs.map, &dirs.simulation] {
+        create_dir(dir)?;
+    }
+    write_registration(&outcome.registration, &dirs.registration)?;
+    cfg.write_beside(&dirs.registration)?;
+    write_map(&outcome.map, &outcome.cloud, &dirs.map)?;
+    cfg.write_beside(&dirs.map)?;
+    write_simulation(&outcome.simulation, scenario, &dirs.simulation)?;
+    Ok(())
 }
 
 /// Creates a folder and its parents.

@@ -24,13 +24,43 @@ pub struct Config {
 }
 
 impl Config {
-    /// Reads a configuration file (TOML).
+    /// Reads a configuration file (TOML) and checks every section, whichever stages the
+    /// command at hand runs: a bad value is an error naming the file and the section.
     pub fn load(path: &Path) -> Result<Config> {
         let text = std::fs::read_to_string(path).map_err(|e| cloud::CloudError::io(path, e))?;
-        toml::from_str(&text).map_err(|e| PipelineError::Config {
+        let config: Config = toml::from_str(&text).map_err(|e| PipelineError::Config {
             path: path.to_path_buf(),
             msg: e.to_string().trim_end().to_string(),
-        })
+        })?;
+        config.validate().map_err(|msg| PipelineError::Config {
+            path: path.to_path_buf(),
+            msg,
+        })?;
+        Ok(config)
+    }
+
+    /// Checks every section's parameters; the message names the section.
+    pub fn validate(&self) -> std::result::Result<(), String> {
+        let section = |name: &str, e: &dyn std::fmt::Display| format!("[{name}] {e}");
+        self.laser.validate().map_err(|e| section("laser", &e))?;
+        self.odometry
+            .validate()
+            .map_err(|e| section("odometry", &e))?;
+        self.registration
+            .icp
+            .validate()
+            .map_err(|e| section("registration.icp", &e))?;
+        for (name, v) in [
+            ("scan_voxel_m", self.registration.scan_voxel_m),
+            ("map_voxel_m", self.registration.map_voxel_m),
+        ] {
+            cloud::check_range(name, v, 1e-4, 100.0, "within 0.1 mm..100 m")
+                .map_err(|e| section("registration", &e))?;
+        }
+        self.semantic
+            .validate()
+            .map_err(|e| section("semantic", &e))?;
+        Ok(())
     }
 
     /// Writes the configuration to `dir/config.toml` (atomically).
@@ -39,7 +69,8 @@ impl Config {
             what: "the configuration",
             msg: e.to_string(),
         })?;
-        let text = format!("# The configuration this run used (pass it back with --config).\n{body}");
+        let text =
+            format!("# The configuration this run used (pass it back with --config).\n{body}");
         cloud::write_bytes_atomically(&dir.join("config.toml"), text.as_bytes())?;
         Ok(())
     }
@@ -62,5 +93,15 @@ mod tests {
         let e = Config::load(&bad).expect_err("unknown section");
         assert!(e.to_string().starts_with(&bad.display().to_string()), "{e}");
         assert!(cloud::BadInput::is_bad_input(&e));
+        let zero = dir.path().join("zero.toml");
+        std::fs::write(&zero, "[registration.icp]\nmax_iterations = 0\n").expect("write");
+        let e = Config::load(&zero).expect_err("max_iterations = 0 is refused by every command");
+        let msg = e.to_string();
+        assert!(
+            msg.contains("zero.toml")
+                && msg.contains("[registration.icp]")
+                && msg.contains("max_iterations"),
+            "{msg}"
+        );
     }
 }

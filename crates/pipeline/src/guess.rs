@@ -16,7 +16,9 @@ pub fn parse_guess(g: &str) -> Result<DAffine3> {
                 f.parse::<f64>()
                     .ok()
                     .filter(|v| v.is_finite())
-                    .ok_or_else(|| PipelineError::bad_input(format!("{g}: '{f}' is not a finite number")))
+                    .ok_or_else(|| {
+                        PipelineError::bad_input(format!("{g}: '{f}' is not a finite number"))
+                    })
             })
             .collect::<Result<_>>()?;
         let arr: [f64; 16] = numbers.as_slice().try_into().map_err(|_| {

@@ -48,19 +48,23 @@ pub fn write_map(output: &MapOutput, cloud: &PointCloud, out: &Path) -> Result<(
         PcdEncoding::Binary,
     )?;
     let o = output;
-    let pictures = [
-        o.projection.clone(),
-        o.filtered.clone(),
-        o.dilated.clone(),
-        o.skeleton.clone(),
-        render_segments(&o.skeleton, &o.frame, &o.hough_segments, SEGMENT_RGB),
-        render_segments(&o.projection, &o.frame, &o.merged_segments, SEGMENT_RGB),
-        render_top_view(&o.map, &o.frame),
-        render_labels(cloud, &o.labels, &o.map, &o.frame),
-    ];
-    for (name, image) in MAP_PICTURES.iter().zip(pictures) {
-        save_png(&out.join(name), image)?;
-    }
+    let [projection, filtered, dilated, skeleton, segments, merged, top_view, labels] =
+        MAP_PICTURES.map(|name| out.join(name));
+    save_png(&projection, o.projection.clone())?;
+    save_png(&filtered, o.filtered.clone())?;
+    save_png(&dilated, o.dilated.clone())?;
+    save_png(&skeleton, o.skeleton.clone())?;
+    let red = SEGMENT_RGB;
+    save_png(
+        &segments,
+        render_segments(&o.skeleton, &o.frame, &o.hough_segments, red),
+    )?;
+    save_png(
+        &merged,
+        render_segments(&o.projection, &o.frame, &o.merged_segments, red),
+    )?;
+    save_png(&top_view, render_top_view(&o.map, &o.frame))?;
+    save_png(&labels, render_labels(cloud, &o.labels, &o.map, &o.frame))?;
     Ok(())
 }
 

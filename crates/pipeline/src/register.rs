@@ -73,13 +73,19 @@ pub fn register_scans(
     let rows = names
         .iter()
         .enumerate()
-        .map(|(k, name)| scan_row(name, sequence.results.get(k).and_then(|r| r.as_ref()), errors.get(k)))
+        .map(|(k, name)| {
+            scan_row(
+                name,
+                sequence.results.get(k).and_then(|r| r.as_ref()),
+                errors.get(k),
+            )
+        })
         .collect();
     Ok(Registration {
         poses,
         sequence,
         rows,
-        device: registrar.description(),
+        device: registrar.description().to_string(),
     })
 }
 

@@ -2,7 +2,7 @@
 //! and all merged into one cloud in the world frame.
 
 use crate::error::{PipelineError, Result};
-use crate::scan_folder::scan_name;
+use crate::scan_folder::names_scan;
 use cloud::{NamedPose, PointCloud};
 use std::path::{Path, PathBuf};
 
@@ -46,7 +46,7 @@ pub fn place_and_merge(
     if let Some(p) = poses {
         let by_name = files
             .iter()
-            .all(|f| p.iter().any(|q| q.name == scan_name(f)));
+            .all(|f| p.iter().any(|q| names_scan(&q.name, f)));
         if !by_name && p.len() != files.len() {
             return Err(PipelineError::bad_input(format!(
                 "{} poses for {} clouds, and not every cloud's file stem names a pose",
@@ -62,7 +62,7 @@ pub fn place_and_merge(
         if let Some(p) = poses {
             let pose = p
                 .iter()
-                .find(|q| q.name == scan_name(f))
+                .find(|q| names_scan(&q.name, f))
                 .or_else(|| p.get(k))
                 .map(|q| q.world_from_scan)
                 .ok_or_else(|| PipelineError::bad_input(format!("no pose for {}", f.display())))?;
@@ -82,9 +82,14 @@ pub fn merge_scan_files(
     poses: Option<&Path>,
     max_range_m: Option<f64>,
 ) -> Result<PointCloud> {
-    let poses = poses.map(cloud::read_poses).transpose()?;
+    let named = poses.map(cloud::read_poses).transpose()?;
     let scans = read_scans(files, max_range_m)?;
-    place_and_merge(files, scans, poses.as_deref())
+    place_and_merge(files, scans, named.as_deref()).map_err(|e| match (e, poses) {
+        (PipelineError::BadInput(msg), Some(p)) => {
+            PipelineError::BadInput(format!("{}: {msg}", p.display()))
+        }
+        (e, _) => e,
+    })
 }
 
 #[cfg(test)]
@@ -112,7 +117,16 @@ mod tests {
         ];
         let m = place_and_merge(&files, vec![a, b], Some(&poses)).expect("merges");
         assert_eq!(m.points, vec![Vec3::X, Vec3::new(0.0, 1.0, 1.0)]);
-        let e = place_and_merge(&files[..1], vec![PointCloud::default()], Some(&poses[..0]));
-        assert!(e.is_ok(), "no poses and one file: placed by order, none missing");
+        let with_ext = vec![NamedPose {
+            name: "a.pcd".into(),
+            world_from_scan: DAffine3::from_translation(DVec3::Z),
+        }];
+        let m = place_and_merge(
+            &files[..1],
+            vec![PointCloud::from_points(vec![Vec3::X])],
+            Some(&with_ext),
+        )
+        .expect("a pose named with the file's extension matches");
+        assert_eq!(m.points, vec![Vec3::new(1.0, 0.0, 1.0)]);
     }
 }

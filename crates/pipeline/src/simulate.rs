@@ -3,7 +3,7 @@
 
 use crate::error::Result;
 use scanner::Building;
-use sim::{Outcome, ReportConfig, Scenario, WorldSpec};
+use sim::{Outcome, ReportConfig, RobotModel, Scenario, WorldSpec};
 use std::path::{Path, PathBuf};
 
 /// A scenario with its text (written beside the outputs) and the folder its relative paths
@@ -16,22 +16,31 @@ pub struct ScenarioSource {
     pub text: String,
     /// The folder its relative paths start from.
     pub base_dir: PathBuf,
+    /// The robot it drives (loaded with the scenario, so a bad robot file fails before any work).
+    pub robot: RobotModel,
 }
 
 impl ScenarioSource {
     /// The scenario of a file, or the built-in default scenario for `None`.
     pub fn load(path: Option<&Path>) -> Result<ScenarioSource> {
-        Ok(match path {
-            Some(p) => ScenarioSource {
-                text: std::fs::read_to_string(p).map_err(|e| cloud::CloudError::io(p, e))?,
-                scenario: Scenario::load(p)?,
-                base_dir: p.parent().map(Path::to_path_buf).unwrap_or_default(),
-            },
-            None => ScenarioSource {
-                scenario: Scenario::default_scenario()?,
-                text: Scenario::default_scenario_toml().to_string(),
-                base_dir: PathBuf::from("."),
-            },
+        let (scenario, text, base_dir) = match path {
+            Some(p) => (
+                Scenario::load(p)?,
+                std::fs::read_to_string(p).map_err(|e| cloud::CloudError::io(p, e))?,
+                p.parent().map(Path::to_path_buf).unwrap_or_default(),
+            ),
+            None => (
+                Scenario::default_scenario()?,
+                Scenario::default_scenario_toml().to_string(),
+                PathBuf::from("."),
+            ),
+        };
+        let robot = scenario.robot_model(&base_dir)?;
+        Ok(ScenarioSource {
+            scenario,
+            text,
+            base_dir,
+            robot,
         })
     }
 
@@ -48,8 +57,7 @@ impl ScenarioSource {
 
 /// Runs the scenario in `world` and judges it.
 pub fn simulate(world: &WorldSpec, source: &ScenarioSource) -> Result<Outcome> {
-    let model = source.scenario.robot_model(&source.base_dir)?;
-    Ok(sim::run_scenario(world, &source.scenario, &model)?)
+    Ok(sim::run_scenario(world, &source.scenario, &source.robot)?)
 }
 
 /// Writes `events.jsonl`, `trajectory.csv`, `report.md` and `scenario.toml` into `out`

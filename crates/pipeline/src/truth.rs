@@ -20,7 +20,9 @@ pub fn relative_pose_errors(truth: &[DAffine3], estimate: &[DAffine3]) -> Vec<(f
 pub fn worst_pose_error(truth: &[DAffine3], estimate: &[DAffine3]) -> (f64, f64) {
     relative_pose_errors(truth, estimate)
         .into_iter()
-        .fold((0.0, 0.0), |(m, d), (em, ed)| (f64::max(m, em), f64::max(d, ed)))
+        .fold((0.0, 0.0), |(m, d), (em, ed)| {
+            (f64::max(m, em), f64::max(d, ed))
+        })
 }
 
 #[cfg(test)]
@@ -32,7 +34,10 @@ mod tests {
     fn a_shifted_world_is_no_error_but_a_moved_scan_is() {
         let shift = DAffine3::from_translation(DVec3::new(5.0, -2.0, 0.0));
         let truth = [DAffine3::IDENTITY, DAffine3::from_translation(DVec3::X)];
-        let est = [shift, shift * DAffine3::from_translation(DVec3::new(1.1, 0.0, 0.0))];
+        let est = [
+            shift,
+            shift * DAffine3::from_translation(DVec3::new(1.1, 0.0, 0.0)),
+        ];
         let e = relative_pose_errors(&truth, &est);
         assert!(e[0].0 < 1e-12);
         assert!((e[1].0 - 0.1).abs() < 1e-9, "{e:?}");

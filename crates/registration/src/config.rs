@@ -6,6 +6,7 @@
 //! degrees off): see the crate documentation for the figures.
 
 use crate::error::{RegistrationError, Result};
+use cloud::check_range;
 use serde::{Deserialize, Serialize};
 use std::str::FromStr;
 
@@ -258,13 +259,14 @@ impl IcpConfig {
             1e-5,
             self.max_correspondence_distance_m,
         )?;
-        if self.max_iterations == 0 || self.max_iterations > 10_000 {
-            return Err(RegistrationError::invalid(
-                "max_iterations",
-                self.max_iterations as f64,
-                "must be within 1..=10000",
-            ));
-        }
+        let iterations = self.max_iterations as f64;
+        check_range(
+            "max_iterations",
+            iterations,
+            1.0,
+            10_000.0,
+            "must be within 1..=10000",
+        )?;
         let f = self.reject_worst_fraction;
         if !(f.is_finite() && (0.0..0.5).contains(&f)) {
             return Err(RegistrationError::invalid(
@@ -282,13 +284,8 @@ impl IcpConfig {
                 positive("kernel.k_m", k_m, 1e-6, 1e5)?
             }
         }
-        if !(3..=100).contains(&self.neighbours_k) {
-            return Err(RegistrationError::invalid(
-                "neighbours_k",
-                self.neighbours_k as f64,
-                "must be within 3..=100",
-            ));
-        }
+        let k = self.neighbours_k as f64;
+        check_range("neighbours_k", k, 3.0, 100.0, "must be within 3..=100")?;
         positive("normal_voxel_m", self.normal_voxel_m, 1e-4, 100.0)?;
         if let Some(v) = self.source_voxel_m {
             positive("source_voxel_m", v, 1e-4, 100.0)?;
@@ -296,14 +293,13 @@ impl IcpConfig {
         if let Some(v) = self.target_voxel_m {
             positive("target_voxel_m", v, 1e-4, 100.0)?;
         }
-        let m = self.min_fitness;
-        if !(m.is_finite() && (0.0..=1.0).contains(&m)) {
-            return Err(RegistrationError::invalid(
-                "min_fitness",
-                m,
-                "must be within [0, 1]",
-            ));
-        }
+        check_range(
+            "min_fitness",
+            self.min_fitness,
+            0.0,
+            1.0,
+            "must be within [0, 1]",
+        )?;
         if self.device == Device::Gpu {
             if !cfg!(feature = "gpu") {
                 return Err(RegistrationError::invalid(
@@ -336,28 +332,14 @@ impl IcpConfig {
 
 /// `value` must be finite and within `[lo, hi]`.
 fn positive(name: &'static str, value: f64, lo: f64, hi: f64) -> Result<()> {
-    if value.is_finite() && value >= lo && value <= hi {
-        Ok(())
-    } else {
-        Err(RegistrationError::invalid(
-            name,
-            value,
-            format!("must be a finite value within [{lo}, {hi}]"),
-        ))
-    }
+    let msg = format!("must be a finite value within [{lo}, {hi}]");
+    Ok(check_range(name, value, lo, hi, msg)?)
 }
 
 /// `value` must be finite and not negative.
 fn non_negative(name: &'static str, value: f64) -> Result<()> {
-    if value.is_finite() && value >= 0.0 {
-        Ok(())
-    } else {
-        Err(RegistrationError::invalid(
-            name,
-            value,
-            "must be finite and not negative",
-        ))
-    }
+    let msg = "must be finite and not negative";
+    Ok(check_range(name, value, 0.0, f64::INFINITY, msg)?)
 }
 
 #[cfg(test)]
@@ -455,7 +437,10 @@ mod tests {
         ];
         for (name, c) in cases {
             match c.validate() {
-                Err(RegistrationError::InvalidParameter { name: n, .. }) => assert_eq!(n, name),
+                Err(RegistrationError::InvalidParameter(cloud::InvalidParameter {
+                    name: n,
+                    ..
+                })) => assert_eq!(n, name),
                 other => panic!("{name}: expected InvalidParameter, got {other:?}"),
             }
         }

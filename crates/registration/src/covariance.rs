@@ -18,8 +18,8 @@
 use crate::config::IcpConfig;
 use crate::downsample::voxel_downsample;
 use crate::error::Result;
-use crate::grid::BucketGrid;
-use crate::kdtree::KdTree;
+use crate::nearest::grid::BucketGrid;
+use crate::nearest::kdtree::KdTree;
 use crate::nearest::NearestNeighbors;
 use glam::{DMat3, DVec3, Mat3, Vec3};
 use rayon::prelude::*;

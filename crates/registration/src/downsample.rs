@@ -131,10 +131,7 @@ mod tests {
         let wide = vec![Vec3::ZERO, Vec3::splat(10_000.0)];
         assert!(matches!(
             voxel_downsample(&wide, 1e-4, "source_voxel_m"),
-            Err(RegistrationError::InvalidParameter {
-                name: "source_voxel_m",
-                ..
-            })
+            Err(RegistrationError::InvalidParameter(p)) if p.name == "source_voxel_m"
         ));
     }
 }

@@ -1,6 +1,6 @@
 //! Typed registration errors, each with the context needed to act on it.
 
-use crate::icp::IcpResult;
+use crate::result::IcpResult;
 
 /// Everything that can go wrong in a registration.
 #[derive(Debug, thiserror::Error)]
@@ -44,16 +44,10 @@ pub enum RegistrationError {
         /// Why it is not a converged result.
         reason: String,
     },
-    /// A configuration value is out of its meaningful range.
-    #[error("invalid parameter {name} = {value}: {msg}")]
-    InvalidParameter {
-        /// The parameter's name (as in the configuration file).
-        name: &'static str,
-        /// Its value.
-        value: f64,
-        /// What it must be.
-        msg: String,
-    },
+    /// A configuration value is out of its meaningful range (the parameter's name is as in
+    /// the configuration file).
+    #[error(transparent)]
+    InvalidParameter(#[from] cloud::InvalidParameter),
     /// The GPU path failed: no adapter for `device = gpu`, an input too large for the device,
     /// or a device / driver error.
     /// (The GPU error is part of the message, not a separate `source()`, so that printing the
@@ -78,12 +72,16 @@ pub enum RegistrationError {
 
 impl RegistrationError {
     /// Shorthand for [`RegistrationError::InvalidParameter`].
-    pub(crate) fn invalid(name: &'static str, value: f64, msg: impl Into<String>) -> Self {
-        RegistrationError::InvalidParameter {
-            name,
+    pub(crate) fn invalid(
+        name: &'static str,
+        value: f64,
+        msg: impl Into<std::borrow::Cow<'static, str>>,
+    ) -> Self {
+        RegistrationError::InvalidParameter(cloud::InvalidParameter {
+            name: name.into(),
             value,
             msg: msg.into(),
-        }
+        })
     }
 }
 
@@ -93,6 +91,19 @@ impl RegistrationError {
     pub(crate) fn gpu(context: impl Into<String>) -> impl FnOnce(gpu::GpuError) -> Self {
         let context = context.into();
         move |error| RegistrationError::Gpu { context, error }
+    }
+}
+
+impl cloud::BadInput for RegistrationError {
+    /// A registration that ran but did not converge is no fault of the input; a GPU error says
+    /// for itself; everything else (a bad cloud, parameter, or mismatched inputs) is.
+    fn is_bad_input(&self) -> bool {
+        match self {
+            RegistrationError::NotConverged { .. } => false,
+            #[cfg(feature = "gpu")]
+            RegistrationError::Gpu { error, .. } => cloud::BadInput::is_bad_input(error),
+            _ => true,
+        }
     }
 }
 

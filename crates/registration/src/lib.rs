@@ -90,33 +90,29 @@
 //! assert!(result.converged && result.fitness > 0.9);
 //! ```
 
+#![warn(missing_docs)]
+
 mod cells;
 mod config;
-mod correspondences;
 mod covariance;
-mod device;
 mod downsample;
 mod error;
-mod gicp;
-mod grid;
 mod icp;
-mod kdtree;
-mod kernel;
 mod linalg;
 mod nearest;
-mod point_to_plane;
-mod point_to_point;
+mod registrar;
+mod result;
 mod sequence;
 mod target;
 
 pub use config::{
     Device, IcpConfig, Method, NnBackend, ParseDeviceError, ParseMethodError, RobustKernel,
 };
-pub use device::Registrar;
 pub use error::{RegistrationError, Result};
-pub use grid::BucketGrid;
-pub use icp::{register, register_to, IcpResult, IterationReport};
-pub use kdtree::KdTree;
+pub use nearest::grid::BucketGrid;
+pub use nearest::kdtree::KdTree;
 pub use nearest::NearestNeighbors;
+pub use registrar::{register, register_to, Registrar};
+pub use result::{IcpResult, IterationReport};
 pub use sequence::{register_sequence, register_sequence_with, SequenceConfig, SequenceResult};
 pub use target::Target;

@@ -7,10 +7,10 @@
 //! odometry pose.
 
 use crate::config::IcpConfig;
-use crate::device::Registrar;
 use crate::downsample::{finite_points, voxel_downsample, voxel_downsample_with};
 use crate::error::{RegistrationError, Result};
-use crate::icp::IcpResult;
+use crate::registrar::Registrar;
+use crate::result::IcpResult;
 use crate::target::Target;
 use cloud::PointCloud;
 use glam::{DAffine3, Vec3};

@@ -188,7 +188,9 @@ fn absurd_configurations_are_invalid_parameters() {
     ];
     for (name, c) in cases {
         match register(&room, &room, DAffine3::IDENTITY, &c) {
-            Err(RegistrationError::InvalidParameter { name: n, .. }) => assert_eq!(n, name),
+            Err(RegistrationError::InvalidParameter(cloud::InvalidParameter {
+                name: n, ..
+            })) => assert_eq!(n, name),
             other => panic!("{name}: {other:?}"),
         }
     }
@@ -202,16 +204,13 @@ fn absurd_configurations_are_invalid_parameters() {
     };
     assert!(matches!(
         Target::new(&wide, &c),
-        Err(RegistrationError::InvalidParameter {
-            name: "bucket_size_m",
-            ..
-        })
+        Err(RegistrationError::InvalidParameter(p)) if p.name == "bucket_size_m"
     ));
     // A non-finite guess.
     let nan = DAffine3::from_translation(DVec3::new(f64::NAN, 0.0, 0.0));
     assert!(matches!(
         register(&room, &room, nan, &IcpConfig::default()),
-        Err(RegistrationError::InvalidParameter { .. })
+        Err(RegistrationError::InvalidParameter(_))
     ));
 }
 
@@ -237,10 +236,7 @@ fn sequence_inputs_are_checked() {
     };
     assert!(matches!(
         register_sequence(&scans, &[], &bad, &mut |_, _| {}),
-        Err(RegistrationError::InvalidParameter {
-            name: "map_voxel_m",
-            ..
-        })
+        Err(RegistrationError::InvalidParameter(p)) if p.name == "map_voxel_m"
     ));
     let mut nan_scan = room.clone();
     nan_scan.points[3] = Vec3::NAN;

@@ -13,8 +13,8 @@
 
 mod common;
 
-use cloud::PointCloud;
-use common::{pose_error, real_data, scan_pair_at, standard_start};
+use cloud::{pose_error, PointCloud};
+use common::{real_data, scan_pair_at, standard_start};
 use glam::{DAffine3, DQuat, DVec3};
 use registration::*;
 use scanner::ScanPose;
@@ -516,7 +516,7 @@ fn device_choices_are_explained_and_checked() {
         ..IcpConfig::default()
     };
     match Registrar::new(&gicp_on_gpu) {
-        Err(RegistrationError::InvalidParameter { name, msg, .. }) => {
+        Err(RegistrationError::InvalidParameter(cloud::InvalidParameter { name, msg, .. })) => {
             assert_eq!(name, "device");
             assert!(msg.contains("GICP"), "{msg}");
         }
@@ -530,10 +530,7 @@ fn device_choices_are_explained_and_checked() {
     };
     assert!(matches!(
         Registrar::new(&rejecting),
-        Err(RegistrationError::InvalidParameter {
-            name: "reject_worst_fraction",
-            ..
-        })
+        Err(RegistrationError::InvalidParameter(p)) if p.name == "reject_worst_fraction"
     ));
     // Auto with GICP never probes a GPU.
     let auto = Registrar::new(&IcpConfig::default()).expect("auto");

@@ -8,6 +8,7 @@
 
 mod common;
 
+use cloud::pose_error;
 use common::*;
 use glam::{Affine3A, DMat4, Vec3};
 use registration::*;

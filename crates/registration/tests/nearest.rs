@@ -104,10 +104,7 @@ fn wide_cloud_is_sparse_but_tiny_buckets_are_refused() {
     assert_eq!(grid.occupied_buckets(), 2);
     assert!(matches!(
         BucketGrid::new(&pts, 0.001),
-        Err(RegistrationError::InvalidParameter {
-            name: "bucket_size_m",
-            ..
-        })
+        Err(RegistrationError::InvalidParameter(p)) if p.name == "bucket_size_m"
     ));
     assert!(BucketGrid::new(&pts, 0.0).is_err());
 }

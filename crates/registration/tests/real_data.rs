@@ -4,8 +4,8 @@
 mod common;
 
 use cloud::io::threedtk::{read_3d, read_frames_3dtk, read_pose_3dtk};
-use cloud::read_cloud;
-use common::{pose_error, real_data};
+use cloud::{pose_error, read_cloud};
+use common::real_data;
 use glam::{DAffine3, DMat4, DQuat, DVec3};
 use registration::*;
 

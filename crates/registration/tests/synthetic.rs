@@ -4,6 +4,7 @@
 
 mod common;
 
+use cloud::pose_error;
 use common::*;
 use glam::{DAffine3, DVec3};
 use registration::*;
@@ -261,7 +262,7 @@ fn a_prepared_target_serves_only_the_methods_it_was_prepared_for() {
     let gicp = IcpConfig::default();
     assert!(matches!(
         register_to(&prepared, &source, truth, &gicp),
-        Err(RegistrationError::InvalidParameter { name: "method", .. })
+        Err(RegistrationError::InvalidParameter(p)) if p.name == "method"
     ));
     // A GICP target serves every method.
     let prepared = Target::new(&target, &gicp).expect("target");

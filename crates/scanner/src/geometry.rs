@@ -2,7 +2,7 @@
 //! each carrying the ground-truth label of its entity; a BVH (parry3d `Compound`) answers rays.
 
 use crate::building::{Building, Hinge, Swing, Wall};
-use cloud::{Label, EntityClass};
+use cloud::{EntityClass, Label};
 use glam::{Quat, Vec3};
 use parry3d::math::Pose;
 use parry3d::query::Ray;

@@ -8,9 +8,9 @@
 //! degree cone under the robot, and 180 degrees of rotation cover all azimuths.
 
 use crate::error::Result;
+use crate::geometry::BuildingGeometry;
 use crate::pose::ScanPose;
 use cloud::check_range;
-use crate::geometry::BuildingGeometry;
 use cloud::Rng;
 use cloud::{Label, Organized, PointCloud};
 use glam::{DVec3, Quat, Vec3};
@@ -60,17 +60,10 @@ impl Default for LaserConfig {
     }
 }
 
-/// A configured virtual laser with its precomputed beam directions.
-pub struct VirtualLaser {
-    config: LaserConfig,
-    /// Unit beam directions in the scan frame, row-major (rotation step, beam).
-    dirs_in_scan: Vec<Vec3>,
-}
-
-impl VirtualLaser {
-    /// Checks the configuration and precomputes the beam directions.
-    pub fn new(config: LaserConfig) -> Result<VirtualLaser> {
-        let c = &config;
+impl LaserConfig {
+    /// Checks every parameter's range.
+    pub fn validate(&self) -> Result<()> {
+        let c = self;
         check_range(
             "beams",
             c.beams as f64,
@@ -142,6 +135,22 @@ impl VirtualLaser {
             50.0,
             "within 0..50 m",
         )?;
+        Ok(())
+    }
+}
+
+/// A configured virtual laser with its precomputed beam directions.
+pub struct VirtualLaser {
+    config: LaserConfig,
+    /// Unit beam directions in the scan frame, row-major (rotation step, beam).
+    dirs_in_scan: Vec<Vec3>,
+}
+
+impl VirtualLaser {
+    /// Checks the configuration and precomputes the beam directions.
+    pub fn new(config: LaserConfig) -> Result<VirtualLaser> {
+        let c = &config;
+        c.validate()?;
         let beam_step = c.line_fov_deg / (c.beams - 1) as f64;
         let rot_step = c.rotation_fov_deg / c.rotation_steps as f64;
         let first = c.line_center_elevation_deg - c.line_fov_deg / 2.0;

@@ -34,5 +34,5 @@ pub use error::{Result, ScannerError};
 pub use generate::{generate_building, GeneratorConfig};
 pub use geometry::{BoxPart, BuildingGeometry, TruthEntity};
 pub use laser::{LaserConfig, VirtualLaser};
-pub use pose::ScanPose;
 pub use odometry::{odometry_from_truth, OdometryConfig};
+pub use pose::ScanPose;

@@ -2,8 +2,8 @@
 //! step by step, as a robot's dead reckoning would report them.
 
 use crate::error::Result;
-use cloud::check_range;
 use crate::pose::ScanPose;
+use cloud::check_range;
 use cloud::Rng;
 use serde::{Deserialize, Serialize};
 
@@ -35,37 +35,46 @@ impl Default for OdometryConfig {
     }
 }
 
+impl OdometryConfig {
+    /// Checks every parameter's range.
+    pub fn validate(&self) -> Result<()> {
+        let config = self;
+        check_range(
+            "distance_scale_error",
+            config.distance_scale_error,
+            -0.5,
+            0.5,
+            "within -0.5..0.5",
+        )?;
+        check_range(
+            "yaw_drift_deg_per_m",
+            config.yaw_drift_deg_per_m,
+            -90.0,
+            90.0,
+            "within -90..90",
+        )?;
+        check_range(
+            "translation_noise_sigma_m",
+            config.translation_noise_sigma_m,
+            0.0,
+            10.0,
+            "within 0..10 m",
+        )?;
+        check_range(
+            "yaw_noise_sigma_deg",
+            config.yaw_noise_sigma_deg,
+            0.0,
+            90.0,
+            "within 0..90",
+        )?;
+        Ok(())
+    }
+}
+
 /// Odometry poses for a sequence of true poses: the first is exact, each later one adds the
 /// true relative motion from the previous pose, distorted by drift and noise.
 pub fn odometry_from_truth(truth: &[ScanPose], config: &OdometryConfig) -> Result<Vec<ScanPose>> {
-    check_range(
-        "distance_scale_error",
-        config.distance_scale_error,
-        -0.5,
-        0.5,
-        "within -0.5..0.5",
-    )?;
-    check_range(
-        "yaw_drift_deg_per_m",
-        config.yaw_drift_deg_per_m,
-        -90.0,
-        90.0,
-        "within -90..90",
-    )?;
-    check_range(
-        "translation_noise_sigma_m",
-        config.translation_noise_sigma_m,
-        0.0,
-        10.0,
-        "within 0..10 m",
-    )?;
-    check_range(
-        "yaw_noise_sigma_deg",
-        config.yaw_noise_sigma_deg,
-        0.0,
-        90.0,
-        "within 0..90",
-    )?;
+    config.validate()?;
     let mut rng = Rng::new(config.seed);
     let mut out: Vec<ScanPose> = Vec::with_capacity(truth.len());
     for (k, t) in truth.iter().enumerate() {

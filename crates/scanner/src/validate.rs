@@ -7,6 +7,9 @@ use std::path::Path;
 
 /// The most parts (boxes) a building may produce; guards against absurd descriptions.
 const MAX_PARTS: usize = 200_000;
+/// How far outside the floor's rectangle an element may reach (walls stand on its edges,
+/// clutter may stand outside); anything farther is a mistake, not a building.
+const MAX_OUTSIDE_FLOOR_M: f64 = 100.0;
 
 impl Building {
     /// Checks the description; the error names `path` and the offending element.
@@ -47,8 +50,12 @@ impl Building {
             ));
         }
         positive("ceiling.thickness_m", c.thickness_m).map_err(|m| bad("ceiling".into(), m))?;
+        let reach = Reach::of(self);
         let mut parts = 2usize;
         for (i, w) in self.walls.iter().enumerate() {
+            reach
+                .points(&[w.start_m, w.end_m], 0.0)
+                .map_err(|m| bad(format!("walls[{i}]{}", named(&w.name)), m))?;
             parts += self
                 .check_wall(w)
                 .map_err(|m| bad(format!("walls[{i}]{}", named(&w.name)), m))?;
@@ -88,6 +95,10 @@ impl Building {
             if s.rise_m * s.steps as f64 >= c.height_m {
                 return Err(bad(el(), "the staircase rises through the ceiling".into()));
             }
+            let length_m = s.run_m * s.steps as f64 + s.landing_m;
+            reach
+                .points(&[s.start_m], length_m.max(s.width_m))
+                .map_err(|m| bad(el(), m))?;
             parts += s.steps as usize + 1;
         }
         for (i, b) in self.boxes.iter().enumerate() {
@@ -96,6 +107,19 @@ impl Building {
                 .map_err(|m| bad(el(), m))?;
             for s in b.size_m {
                 positive("size_m", s).map_err(|m| bad(el(), m))?;
+            }
+            let size_m = b.size_m[0].max(b.size_m[1]).max(b.size_m[2]);
+            reach
+                .points(&[[b.center_m[0], b.center_m[1]]], size_m)
+                .map_err(|m| bad(el(), m))?;
+            if b.center_m[2].abs() > MAX_OUTSIDE_FLOOR_M + c.height_m {
+                return Err(bad(
+                    el(),
+                    format!(
+                        "center_m z = {} m is far outside the building",
+                        b.center_m[2]
+                    ),
+                ));
             }
             parts += 1;
         }
@@ -131,6 +155,45 @@ impl Building {
             return Err(format!("height_m = {h} must be within (0, 100]"));
         }
         Ok(2 * w.doors.len() + w.doors.len() + 1)
+    }
+}
+
+/// The region elements must lie in: the floor's rectangle grown by [`MAX_OUTSIDE_FLOOR_M`].
+struct Reach {
+    min_m: [f64; 2],
+    max_m: [f64; 2],
+}
+
+impl Reach {
+    fn of(b: &Building) -> Reach {
+        let grow = |v: f64, sign: f64| v + sign * MAX_OUTSIDE_FLOOR_M;
+        Reach {
+            min_m: [grow(b.floor.min_m[0], -1.0), grow(b.floor.min_m[1], -1.0)],
+            max_m: [grow(b.floor.max_m[0], 1.0), grow(b.floor.max_m[1], 1.0)],
+        }
+    }
+
+    /// `Ok` if every point lies within the region and `size_m` is no larger than the region.
+    fn points(&self, points: &[[f64; 2]], size_m: f64) -> Result<(), String> {
+        for p in points {
+            if p[0] < self.min_m[0]
+                || p[0] > self.max_m[0]
+                || p[1] < self.min_m[1]
+                || p[1] > self.max_m[1]
+            {
+                return Err(format!(
+                    "({}, {}) lies more than {MAX_OUTSIDE_FLOOR_M} m outside the floor",
+                    p[0], p[1]
+                ));
+            }
+        }
+        let span = (self.max_m[0] - self.min_m[0]).max(self.max_m[1] - self.min_m[1]);
+        if size_m > span {
+            return Err(format!(
+                "a size of {size_m} m is larger than the building ({span} m with the margin)"
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -232,6 +295,35 @@ mod tests {
     fn with(from: &str, to: &str) -> String {
         assert!(SMALL.contains(from), "{from}");
         SMALL.replace(from, to)
+    }
+
+    #[test]
+    fn a_box_of_1e30_m_or_far_outside_the_floor_is_rejected() {
+        for (extra, why) in [
+            (
+                "[[boxes]]\ncenter_m = [1.0, 1.0, 0.5]\nsize_m = [1e30, 1.0, 1.0]\n",
+                "larger than the building",
+            ),
+            (
+                "[[boxes]]\ncenter_m = [1e30, 1.0, 0.5]\nsize_m = [1.0, 1.0, 1.0]\n",
+                "outside the floor",
+            ),
+            (
+                "[[boxes]]\ncenter_m = [1.0, 1.0, 1e9]\nsize_m = [1.0, 1.0, 1.0]\n",
+                "far outside the building",
+            ),
+        ] {
+            let e = Building::from_toml_str(&format!("{SMALL}\n{extra}"), Path::new("b.toml"))
+                .expect_err(why)
+                .to_string();
+            assert!(
+                e.contains("b.toml") && e.contains("boxes[0]") && e.contains(why),
+                "{e}"
+            );
+        }
+        let far_wall = with("end_m = [4.0, 0.0]", "end_m = [4.0e6, 0.0]");
+        let e = Building::from_toml_str(&far_wall, Path::new("b.toml")).expect_err("far wall");
+        assert!(e.to_string().contains("walls[0]"), "{e}");
     }
 
     #[test]

@@ -3,14 +3,11 @@
 //! `cargo bench -p semantic` (the per-stage split is printed once; `cargo run --release -p
 //! semantic --example bench_map` prints medians of the split).
 
-#[path = "../tests/common/mod.rs"]
-mod common;
-
 use criterion::{criterion_group, criterion_main, Criterion};
 use semantic::{build_semantic_map, SemanticConfig};
 
 fn semantic_map(c: &mut Criterion) {
-    let cloud = common::default_building_full_scans(10);
+    let cloud = fixtures::default_building_full_scans(10);
     let config = SemanticConfig::default();
     let out = build_semantic_map(&cloud, &config).expect("map");
     let split: Vec<String> = out

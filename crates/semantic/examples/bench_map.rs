@@ -3,16 +3,13 @@
 //!
 //! `cargo run --release -p semantic --example bench_map -- [RUNS] [--voxel M]`
 
-#[path = "../tests/common/mod.rs"]
-mod common;
-
 use semantic::{build_semantic_map, SemanticConfig};
 use std::collections::BTreeMap;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let runs: usize = args.first().and_then(|a| a.parse().ok()).unwrap_or(7);
-    let mut cloud = common::default_building_full_scans(10);
+    let mut cloud = fixtures::default_building_full_scans(10);
     if let Some(v) = args
         .iter()
         .position(|a| a == "--voxel")

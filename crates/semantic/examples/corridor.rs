@@ -4,9 +4,6 @@
 //! [--histogram] [--profile] [--segments]` (the last three print diagnostics: the z histogram of
 //! the corridor, the south wall's position along the corridor, the merged segments).
 
-#[path = "../tests/common/mod.rs"]
-mod common;
-
 use semantic::{build_semantic_map, render_segments, render_top_view, EntityClass, SemanticConfig};
 use std::path::PathBuf;
 
@@ -17,7 +14,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .position(|a| a == "--out")
         .and_then(|i| args.get(i + 1))
         .map(PathBuf::from);
-    let Some(cloud) = common::threedtk_corridor() else {
+    let Some(cloud) = fixtures::threedtk_corridor() else {
         eprintln!(
             "3DTK corridor data not found beside the checkout (../shared/data/real/3dtk-corridor)"
         );

@@ -3,8 +3,9 @@
 //! faces of a wall into one band whose skeleton is the wall's centre line, and bridges small
 //! gaps in sparsely seen walls. Computed separably (rows, then columns) with running counts.
 
-use crate::error::{check_range, Result};
+use crate::error::Result;
 use crate::image_frame::Mask;
+use cloud::check_range;
 use image::GrayImage;
 use serde::{Deserialize, Serialize};
 
@@ -30,7 +31,8 @@ impl DilationConfig {
             0.0,
             10.0,
             "within 0..10 m",
-        )
+        )?;
+        Ok(())
     }
 
     /// The radius in pixels at `resolution_m`.

@@ -11,16 +11,10 @@ pub enum SemanticError {
         /// Number of points in the input, missing returns included.
         total: usize,
     },
-    /// A configuration value outside its sensible range.
-    #[error("invalid parameter {name} = {value}: {msg}")]
-    InvalidParameter {
-        /// Parameter name with its stage, e.g. `projection.resolution_m`.
-        name: &'static str,
-        /// The value given.
-        value: f64,
-        /// What would be valid.
-        msg: &'static str,
-    },
+    /// A configuration value outside its sensible range (its name with its stage, e.g.
+    /// `projection.resolution_m`).
+    #[error(transparent)]
+    InvalidParameter(#[from] cloud::InvalidParameter),
     /// The projection image would exceed the pixel cap (a cloud far too wide for the resolution).
     #[error(
         "the projection image would be {width_px} x {height_px} px ({width_m:.1} m x {height_m:.1} m \
@@ -145,17 +139,14 @@ pub enum SemanticError {
 /// Result with [`SemanticError`].
 pub type Result<T, E = SemanticError> = std::result::Result<T, E>;
 
-/// Checks that `value` is finite and within `lo..=hi`.
-pub(crate) fn check_range(
-    name: &'static str,
-    value: f64,
-    lo: f64,
-    hi: f64,
-    msg: &'static str,
-) -> Result<()> {
-    if value.is_finite() && value >= lo && value <= hi {
-        Ok(())
-    } else {
-        Err(SemanticError::InvalidParameter { name, value, msg })
+impl cloud::BadInput for SemanticError {
+    /// The user's input is at fault, except where reading or writing a file failed for the
+    /// system's reasons, or a picture could not be written (a failure of the job).
+    fn is_bad_input(&self) -> bool {
+        match self {
+            SemanticError::Cloud(c) => c.is_bad_input(),
+            SemanticError::Image { .. } => false,
+            _ => true,
+        }
     }
 }

@@ -11,10 +11,11 @@
 //!
 //! Points on nothing identified (furniture, clutter) stay unknown (entity 0).
 
-use crate::error::{check_range, Result};
+use crate::error::Result;
 use crate::net::{Detections, Ids};
 use crate::points::XyIndex;
-use cloud::{Label, SurfaceClass};
+use cloud::check_range;
+use cloud::{EntityClass, Label};
 use glam::{DVec2, Vec3};
 use serde::{Deserialize, Serialize};
 
@@ -52,7 +53,8 @@ impl LabelConfig {
             0.0,
             1.0,
             "within 0..1 m",
-        )
+        )?;
+        Ok(())
     }
 }
 
@@ -66,7 +68,7 @@ pub(crate) fn label_points(
 ) -> Vec<Label> {
     let mut labels = vec![Label::default(); points.len()];
     let tol = c.tolerance_m;
-    let set = |l: &mut Label, entity: u32, class: SurfaceClass| {
+    let set = |l: &mut Label, entity: u32, class: EntityClass| {
         if l.entity == 0 && entity != 0 {
             *l = Label { entity, class };
         }
@@ -75,17 +77,17 @@ pub(crate) fn label_points(
         let z = p.z as f64;
         if let Some((f, _)) = d.levels.floor {
             if (z - f).abs() <= c.surface_tolerance_m {
-                set(l, ids.floor, SurfaceClass::Floor);
+                set(l, ids.floor, EntityClass::Floor);
             }
         }
         if let Some((ce, _)) = d.levels.ceiling {
             if (z - ce).abs() <= c.surface_tolerance_m {
-                set(l, ids.ceiling, SurfaceClass::Ceiling);
+                set(l, ids.ceiling, EntityClass::Ceiling);
             }
         }
     }
     for (wi, w) in d.walls.iter().enumerate() {
-        let openings: Vec<(usize, &crate::openings::Opening)> = d
+        let openings: Vec<(usize, &crate::doors::Opening)> = d
             .openings
             .iter()
             .enumerate()
@@ -102,14 +104,14 @@ pub(crate) fn label_points(
                 if z < w.z_range.0 - tol || z > w.z_range.1 + tol {
                     return;
                 }
-                let mut entity = (ids.walls[wi], SurfaceClass::Wall);
+                let mut entity = (ids.walls[wi], EntityClass::Wall);
                 for &(k, o) in &openings {
                     if s > o.s0 + tol && s < o.s1 - tol {
                         let lintel = ids.openings[k].1;
                         entity = if z >= o.top_z - tol && lintel != 0 {
-                            (lintel, SurfaceClass::WallAboveDoor)
+                            (lintel, EntityClass::WallAboveDoor)
                         } else {
-                            (0, SurfaceClass::Unknown)
+                            (0, EntityClass::Unknown)
                         };
                     }
                 }
@@ -140,7 +142,7 @@ pub(crate) fn label_points(
             |i, _, _| {
                 let z = points[i].z as f64;
                 if z > w.z_range.0 + tol && z <= o.top_z + tol {
-                    set(&mut labels[i], ids.openings[k].2, SurfaceClass::Door);
+                    set(&mut labels[i], ids.openings[k].2, EntityClass::Door);
                 }
             },
         );
@@ -163,7 +165,7 @@ pub(crate) fn label_points(
                 |i, _, _| {
                     let z = points[i].z as f64;
                     if z > floor + tol && z <= top + tol {
-                        set(&mut labels[i], id, SurfaceClass::Stairs);
+                        set(&mut labels[i], id, EntityClass::Stairs);
                     }
                 },
             );

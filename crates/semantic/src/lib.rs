@@ -1,6 +1,6 @@
 //! Semantic maps for semsim: from a registered point cloud of a building to walls, floor,
-//! ceiling, doors and stairs with their relations (Będkowski & Masłowski 2009, section 1.3),
-//! and the evaluation of such a map against the building it was scanned in.
+//! ceiling, doors and stairs with their relations (Będkowski & Masłowski 2009, section 1.3).
+//! (Scoring such a map against the building it was scanned in is the `evaluate` crate's.)
 //!
 //! # Stages (one module each, one config section each in [`SemanticConfig`])
 //! 1. Levelling, floor and ceiling ([`FloorCeilingConfig`]): the floor plane is fitted and
@@ -19,7 +19,8 @@
 //!
 //! [`build_semantic_map`] runs them all and returns a [`MapOutput`]: the [`SemanticMap`]
 //! (versioned JSON, `schema/semantic_map.schema.json`), per-point labels, the intermediate
-//! images and per-stage timings. [`evaluate`] scores a map against a [`scanner::Building`].
+//! images and per-stage timings. Entity classes are the workspace's one vocabulary,
+//! [`EntityClass`] (re-exported from `cloud`); a map holds the [`MAP_CLASSES`] only.
 //!
 //! # Confidence
 //! Walls: the fraction of their length with face points (x 0.85 if only one face was seen).
@@ -62,60 +63,43 @@
 //! assert!(text.contains("\"format\": \"semsim.semantic_map\""));
 //! ```
 
+#![warn(missing_docs)]
+
 mod dilation;
 mod doors;
 mod error;
-mod evaluate;
-mod evaluate_doors;
-mod evaluate_stairs;
-mod evaluate_walls;
 mod floor_ceiling;
 mod hough;
 mod image_frame;
 mod labels;
-mod levelling;
 mod map;
-mod map_file;
 mod merge;
 mod net;
 mod noise_filter;
-mod openings;
 mod pipeline;
 mod points;
-mod ppht;
 mod projection;
 mod render;
+mod scene;
 mod skeleton;
-mod stair_profile;
 mod stairs;
-mod wall_extent;
-mod wall_faces;
-mod wall_fit;
-mod wall_glimpses;
-mod wall_joins;
 mod walls;
 
+pub use cloud::EntityClass;
 pub use dilation::{dilate, DilationConfig};
-pub use doors::DoorConfig;
+pub use doors::{DoorConfig, OpeningConfig};
 pub use error::{Result, SemanticError};
-pub use evaluate::{
-    evaluate, evaluate_labels, evaluate_with, ClassScore, EvalConfig, Evaluation, LabelEvaluation,
-};
-pub use evaluate_doors::DoorMatch;
-pub use evaluate_stairs::StairsMatch;
-pub use evaluate_walls::WallMatch;
 pub use floor_ceiling::FloorCeilingConfig;
 pub use hough::{hough_lines_p, HoughConfig, HoughParams, PixelSegment, Unvote};
 pub use image_frame::ImageFrame;
 pub use labels::LabelConfig;
 pub use map::{
-    DoorInfo, Entity, EntityClass, HingeEdge, OpeningInfo, OrientedBox, Relation, RelationType,
-    SemanticMap, StairsInfo, SwingSide, WallInfo, MAP_FORMAT, MAP_VERSION,
+    DoorInfo, Entity, HingeEdge, OpeningInfo, OrientedBox, Relation, RelationType, SemanticMap,
+    StairsInfo, SwingSide, WallInfo, MAP_CLASSES, MAP_FORMAT, MAP_VERSION,
 };
 pub use merge::{MergeConfig, Segment};
 pub use net::NetConfig;
 pub use noise_filter::{noise_filter, NoiseFilterConfig};
-pub use openings::OpeningConfig;
 pub use pipeline::{build_semantic_map, MapOutput, SemanticConfig, StageTime};
 pub use projection::{HeightBand, ProjectionConfig, ProjectionValue};
 pub use render::{class_color, render_labels, render_segments, render_top_view, save_png};

@@ -5,8 +5,9 @@
 //! nothing merges. The merged line is the length-weighted total-least-squares line through the
 //! members' end points; its extent is the union of their projections.
 
-use crate::error::{check_range, Result};
+use crate::error::Result;
 use crate::points::{fit_line, undirected_angle_deg, Line2};
+use cloud::check_range;
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 
@@ -54,7 +55,8 @@ impl MergeConfig {
             0.0,
             1e4,
             "within 0..10 km",
-        )
+        )?;
+        Ok(())
     }
 }
 

@@ -8,8 +8,9 @@
 //! endpoint error 5.4 cm with it, 1.000 and 2.8 cm without). Set it to 1 for dense data or a
 //! coarser resolution.
 
-use crate::error::{check_range, Result};
+use crate::error::Result;
 use crate::image_frame::Mask;
+use cloud::check_range;
 use image::GrayImage;
 use serde::{Deserialize, Serialize};
 
@@ -30,7 +31,8 @@ impl NoiseFilterConfig {
             0.0,
             8.0,
             "within 0..8",
-        )
+        )?;
+        Ok(())
     }
 }
 

@@ -11,9 +11,10 @@
 //! `1 - extent_quantile`, so a few stray far points do not blow it up), plus a margin; an image
 //! larger than `max_pixels` is an error rather than an allocation of gigabytes.
 
-use crate::error::{check_range, Result, SemanticError};
+use crate::error::{Result, SemanticError};
 use crate::image_frame::{ImageFrame, Mask};
 use crate::points::quantile;
+use cloud::check_range;
 use glam::Vec3;
 use image::GrayImage;
 use serde::{Deserialize, Serialize};
@@ -145,7 +146,8 @@ impl ProjectionConfig {
             1e-3,
             1e4,
             "above the lower end",
-        )
+        )?;
+        Ok(())
     }
 
     /// The band's z range in the map frame, given the floor and ceiling heights.

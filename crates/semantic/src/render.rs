@@ -1,24 +1,22 @@
 //! Pictures for people: segments over an image, a top view of the map's entities and a top
 //! view of labelled points, as RGB images in an [`ImageFrame`] (north up; no text).
 
-use crate::image_frame::{pixel_range, ImageFrame};
-use crate::map::{EntityClass, OrientedBox, SemanticMap};
+use crate::error::{Result, SemanticError};
+use crate::image_frame::{pixel_center, pixel_range, ImageFrame};
+use crate::map::{HingeEdge, OrientedBox, SemanticMap, SwingSide};
 use crate::merge::Segment;
-use cloud::{Label, PointCloud, SurfaceClass};
+use cloud::{EntityClass, Label, PointCloud};
 use glam::{DVec2, DVec3};
 use image::{GrayImage, Rgb, RgbImage};
 
-/// Writes `image` (a `GrayImage` or an `RgbImage`, e.g. [`crate::MapOutput::skeleton`] or
+/// Writes `image` (a `GrayImage` or an `RgbImage`, e.g. the skeleton of a map's output or
 /// [`render_top_view`]'s) as a PNG file, atomically.
-pub fn save_png(
-    path: &std::path::Path,
-    image: impl Into<image::DynamicImage>,
-) -> crate::Result<()> {
+pub fn save_png(path: &std::path::Path, image: impl Into<image::DynamicImage>) -> Result<()> {
     let mut bytes = std::io::Cursor::new(Vec::new());
     image
         .into()
         .write_to(&mut bytes, image::ImageFormat::Png)
-        .map_err(|e| crate::SemanticError::Image {
+        .map_err(|e| SemanticError::Image {
             path: path.into(),
             msg: e.to_string(),
         })?;
@@ -26,9 +24,11 @@ pub fn save_png(
     Ok(())
 }
 
-/// The colour of each class in the pictures.
+/// The colour of each class in the pictures (of the map's entities; `unknown`, `furniture` and
+/// `robot` are those of labelled points).
 pub fn class_color(class: EntityClass) -> [u8; 3] {
     match class {
+        EntityClass::Unknown => [150, 150, 150],
         EntityClass::Floor => [225, 225, 225],
         EntityClass::Ceiling => [200, 220, 240],
         EntityClass::Wall => [30, 30, 30],
@@ -36,19 +36,16 @@ pub fn class_color(class: EntityClass) -> [u8; 3] {
         EntityClass::Door => [170, 90, 20],
         EntityClass::FreeSpaceForDoor => [110, 200, 110],
         EntityClass::Stairs => [235, 150, 40],
+        EntityClass::Furniture => [120, 60, 160],
+        EntityClass::Robot => [20, 160, 160],
     }
 }
 
-fn surface_color(class: SurfaceClass) -> [u8; 3] {
+/// The colour of a labelled point: its class's, but walls in red (black is the map's wall).
+fn point_color(class: EntityClass) -> [u8; 3] {
     match class {
-        SurfaceClass::Unknown => [150, 150, 150],
-        SurfaceClass::Floor => class_color(EntityClass::Floor),
-        SurfaceClass::Ceiling => class_color(EntityClass::Ceiling),
-        SurfaceClass::Wall => [200, 30, 30],
-        SurfaceClass::WallAboveDoor => class_color(EntityClass::WallAboveDoor),
-        SurfaceClass::Door => class_color(EntityClass::Door),
-        SurfaceClass::Stairs => class_color(EntityClass::Stairs),
-        SurfaceClass::Furniture => [120, 60, 160],
+        EntityClass::Wall => [200, 30, 30],
+        c => class_color(c),
     }
 }
 
@@ -110,13 +107,13 @@ pub fn render_top_view(map: &SemanticMap, frame: &ImageFrame) -> RgbImage {
                     fill_box(&mut img, frame, &e.geometry, color);
                     let len = e.geometry.size_m[0];
                     let yaw = e.geometry.yaw_deg.to_radians();
-                    let sign_edge = if d.hinge_edge == crate::map::HingeEdge::Start {
+                    let sign_edge = if d.hinge_edge == HingeEdge::Start {
                         1.0
                     } else {
                         -1.0
                     };
                     let into = DVec2::from_angle(yaw) * sign_edge;
-                    let left = (d.swing == crate::map::SwingSide::Left) == (sign_edge > 0.0);
+                    let left = (d.swing == SwingSide::Left) == (sign_edge > 0.0);
                     let a = d.observed_open_deg.to_radians() * if left { 1.0 } else { -1.0 };
                     let h = DVec2::new(d.hinge_m[0], d.hinge_m[1]);
                     let tip = h + DVec2::from_angle(a).rotate(into) * len;
@@ -152,7 +149,7 @@ pub fn render_labels(
         .map(|(p, l)| {
             (
                 map_from_input.transform_point3(p.as_dvec3()),
-                surface_color(l.class),
+                point_color(l.class),
             )
         })
         .filter(|(_, c)| *c != class_color(EntityClass::Ceiling))
@@ -191,7 +188,7 @@ fn fill_box(img: &mut RgbImage, frame: &ImageFrame, b: &OrientedBox, c: [u8; 3])
     if let Some((c0, c1, r0, r1)) = pixel_range(frame, lo, hi) {
         for row in r0..=r1 {
             for col in c0..=c1 {
-                let q = crate::image_frame::pixel_center(frame, col as f64, row as f64);
+                let q = pixel_center(frame, col as f64, row as f64);
                 let inside = (0..4).all(|k| {
                     let (p, n) = (corners[k], corners[(k + 1) % 4]);
                     (n - p).perp_dot(q - p) >= 0.0

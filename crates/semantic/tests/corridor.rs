@@ -2,14 +2,12 @@
 //! both corridor walls and door openings along them. Skips with a message where the data
 //! folder (`../shared/data/real/3dtk-corridor` beside the checkout) is absent.
 
-mod common;
-
 use glam::DVec2;
 use semantic::{build_semantic_map, EntityClass, RelationType, SemanticConfig};
 
 #[test]
 fn threedtk_corridor_has_floor_ceiling_two_walls_and_doors() {
-    let Some(cloud) = common::threedtk_corridor() else {
+    let Some(cloud) = fixtures::threedtk_corridor() else {
         eprintln!("skipping: 3DTK corridor data not found (../shared/data/real/3dtk-corridor)");
         return;
     };

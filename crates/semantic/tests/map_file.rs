@@ -1,9 +1,9 @@
 //! The semantic map file: serde round trip, atomic save, structural validation against
 //! `schema/semantic_map.schema.json`, and typed errors for bad files.
 
-mod common;
-
-use semantic::{build_semantic_map, EntityClass, SemanticConfig, SemanticError, SemanticMap};
+use semantic::{
+    build_semantic_map, EntityClass, SemanticConfig, SemanticError, SemanticMap, MAP_CLASSES,
+};
 use serde_json::Value;
 use std::path::Path;
 use std::sync::OnceLock;
@@ -14,10 +14,10 @@ fn default_map() -> &'static SemanticMap {
     MAP.get_or_init(|| {
         let b = scanner::Building::default_building().expect("built-in building");
         let g = scanner::BuildingGeometry::new(&b);
-        let cloud = common::scan_building(
+        let cloud = fixtures::scan_building(
             &b,
-            &common::survey_poses(&b, &g),
-            &common::test_laser(),
+            &fixtures::survey_poses(&b, &g),
+            &fixtures::test_laser(),
             0.03,
         );
         build_semantic_map(&cloud, &SemanticConfig::default())
@@ -135,7 +135,7 @@ fn schema() -> Value {
 #[test]
 fn output_validates_against_the_schema_and_holds_every_class() {
     let map = default_map();
-    for class in EntityClass::ALL {
+    for class in MAP_CLASSES {
         assert!(
             map.of_class(class).count() > 0,
             "no {} in the default building's map",
@@ -209,6 +209,14 @@ fn bad_files_give_typed_errors() {
     );
     assert!(
         err.to_string().contains("bad.json") && err.to_string().contains("wall_above_door"),
+        "{err}"
+    );
+    // A class of the workspace's vocabulary that no map entity has (a point label's).
+    let err = edit(&|v| v["entities"][2]["class"] = Value::from("furniture"))
+        .expect_err("furniture is no map class");
+    assert!(
+        matches!(&err, SemanticError::UnknownClass { index: 2, class, .. } if class == "furniture")
+            && err.to_string().contains("bad.json"),
         "{err}"
     );
     let err = edit(&|v| v["relations"][0]["type"] = Value::from("adjacent"))

@@ -3,7 +3,7 @@
 //! proportional heading correction); with nothing to do it stands still (motors braking).
 
 use crate::error::{check_finite, check_range, Result};
-use crate::robot::RobotPose;
+use crate::world::robot::RobotPose;
 use serde::{Deserialize, Serialize};
 
 /// Drive at a velocity from `from_s` to `to_s` (simulated seconds).

@@ -107,6 +107,19 @@ pub enum SimError {
     },
 }
 
+impl cloud::BadInput for SimError {
+    /// A simulation error is the input's (a file, a world, a robot model or a scenario that is
+    /// not valid, or a reference to something that does not exist), except where reading or
+    /// writing a file failed for the system's reasons.
+    fn is_bad_input(&self) -> bool {
+        match self {
+            SimError::Cloud(e) => e.is_bad_input(),
+            SimError::Building(e) => e.is_bad_input(),
+            _ => true,
+        }
+    }
+}
+
 /// Result with [`SimError`].
 pub type Result<T, E = SimError> = std::result::Result<T, E>;
 
@@ -122,7 +135,8 @@ pub(crate) fn check_finite(element: &str, field: &str, values: &[f64]) -> Result
     }
 }
 
-/// Fails unless `lo <= value <= hi` (and finite).
+/// Fails unless `lo <= value <= hi` (and finite): [`SimError::NonFinite`] for NaN or an
+/// infinity, else [`cloud::check_range`]'s verdict as [`SimError::OutOfRange`] on `element`.
 pub(crate) fn check_range(
     element: &str,
     field: &str,
@@ -132,16 +146,14 @@ pub(crate) fn check_range(
     msg: &str,
 ) -> Result<()> {
     check_finite(element, field, &[value])?;
-    if value >= lo && value <= hi {
-        Ok(())
-    } else {
-        Err(SimError::OutOfRange {
+    cloud::check_range(field.to_string(), value, lo, hi, msg.to_string()).map_err(|e| {
+        SimError::OutOfRange {
             element: element.to_string(),
-            field: field.to_string(),
-            value,
-            msg: msg.to_string(),
-        })
-    }
+            field: e.name.into_owned(),
+            value: e.value,
+            msg: e.msg.into_owned(),
+        }
+    })
 }
 
 /// Reads a text file, mapping the error to [`SimError::Io`].

@@ -2,7 +2,8 @@
 //! lines with a fixed field order and fixed float formatting, so runs compare byte for byte.
 
 use crate::error::{check_range, Result};
-use crate::spec::{EntityClass, EntityInfo};
+use crate::spec::EntityInfo;
+use cloud::EntityClass;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 

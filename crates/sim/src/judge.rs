@@ -3,9 +3,10 @@
 
 use crate::error::{Result, SimError};
 use crate::events::{fmt_f, Event, EventKind};
-use crate::robot::RobotPose;
 use crate::scenario::{ReachGoal, Rules};
-use crate::spec::{EntityClass, WorldSpec};
+use crate::spec::WorldSpec;
+use crate::world::robot::RobotPose;
+use cloud::EntityClass;
 use serde::{Deserialize, Serialize};
 
 /// One rule's outcome.

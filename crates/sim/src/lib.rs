@@ -51,28 +51,21 @@
 #![warn(missing_docs)]
 
 mod checkpoint;
-mod contacts;
 mod controller;
-mod doors;
+mod detect;
 mod error;
 mod events;
 mod import;
-mod joints;
 mod judge;
 mod model;
-mod motion;
 mod report;
-mod robot;
 mod scenario;
-#[cfg(feature = "semantic")]
-mod semantic_import;
 mod simulation;
 mod spec;
-mod stairs;
-mod tags;
 mod validate;
 mod world;
 
+pub use cloud::EntityClass;
 pub use controller::{ControllerConfig, VelocityCommand, Waypoint};
 pub use error::{Result, SimError};
 pub use events::{events_to_jsonl, EntityRef, Event, EventConfig, EventKind};
@@ -85,11 +78,11 @@ pub use report::{
     report_markdown, trajectory_to_csv, write_events_jsonl, write_outputs, write_report_md,
     write_trajectory_csv, ReportConfig,
 };
-pub use robot::RobotPose;
 pub use scenario::{ReachGoal, Rules, Scenario};
 pub use simulation::{run_scenario, Outcome, Simulation, TrajectoryPoint};
 pub use spec::{
-    BoxSpec, DoorSpec, EntityClass, EntityInfo, FixedBox, FreeSpaceSpec, HingeEnd, OpeningSense,
-    StairsSpec, StepSpec, WorldSpec,
+    BoxSpec, DoorSpec, EntityInfo, FixedBox, FreeSpaceSpec, HingeEnd, OpeningSense, StairsSpec,
+    StepSpec, WorldSpec,
 };
+pub use world::robot::RobotPose;
 pub use world::{World, WorldConfig};

@@ -1,19 +1,19 @@
 //! A scenario's run: the world, one robot, its controller, the event detectors and the judge,
 //! advanced one fixed step at a time. The whole state is serialisable (see checkpoint.rs).
 
-use crate::contacts::{self, ContactDetector};
 use crate::controller::Controller;
-use crate::doors::{DoorDetector, FreeSpaceDetector};
+use crate::detect::contacts::{self, ContactDetector};
+use crate::detect::doors::{DoorDetector, FreeSpaceDetector};
+use crate::detect::joints;
+use crate::detect::motion::MotionDetector;
+use crate::detect::stairs::StairsDetector;
 use crate::error::Result;
 use crate::events::{Emitter, Event};
-use crate::joints;
 use crate::judge::{Judge, Observation, Verdict};
 use crate::model::RobotModel;
-use crate::motion::MotionDetector;
-use crate::robot::{robot_pose, RobotPose};
 use crate::scenario::Scenario;
 use crate::spec::WorldSpec;
-use crate::stairs::StairsDetector;
+use crate::world::robot::{robot_pose, RobotPose};
 use crate::world::World;
 use serde::{Deserialize, Serialize};
 

@@ -2,80 +2,8 @@
 //! ground-truth building or a semantic map). Fixed boxes, hinged doors, door free-space
 //! sensors and staircases, each tagged with its semantic entity (id, class, name).
 
+use cloud::EntityClass;
 use serde::{Deserialize, Serialize};
-
-/// The semantic class of an entity taking part in the simulation.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, Default,
-)]
-#[serde(rename_all = "snake_case")]
-pub enum EntityClass {
-    /// The floor slab.
-    Floor,
-    /// The ceiling slab.
-    Ceiling,
-    /// A wall (beside openings).
-    #[default]
-    Wall,
-    /// The part of a wall above a door opening.
-    WallAboveDoor,
-    /// A door leaf (a dynamic body on a hinge).
-    Door,
-    /// The free space of a door opening (a sensor volume).
-    FreeSpaceForDoor,
-    /// A staircase (its steps and landing).
-    Stairs,
-    /// Furniture and clutter.
-    Furniture,
-    /// A robot.
-    Robot,
-}
-
-impl EntityClass {
-    /// The lower-case name used in files (`wall_above_door`, `free_space_for_door`, ...).
-    pub fn name(self) -> &'static str {
-        match self {
-            EntityClass::Floor => "floor",
-            EntityClass::Ceiling => "ceiling",
-            EntityClass::Wall => "wall",
-            EntityClass::WallAboveDoor => "wall_above_door",
-            EntityClass::Door => "door",
-            EntityClass::FreeSpaceForDoor => "free_space_for_door",
-            EntityClass::Stairs => "stairs",
-            EntityClass::Furniture => "furniture",
-            EntityClass::Robot => "robot",
-        }
-    }
-
-    /// The code stored in collider tags.
-    pub(crate) fn code(self) -> u8 {
-        self as u8
-    }
-
-    /// The class for a stored code.
-    pub(crate) fn from_code(code: u8) -> EntityClass {
-        use EntityClass::*;
-        [
-            Floor,
-            Ceiling,
-            Wall,
-            WallAboveDoor,
-            Door,
-            FreeSpaceForDoor,
-            Stairs,
-            Furniture,
-            Robot,
-        ]
-        .get(code as usize)
-        .copied()
-        .unwrap_or_default()
-    }
-
-    /// Classes a robot "touches a wall" with.
-    pub fn is_wall(self) -> bool {
-        matches!(self, EntityClass::Wall | EntityClass::WallAboveDoor)
-    }
-}
 
 /// A semantic entity: id, class, machine name and an optional human label.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

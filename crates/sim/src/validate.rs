@@ -3,7 +3,8 @@
 //! (id, machine name, opening name or unique human label).
 
 use crate::error::{check_finite, check_range, Result, SimError};
-use crate::spec::{BoxSpec, DoorSpec, EntityClass, EntityInfo, HingeEnd, WorldSpec};
+use crate::spec::{BoxSpec, DoorSpec, EntityInfo, HingeEnd, WorldSpec};
+use cloud::EntityClass;
 use std::collections::BTreeMap;
 
 /// Largest half extent accepted (metres).
@@ -180,9 +181,14 @@ impl WorldSpec {
         for (i, f) in self.fixed.iter().enumerate() {
             let el = format!("fixed[{i}] ({})", fixed_names[i]);
             claim(f.entity, f.class, &fixed_names[i], &el)?;
+            // `unknown` (the shared vocabulary's "no label") was no class of the world before
+            // the vocabularies were merged; it stays refused.
             if matches!(
                 f.class,
-                EntityClass::Door | EntityClass::FreeSpaceForDoor | EntityClass::Robot
+                EntityClass::Door
+                    | EntityClass::FreeSpaceForDoor
+                    | EntityClass::Robot
+                    | EntityClass::Unknown
             ) {
                 return Err(invalid(
                     &el,

@@ -13,7 +13,7 @@ pub use read::{is_scan_file, read_sequence};
 pub use write::{write_scan_folder, ScanFolderSummary};
 
 use glam::DAffine3;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The ground-truth pose file of a scan folder.
 pub const TRUTH_FILE: &str = "poses.txt";
@@ -31,6 +31,8 @@ pub struct SequenceInput {
     pub odometry: Vec<DAffine3>,
     /// Ground truth `world_from_scan` per scan (empty if none).
     pub truth: Vec<DAffine3>,
+    /// Every file read: the scans and the pose files (outputs must not replace any of them).
+    pub read: Vec<PathBuf>,
 }
 
 impl SequenceInput {
@@ -41,8 +43,17 @@ impl SequenceInput {
 }
 
 /// A scan's name: its file stem.
-pub fn scan_name(file: &std::path::Path) -> String {
+pub fn scan_name(file: &Path) -> String {
     file.file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_default()
+}
+
+/// True if a pose's name names the scan file: its stem (`scan000`) or its whole file name
+/// (`scan000.pcd`).
+pub fn names_scan(pose_name: &str, file: &Path) -> bool {
+    pose_name == scan_name(file)
+        || file
+            .file_name()
+            .is_some_and(|n| n.to_string_lossy() == pose_name)
 }

@@ -47,23 +47,45 @@ pub fn read_sequence(
             files.len()
         )));
     }
-    let in_folder = |name: &str| folder.as_ref().map(|d| d.join(name)).filter(|p| p.is_file());
-    let odometry = match (odometry, in_folder(ODOMETRY_FILE)) {
-        (Some(p), _) | (None, Some(ref p)) => poses_for(&files, &cloud::read_poses(p)?, p)?,
-        _ if files.iter().all(|f| f.with_extension("pose").is_file()) => files
-            .iter()
-            .map(|f| cloud::io::threedtk::read_pose_3dtk(&f.with_extension("pose")))
-            .collect::<Result<_, _>>()?,
+    let mut read = files.clone();
+    let in_folder = |name: &str| {
+        folder
+            .as_ref()
+            .map(|d| d.join(name))
+            .filter(|p| p.is_file())
+    };
+    let odometry_file = odometry
+        .map(Path::to_path_buf)
+        .or_else(|| in_folder(ODOMETRY_FILE));
+    let odometry = match odometry_file {
+        Some(p) => {
+            read.push(p.clone());
+            poses_for(&files, &cloud::read_poses(&p)?, &p)?
+        }
+        _ if files.iter().all(|f| f.with_extension("pose").is_file()) => {
+            read.extend(files.iter().map(|f| f.with_extension("pose")));
+            files
+                .iter()
+                .map(|f| cloud::io::threedtk::read_pose_3dtk(&f.with_extension("pose")))
+                .collect::<Result<_, _>>()?
+        }
         _ => Vec::new(),
     };
-    let truth = match (truth, in_folder(TRUTH_FILE)) {
-        (Some(p), _) | (None, Some(ref p)) => poses_for(&files, &cloud::read_poses(p)?, p)?,
-        _ => Vec::new(),
+    let truth_file = truth
+        .map(Path::to_path_buf)
+        .or_else(|| in_folder(TRUTH_FILE));
+    let truth = match truth_file {
+        Some(p) => {
+            read.push(p.clone());
+            poses_for(&files, &cloud::read_poses(&p)?, &p)?
+        }
+        None => Vec::new(),
     };
     Ok(SequenceInput {
         files,
         odometry,
         truth,
+        read,
     })
 }
 
@@ -86,10 +108,13 @@ fn poses_for(files: &[PathBuf], poses: &[NamedPose], path: &Path) -> Result<Vec<
             let stem = scan_name(f);
             poses
                 .iter()
-                .find(|p| p.name == stem)
+                .find(|p| super::names_scan(&p.name, f))
                 .map(|p| p.world_from_scan)
                 .ok_or_else(|| {
-                    PipelineError::bad_input(format!("{}: no pose for scan '{stem}'", path.display()))
+                    PipelineError::bad_input(format!(
+                        "{}: no pose for scan '{stem}'",
+                        path.display()
+                    ))
                 })
         })
         .collect()

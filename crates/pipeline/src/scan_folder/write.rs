@@ -79,7 +79,10 @@ pub fn write_scan_folder(
     })
 }
 
-/// Every pose must stand on the floor and outside every solid.
+/// The largest heading accepted (ten turns): beyond it a number is a typo, and f64 loses the angle.
+const MAX_YAW_DEG: f64 = 3600.0;
+
+/// Every pose must stand on the floor and outside every solid, with a sensible heading.
 fn check_poses(
     b: &Building,
     g: &BuildingGeometry,
@@ -87,6 +90,12 @@ fn check_poses(
     mount_height_m: f64,
 ) -> Result<()> {
     for (k, p) in poses.iter().enumerate() {
+        if !p.yaw_deg.is_finite() || p.yaw_deg.abs() > MAX_YAW_DEG {
+            return Err(PipelineError::bad_input(format!(
+                "pose {k}: yaw {} deg is not a heading (give one within -{MAX_YAW_DEG}..{MAX_YAW_DEG})",
+                p.yaw_deg
+            )));
+        }
         let (lo, hi) = (b.floor.min_m, b.floor.max_m);
         if p.x_m < lo[0] || p.x_m > hi[0] || p.y_m < lo[1] || p.y_m > hi[1] {
             return Err(PipelineError::bad_input(format!(

@@ -48,16 +48,6 @@ pub fn scan_pair_at(
     (target, source, truth)
 }
 
-/// Translation error (m) and rotation error (degrees) of `est` against `truth`.
-pub fn pose_error(est: &DAffine3, truth: &DAffine3) -> (f64, f64) {
-    let d = truth.inverse() * *est;
-    let q = DQuat::from_mat3(&d.matrix3);
-    (
-        (est.translation - truth.translation).length(),
-        (2.0 * q.w.abs().min(1.0).acos()).to_degrees(),
-    )
-}
-
 /// `truth` moved by `trans_m` along `dir` and turned by `rot_deg` about `axis` (applied in
 /// the target frame, about the source origin's position).
 pub fn perturb(truth: &DAffine3, trans_m: f64, dir: DVec3, rot_deg: f64, axis: DVec3) -> DAffine3 {

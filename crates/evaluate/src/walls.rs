@@ -1,0 +1,191 @@
+//! Evaluation of walls: the expected wall pieces (see the crate docs) matched with the
+//! map's walls, and the end errors.
+
+use crate::config::EvalConfig;
+use crate::line::{undirected_angle_deg, Line2};
+use crate::score::ClassScore;
+use crate::truth::Truth;
+use crate::Evaluation;
+use cloud::EntityClass;
+use glam::DVec2;
+use scanner::Building;
+use semantic::SemanticMap;
+use serde::{Deserialize, Serialize};
+
+/// A matched wall.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct WallMatch {
+    /// The true wall, e.g. `walls[3]`, and the observed piece `[from, to]` along it (metres).
+    pub truth: String,
+    /// Observed piece along the true centre line.
+    pub piece_m: [f64; 2],
+    /// The map entity.
+    pub entity: u32,
+    /// Distance of each detected end from the stretch between the piece's end and the wall's.
+    pub endpoint_errors_m: [f64; 2],
+    /// Distance of the detected midpoint from the true centre line.
+    pub offset_m: f64,
+    /// Detected minus true thickness.
+    pub thickness_error_m: f64,
+    /// Angle between the lines.
+    pub angle_deg: f64,
+}
+
+/// An expected wall: the observed piece of a true wall (the whole wall where nothing was
+/// observed), in the map frame.
+struct Piece {
+    /// The true wall, e.g. `walls[3]`.
+    name: String,
+    /// Its centre line (from its start).
+    line: Line2,
+    /// The observed piece along `line`.
+    range: (f64, f64),
+    /// The whole wall along `line`.
+    full: (f64, f64),
+    thickness: f64,
+}
+
+/// The expected wall pieces (see the crate docs).
+fn expected_pieces(building: &Building, t: &Truth, c: &EvalConfig) -> Vec<Piece> {
+    let mut pieces = Vec::new();
+    for (i, w) in building.walls.iter().enumerate() {
+        let a = t.to_map(w.start_m[0], w.start_m[1], 0.0).truncate();
+        let b = t.to_map(w.end_m[0], w.end_m[1], 0.0).truncate();
+        let line = Line2::through(a, b);
+        let name = format!("walls[{i}]");
+        let ranges: Vec<(f64, f64)> = if !t.observed {
+            vec![(0.0, a.distance(b))]
+        } else {
+            let mut s: Vec<f64> = t
+                .points(&name)
+                .map(|v| v.iter().map(|p| line.coords(p.truncate()).0).collect())
+                .unwrap_or_default();
+            s.sort_by(f64::total_cmp);
+            // 10 cm bins seen by fewer than `min_bin_points` points (a glimpse) are not observed.
+            let mut bins: std::collections::BTreeMap<i64, (f64, f64, usize)> = Default::default();
+            for v in s {
+                let b = bins.entry((v / 0.1).floor() as i64).or_insert((v, v, 0));
+                b.0 = b.0.min(v);
+                b.1 = b.1.max(v);
+                b.2 += 1;
+            }
+            let mut runs: Vec<(f64, f64, usize)> = Vec::new();
+            for (lo, hi, n) in bins.into_values().filter(|b| b.2 >= c.min_bin_points) {
+                match runs.last_mut() {
+                    Some(r) if lo - r.1 <= c.piece_gap_m => {
+                        r.1 = hi;
+                        r.2 += n;
+                    }
+                    _ => runs.push((lo, hi, n)),
+                }
+            }
+            runs.into_iter()
+                .filter(|r| r.2 >= c.min_points && r.1 - r.0 >= c.min_length_m)
+                .map(|r| (r.0, r.1))
+                .collect()
+        };
+        for range in ranges {
+            pieces.push(Piece {
+                name: name.clone(),
+                line,
+                range,
+                full: (0.0, a.distance(b)),
+                thickness: w.thickness_m,
+            });
+        }
+    }
+    pieces
+}
+
+/// Matches the expected wall pieces with the map's walls (greedy, best intersection over union
+/// first), and records the matches, the misses, the spurious walls and the end errors.
+pub(crate) fn evaluate_walls(
+    ev: &mut Evaluation,
+    map: &SemanticMap,
+    building: &Building,
+    t: &Truth,
+    c: &EvalConfig,
+) {
+    let pieces = expected_pieces(building, t, c);
+    let walls: Vec<_> = map
+        .of_class(EntityClass::Wall)
+        .filter_map(|e| e.wall.as_ref().map(|w| (e.id, w)))
+        .collect();
+    let mut cands = Vec::new();
+    for (pi, p) in pieces.iter().enumerate() {
+        for (wi, (_, w)) in walls.iter().enumerate() {
+            let (a, b) = (
+                DVec2::from_array(w.segment_m[0]),
+                DVec2::from_array(w.segment_m[1]),
+            );
+            let angle = undirected_angle_deg(b - a, p.line.dir);
+            let offset = p.line.coords((a + b) / 2.0).1.abs();
+            if angle > c.wall_max_angle_deg || offset > p.thickness / 2.0 + c.wall_max_offset_m {
+                continue;
+            }
+            let (sa, sb) = (p.line.coords(a).0, p.line.coords(b).0);
+            let (d0, d1) = (sa.min(sb), sa.max(sb));
+            let inter = d1.min(p.range.1) - d0.max(p.range.0);
+            let union = d1.max(p.range.1) - d0.min(p.range.0);
+            let iou = inter / union.max(1e-9);
+            if iou >= c.wall_min_iou {
+                cands.push((iou, pi, wi, angle, offset));
+            }
+        }
+    }
+    cands.sort_by(|x, y| y.0.total_cmp(&x.0));
+    let (mut used_p, mut used_w) = (vec![false; pieces.len()], vec![false; walls.len()]);
+    let mut errors = Vec::new();
+    for (_, pi, wi, angle, offset) in cands {
+        if used_p[pi] || used_w[wi] {
+            continue;
+        }
+        used_p[pi] = true;
+        used_w[wi] = true;
+        let (p, (id, w)) = (&pieces[pi], &walls[wi]);
+        // An end is right anywhere from the observed end out to the wall's true end (the map
+        // may carry a wall on behind what hid it): its error is its distance from that stretch.
+        let near_end = |q: DVec2, from: f64, to: f64| {
+            let (s, d) = p.line.coords(q);
+            let (lo, hi) = (from.min(to), from.max(to));
+            (s - s.clamp(lo, hi)).hypot(d)
+        };
+        let (a, b) = (
+            DVec2::from_array(w.segment_m[0]),
+            DVec2::from_array(w.segment_m[1]),
+        );
+        let start_end = |q: DVec2| near_end(q, p.range.0, p.full.0.min(p.range.0));
+        let end_end = |q: DVec2| near_end(q, p.range.1, p.full.1.max(p.range.1));
+        let errs = if start_end(a) + end_end(b) <= start_end(b) + end_end(a) {
+            [start_end(a), end_end(b)]
+        } else {
+            [start_end(b), end_end(a)]
+        };
+        errors.extend(errs);
+        ev.wall_matches.push(WallMatch {
+            truth: p.name.clone(),
+            piece_m: [p.range.0, p.range.1],
+            entity: *id,
+            endpoint_errors_m: errs,
+            offset_m: offset,
+            thickness_error_m: w.thickness_m - p.thickness,
+            angle_deg: angle,
+        });
+    }
+    for (pi, p) in pieces.iter().enumerate() {
+        if !used_p[pi] {
+            ev.missed
+                .push(format!("{} [{:.2}, {:.2}] m", p.name, p.range.0, p.range.1));
+        }
+    }
+    for (wi, (id, _)) in walls.iter().enumerate() {
+        if !used_w[wi] {
+            ev.spurious.push(*id);
+        }
+    }
+    ev.walls = ClassScore::new(pieces.len(), walls.len(), ev.wall_matches.len());
+    if !errors.is_empty() {
+        ev.wall_endpoint_error_mean_m = errors.iter().sum::<f64>() / errors.len() as f64;
+        ev.wall_endpoint_error_max_m = errors.iter().copied().fold(0.0, f64::max);
+    }
+}

@@ -1,0 +1,233 @@
+//! The ICP loop (Besl & McKay 1992, as in the 2009 paper): correspondences, one step of the
+//! chosen method, composition of the increment, stop criteria.
+//!
+//! The loop ([`run_loop`]) is shared by the devices: per iteration it asks a [`PairSums`] for
+//! the correspondences of the current transform within the current gate, reduced to the
+//! method's sums (point-to-point SVD sums or 6x6 normal equations) centred on the moved source
+//! centroid; the CPU ([`cpu`]) and the GPU (the registrar's GPU path) differ only there.
+//! Solving, composing, the gate schedule and the stop criteria are common.
+//!
+//! - [`correspondences`]: the nearest target point of every moved source point, and rejection;
+//! - [`point_to_point`], [`point_to_plane`], [`gicp`]: each method's sums and step;
+//! - [`kernel`]: the robust kernels' IRLS weights.
+
+pub(crate) mod correspondences;
+pub(crate) mod cpu;
+pub(crate) mod gicp;
+mod kernel;
+pub(crate) mod point_to_plane;
+pub(crate) mod point_to_point;
+
+use crate::config::IcpConfig;
+use crate::downsample::{finite_points, voxel_downsample};
+use crate::error::{RegistrationError, Result};
+use crate::linalg::{increment, motion_size, System6};
+use crate::result::{IcpResult, IterationReport};
+use crate::target::Target;
+use cloud::PointCloud;
+use glam::{DAffine3, DVec3, Vec3};
+use point_to_point::CorrelationSums;
+use std::time::Instant;
+
+/// Fewest pairs a step needs (six parameters).
+const MIN_PAIRS: usize = 6;
+/// The first iteration must match at least this fraction of the source (and [`MIN_PAIRS`]),
+/// else the clouds do not overlap.
+const MIN_OVERLAP_FRACTION: f64 = 0.01;
+/// The gate follows this multiple of the last RMSE (never growing, never below the final gate).
+const GATE_RMSE_FACTOR: f64 = 3.0;
+/// A proposed gate less than this fraction smaller than the current one keeps the current one;
+/// the stop criteria are checked only while the gate is kept.
+const GATE_MIN_SHRINK: f64 = 0.9;
+
+/// The checks of [`crate::register_to`] and the source's preparation: its finite (downsampled) points.
+pub(crate) fn prepare_source(
+    target: &Target,
+    source: &PointCloud,
+    target_from_source_guess: &DAffine3,
+    config: &IcpConfig,
+) -> Result<Vec<Vec3>> {
+    config.validate()?;
+    if !target.supports(config.method) {
+        return Err(RegistrationError::invalid(
+            "method",
+            f64::NAN,
+            format!(
+                "the target was prepared for {} and has no surface estimates for {}",
+                target.prepared_for(),
+                config.method
+            ),
+        ));
+    }
+    if !target_from_source_guess.is_finite() {
+        return Err(RegistrationError::invalid(
+            "target_from_source_guess",
+            f64::NAN,
+            "must be finite",
+        ));
+    }
+    let mut points = finite_points(source, "source")?;
+    if let Some(v) = config.source_voxel_m {
+        points = voxel_downsample(&points, v, "source_voxel_m")?;
+    }
+    Ok(points)
+}
+
+/// Turns a finished loop into the outcome: an unconverged or unfit result is
+/// [`RegistrationError::NotConverged`].
+pub(crate) fn finish(
+    mut result: IcpResult,
+    start: Instant,
+    config: &IcpConfig,
+) -> Result<IcpResult> {
+    result.total_ms = start.elapsed().as_secs_f64() * 1e3;
+    if !result.converged {
+        let reason = format!(
+            "no stop criterion met in {} iterations",
+            config.max_iterations
+        );
+        return Err(RegistrationError::NotConverged {
+            result: Box::new(result),
+            reason,
+        });
+    }
+    if result.fitness < config.min_fitness {
+        let reason = format!(
+            "fitness {:.3} is below min_fitness {}",
+            result.fitness, config.min_fitness
+        );
+        return Err(RegistrationError::NotConverged {
+            result: Box::new(result),
+            reason,
+        });
+    }
+    Ok(result)
+}
+
+/// The sums one step is solved from, with the point they are centred on (the increment they
+/// give rotates about it). Built once per iteration, so the size difference does not matter.
+#[allow(clippy::large_enum_variant)]
+pub(crate) enum StepSums {
+    /// Point-to-point: the closed-form SVD step.
+    Svd(CorrelationSums, DVec3),
+    /// Point-to-plane and GICP: 6x6 Gauss-Newton normal equations.
+    Normal(System6, DVec3),
+}
+
+impl StepSums {
+    /// The increment (in the absolute frame), the pairs used and their summed squared
+    /// distances; `None` if the step is undetermined.
+    fn solve(&self) -> Option<(DAffine3, usize, f64)> {
+        let (centred, reference, pairs, sq_dist) = match self {
+            StepSums::Svd(s, r) => (s.solve()?, *r, s.pairs, s.sq_dist),
+            StepSums::Normal(s, r) => (increment(&s.solve()?), *r, s.pairs, s.sq_dist),
+        };
+        let step = DAffine3::from_translation(reference)
+            * centred
+            * DAffine3::from_translation(-reference);
+        step.is_finite().then_some((step, pairs, sq_dist))
+    }
+}
+
+/// The per-iteration work that differs between devices.
+pub(crate) trait PairSums {
+    /// Finds the nearest target point of every source point moved by `target_from_source`
+    /// within `gate`, and reduces the pairs to the method's sums centred on `reference`.
+    /// Returns the number of correspondences found (before any rejection) and the sums.
+    fn pair_sums(
+        &mut self,
+        target_from_source: &DAffine3,
+        gate: f64,
+        reference: DVec3,
+    ) -> Result<(usize, StepSums)>;
+}
+
+/// The ICP loop over `source` (its prepared points), common to every device.
+pub(crate) fn run_loop(
+    c: &IcpConfig,
+    source: &[Vec3],
+    guess: DAffine3,
+    pairs_of: &mut dyn PairSums,
+) -> Result<IcpResult> {
+    let n = source.len();
+    // The sums are centred on the moved source centroid (rounded to f32, as the GPU gets it):
+    // small coordinates keep the GPU's f32 sums precise and the normal equations conditioned.
+    let centroid = source.iter().map(|p| p.as_dvec3()).sum::<DVec3>() / n.max(1) as f64;
+    let mut t = guess;
+    let mut gate = c.max_correspondence_distance_m;
+    let mut reports = Vec::with_capacity(c.max_iterations.min(256));
+    let mut prev_rmse: Option<f64> = None;
+    let mut converged = false;
+    let mut fitness = 0.0;
+    for iteration in 0..c.max_iterations {
+        let it_start = Instant::now();
+        let reference = t.transform_point3(centroid).as_vec3().as_dvec3();
+        let (matched, sums) = pairs_of.pair_sums(&t, gate, reference)?;
+        fitness = matched as f64 / n as f64;
+        let needed = MIN_PAIRS.max((MIN_OVERLAP_FRACTION * n as f64).ceil() as usize);
+        if iteration == 0 && matched < needed {
+            return Err(RegistrationError::NoOverlap {
+                max_correspondence_distance_m: gate,
+                correspondences: matched,
+                needed,
+            });
+        }
+        let (step, pairs, sq_dist) = match sums.solve() {
+            Some(s) if s.1 >= MIN_PAIRS => s,
+            other => {
+                let pairs = other.map_or(0, |s| s.1);
+                let result = IcpResult {
+                    target_from_source: t,
+                    iterations: reports,
+                    converged: false,
+                    rmse_m: f64::NAN,
+                    fitness,
+                    total_ms: 0.0,
+                };
+                return Err(RegistrationError::NotConverged {
+                    result: Box::new(result),
+                    reason: format!(
+                        "iteration {iteration}: {pairs} usable pairs, the step is undetermined"
+                    ),
+                });
+            }
+        };
+        t = step * t;
+        let rmse = (sq_dist / pairs as f64).sqrt();
+        reports.push(IterationReport {
+            iteration,
+            correspondences: pairs,
+            rmse_m: rmse,
+            time_ms: it_start.elapsed().as_secs_f64() * 1e3,
+        });
+        // Adaptive gate: shrink towards GATE_RMSE_FACTOR x RMSE (a large misalignment keeps
+        // a wide gate until it is resolved); test for convergence only on a settled gate.
+        let proposed = (GATE_RMSE_FACTOR * rmse)
+            .min(gate)
+            .max(c.final_correspondence_distance_m);
+        if proposed < GATE_MIN_SHRINK * gate {
+            gate = proposed;
+            prev_rmse = None;
+            continue;
+        }
+        let (dt, deg) = motion_size(&step);
+        let small_step = dt < c.translation_epsilon_m && deg < c.rotation_epsilon_deg;
+        let flat_rmse = prev_rmse
+            .is_some_and(|p: f64| p > 0.0 && ((p - rmse) / p).abs() < c.rmse_relative_epsilon)
+            || rmse == 0.0;
+        if small_step || flat_rmse {
+            converged = true;
+            break;
+        }
+        prev_rmse = Some(rmse);
+    }
+    let rmse_m = reports.last().map_or(f64::NAN, |r| r.rmse_m);
+    Ok(IcpResult {
+        target_from_source: t,
+        iterations: reports,
+        converged,
+        rmse_m,
+        fitness,
+        total_ms: 0.0,
+    })
+}

@@ -1,0 +1,394 @@
+//! Door openings and the walls above them. Along each wall, in `bin_m` bins:
+//!
+//! - a bin is *blocked* if a face of the wall has points at door level (`door_level_m` above
+//!   the floor), at least three and a third of its door-level points within half a wall of the
+//!   face (fewer are the noise tail of a closed leaf recessed in the opening, or the stretch
+//!   of a leaf open at a small angle that crosses the face plane), and *open* otherwise;
+//! - a run of open bins between blocked ones (blocked slivers up to `max_pier_m` inside it are
+//!   a door leaf crossing the face plane, and ignored; up to 40 cm where the open bins either
+//!   side hold the leaf's points near the face too, a leaf ajar) of `min_width_m..max_width_m`
+//!   is an opening candidate;
+//! - it is an opening if the wall continues above it (a lintel: face points above door level
+//!   in `min_lintel_coverage` of its bins), and, for a wall seen from one side only (which
+//!   could be hidden behind furniture at door level), if the scans saw into it: points inside
+//!   the wall's slab or behind its face, or floor within its footprint, in `min_evidence` of
+//!   its bins. A wall seen from both sides cannot be hidden on both at once, so the lintel
+//!   suffices there.
+//!
+//! The opening's edges are the nearest face points at door level either side; its height is
+//! the median lowest face point above it (the lintel's underside). The paper's labels follow:
+//! "Free space for door" (the opening volume) and "Wall above door" (the lintel).
+
+use crate::error::Result;
+use crate::points::median;
+use crate::scene::Scene;
+use crate::walls::WallFit;
+use cloud::check_range;
+use serde::{Deserialize, Serialize};
+
+/// Configuration of door-opening identification.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct OpeningConfig {
+    /// Bin width along a wall.
+    pub bin_m: f64,
+    /// Height range above the floor where an opening has no wall face.
+    pub door_level_m: [f64; 2],
+    /// Narrowest opening.
+    pub min_width_m: f64,
+    /// Widest opening.
+    pub max_width_m: f64,
+    /// Blocked slivers up to this width inside an opening are ignored.
+    pub max_pier_m: f64,
+    /// Fraction of an opening's bins with a lintel above.
+    pub min_lintel_coverage: f64,
+    /// Fraction of an opening's bins with points seen through it (one-sided walls).
+    pub min_evidence: f64,
+    /// How far behind a one-sided wall's face points count as seen through an opening.
+    pub behind_m: f64,
+}
+
+impl Default for OpeningConfig {
+    fn default() -> Self {
+        OpeningConfig {
+            bin_m: 0.05,
+            door_level_m: [0.3, 1.8],
+            min_width_m: 0.5,
+            max_width_m: 2.5,
+            max_pier_m: 0.15,
+            min_lintel_coverage: 0.5,
+            min_evidence: 0.25,
+            behind_m: 1.0,
+        }
+    }
+}
+
+impl OpeningConfig {
+    pub(crate) fn validate(&self) -> Result<()> {
+        check_range(
+            "openings.bin_m",
+            self.bin_m,
+            0.005,
+            1.0,
+            "within 0.005..1 m",
+        )?;
+        check_range(
+            "openings.door_level_m[0]",
+            self.door_level_m[0],
+            0.0,
+            10.0,
+            "within 0..10 m",
+        )?;
+        check_range(
+            "openings.door_level_m[1]",
+            self.door_level_m[1] - self.door_level_m[0],
+            0.05,
+            10.0,
+            "at least 0.05 m above door_level_m[0]",
+        )?;
+        check_range(
+            "openings.min_width_m",
+            self.min_width_m,
+            0.05,
+            100.0,
+            "within 0.05..100 m",
+        )?;
+        check_range(
+            "openings.max_width_m",
+            self.max_width_m,
+            self.min_width_m,
+            100.0,
+            "at least min_width_m",
+        )?;
+        check_range(
+            "openings.max_pier_m",
+            self.max_pier_m,
+            0.0,
+            10.0,
+            "within 0..10 m",
+        )?;
+        check_range(
+            "openings.min_lintel_coverage",
+            self.min_lintel_coverage,
+            0.0,
+            1.0,
+            "within 0..1",
+        )?;
+        check_range(
+            "openings.min_evidence",
+            self.min_evidence,
+            0.0,
+            1.0,
+            "within 0..1",
+        )?;
+        check_range(
+            "openings.behind_m",
+            self.behind_m,
+            0.0,
+            100.0,
+            "within 0..100 m",
+        )?;
+        Ok(())
+    }
+}
+
+/// The widest blocked sliver of an opening that a leaf ajar crossing the face plane may explain.
+const LEAF_SLIVER_M: f64 = 0.4;
+/// Face points above door level count as lintel up to this far below the wall's top.
+const LINTEL_TOP_MARGIN_M: f64 = 0.02;
+/// Points this near the floor height are floor points (seen through an opening).
+const FLOOR_POINT_TOLERANCE_M: f64 = 0.04;
+/// Points behind a one-sided wall's face count as seen through from this far above the floor
+/// to this far below the wall's top.
+const BEHIND_SLAB_MARGIN_M: f64 = 0.05;
+/// The most bins along one wall (a cap against absurd lengths).
+const MAX_BINS: usize = 10_000_000;
+
+/// A door opening in a wall.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Opening {
+    pub wall: usize,
+    /// Near and far edge, along the wall from its start.
+    pub s0: f64,
+    pub s1: f64,
+    /// Absolute z of the opening's top (the lintel's underside).
+    pub top_z: f64,
+    pub lintel_points: u64,
+    pub confidence: f64,
+    pub rules: Vec<String>,
+}
+
+#[derive(Clone, Default)]
+struct Bin {
+    blocked: bool,
+    face_s: (f64, f64),
+    lintel: bool,
+    lintel_low_z: f64,
+    lintel_points: u64,
+    evidence: bool,
+}
+
+/// Door level `[lo, hi]` (absolute z) of the wall's openings.
+#[derive(Clone, Copy)]
+struct DoorLevel {
+    lo: f64,
+    hi: f64,
+}
+
+impl DoorLevel {
+    fn contains(&self, z: f64) -> bool {
+        z >= self.lo && z <= self.hi
+    }
+}
+
+/// The openings of wall `wi`: its points binned along it, the runs of open bins, and those
+/// runs that are openings.
+pub(crate) fn find_openings(
+    wi: usize,
+    w: &WallFit,
+    sc: &Scene,
+    c: &OpeningConfig,
+    face_tol: f64,
+) -> Vec<Opening> {
+    let level = DoorLevel {
+        lo: sc.floor + c.door_level_m[0],
+        hi: sc.floor + c.door_level_m[1],
+    };
+    let (bins, at_wall) = bin_wall(w, sc, c, face_tol, level);
+    open_runs(&bins, &at_wall, c)
+        .into_iter()
+        .filter_map(|(a, b)| opening_of(wi, w, &bins, a, b, c, level))
+        .collect()
+}
+
+/// Bins the points near wall `w` along it (`bin_m`): face points at door level, the lintel
+/// above, and evidence of the scans seeing through. Also returns, per bin, the door-level
+/// points within half a wall of a face; a bin's `blocked` is set from both.
+fn bin_wall(
+    w: &WallFit,
+    sc: &Scene,
+    c: &OpeningConfig,
+    face_tol: f64,
+    level: DoorLevel,
+) -> (Vec<Bin>, Vec<u16>) {
+    let n = ((w.length / c.bin_m).ceil() as usize).clamp(1, MAX_BINS);
+    let mut bins = vec![
+        Bin {
+            face_s: (f64::INFINITY, f64::NEG_INFINITY),
+            lintel_low_z: f64::INFINITY,
+            ..Bin::default()
+        };
+        n
+    ];
+    let half_t = w.thickness / 2.0;
+    let two_sided = w.measured;
+    let sigma = w.free_side;
+    let top = w.z_range.1;
+    let (reach, block_tol) = reach_and_block_tol(w, c, face_tol);
+    let mut blocking = vec![0u16; n];
+    // Door-level points within half a wall of a face, behind or in front of it: a bin's wall
+    // surface, a closed leaf recessed behind it (whose noise tail reaches the face), or a leaf
+    // open at a small angle, crossing the face plane near its hinge.
+    let mut at_wall = vec![0u16; n];
+
+    let near_wall = face_tol.max(half_t);
+    sc.index
+        .for_each_near_line(sc.points, &w.line, 0.0, w.length, reach, |i, s, d| {
+            let z = sc.points[i].z as f64;
+            let b = ((s / c.bin_m) as usize).min(n - 1);
+            if level.contains(z) && w.faces.iter().any(|f| (d - f).abs() <= near_wall) {
+                at_wall[b] = at_wall[b].saturating_add(1);
+            }
+            let bin = &mut bins[b];
+            let on_face = w.faces.iter().any(|f| (d - f).abs() <= face_tol);
+            if on_face {
+                if level.contains(z) {
+                    if w.faces.iter().any(|f| (d - f).abs() <= block_tol) {
+                        blocking[b] = blocking[b].saturating_add(1);
+                        bin.face_s = (bin.face_s.0.min(s), bin.face_s.1.max(s));
+                    }
+                } else if z > level.hi && z < top - LINTEL_TOP_MARGIN_M {
+                    bin.lintel = true;
+                    bin.lintel_points += 1;
+                }
+                // The lintel's underside: the lowest face point above door level (below it,
+                // face points in an opening are the noise tail of a closed leaf).
+                if z > level.hi {
+                    bin.lintel_low_z = bin.lintel_low_z.min(z);
+                }
+                return;
+            }
+            let floor_pt = (z - sc.floor).abs() <= FLOOR_POINT_TOLERANCE_M;
+            let inside = d.abs() < half_t - face_tol;
+            let seen_through = if two_sided {
+                inside && (floor_pt || level.contains(z))
+            } else {
+                // Behind the face (away from the free side), or on the floor within the footprint.
+                let depth = half_t - sigma * d; // 0 at the face, growing behind it
+                (depth > face_tol
+                    && z > sc.floor - BEHIND_SLAB_MARGIN_M
+                    && z < top - BEHIND_SLAB_MARGIN_M)
+                    || (floor_pt && inside)
+            };
+            if seen_through {
+                bin.evidence = true;
+            }
+        });
+    // A bin is blocked by three face points at door level (one is noise) that are at least a
+    // third of its door-level points at the wall (else they are the noise tail of a closed
+    // leaf recessed behind the face).
+    for ((bin, &k), &m) in bins.iter_mut().zip(&blocking).zip(&at_wall) {
+        bin.blocked = k >= 3 && 3 * k >= m;
+    }
+    (bins, at_wall)
+}
+
+/// How far from wall `w`'s centre line its points are binned (out to half a wall in front of
+/// the faces too: see `at_wall` in `bin_wall`; behind a one-sided wall's face, `behind_m`),
+/// and how near a face a door-level point must be to block a bin.
+fn reach_and_block_tol(w: &WallFit, c: &OpeningConfig, face_tol: f64) -> (f64, f64) {
+    let half_t = w.thickness / 2.0;
+    let two_sided = w.measured;
+    let reach =
+        (half_t + if two_sided { 0.0 } else { c.behind_m } + face_tol).max(2.0 * half_t + face_tol);
+    // A closed leaf is recessed from the faces by half the wall less half the leaf: at door
+    // level, only points nearer the face than half that recess block a bin.
+    let block_tol = if two_sided {
+        face_tol.min(((half_t - 0.02) / 2.0).max(0.01))
+    } else {
+        face_tol
+    };
+    (reach, block_tol)
+}
+
+/// Runs `[a, b)` of open bins; slivers of blocked bins up to `max_pier_m` inside them are
+/// ignored, and up to [`LEAF_SLIVER_M`] where a leaf ajar crosses the face plane: the open bins
+/// either side of such a sliver hold the leaf's points near the face (behind it towards the
+/// hinge, in front of it beyond), as much as a third of the sliver's, where a pier between two
+/// doorways has empty openings beside it.
+fn open_runs(bins: &[Bin], at_wall: &[u16], c: &OpeningConfig) -> Vec<(usize, usize)> {
+    let n = bins.len();
+    let pier = (c.max_pier_m / c.bin_m).round() as usize;
+    let leaf_sliver = (LEAF_SLIVER_M / c.bin_m).round() as usize;
+    let crossing_leaf = |from: usize, to: usize| {
+        let mut inside: Vec<f64> = (from..to).map(|k| at_wall[k] as f64).collect();
+        let level = median(&mut inside).unwrap_or(0.0);
+        let beside = [from.checked_sub(1), Some(to).filter(|&k| k < n)];
+        level > 0.0
+            && beside
+                .iter()
+                .all(|k| k.is_some_and(|k| 3.0 * at_wall[k] as f64 >= level))
+    };
+    let mut runs: Vec<(usize, usize)> = Vec::new(); // [a, b) open-bin runs
+    let mut b = 0;
+    while b < n {
+        if bins[b].blocked {
+            b += 1;
+            continue;
+        }
+        let a = b;
+        while b < n && !bins[b].blocked {
+            b += 1;
+        }
+        match runs.last_mut() {
+            Some(r) if a - r.1 <= pier => r.1 = b,
+            Some(r) if a - r.1 <= leaf_sliver && crossing_leaf(r.1, a) => r.1 = b,
+            _ => runs.push((a, b)),
+        }
+    }
+    runs
+}
+
+/// The opening of the open run `bins[a..b]`, if it is bounded by the wall on both sides, of an
+/// opening's width, with a lintel above and (one-sided walls) seen through.
+fn opening_of(
+    wi: usize,
+    w: &WallFit,
+    bins: &[Bin],
+    a: usize,
+    b: usize,
+    c: &OpeningConfig,
+    level: DoorLevel,
+) -> Option<Opening> {
+    if a == 0 || b >= bins.len() {
+        return None; // not bounded by the wall on both sides
+    }
+    let two_sided = w.measured;
+    let s0 = bins[a - 1].face_s.1;
+    let s1 = bins[b].face_s.0;
+    let width = s1 - s0;
+    if !(width >= c.min_width_m && width <= c.max_width_m) {
+        return None;
+    }
+    let inner = &bins[a..b];
+    let k = inner.len() as f64;
+    let lintel = inner.iter().filter(|x| x.lintel).count() as f64 / k;
+    let evidence = inner.iter().filter(|x| x.evidence).count() as f64 / k;
+    if lintel < c.min_lintel_coverage || (!two_sided && evidence < c.min_evidence) {
+        return None;
+    }
+    let mut lows: Vec<f64> = inner
+        .iter()
+        .filter(|x| x.lintel_low_z.is_finite() && x.lintel_low_z > level.hi)
+        .map(|x| x.lintel_low_z)
+        .collect();
+    let top_z = median(&mut lows)?;
+    let lintel_points = inner.iter().map(|x| x.lintel_points).sum();
+    Some(Opening {
+        wall: wi,
+        s0,
+        s1,
+        top_z,
+        lintel_points,
+        confidence: (lintel * if two_sided { 1.0 } else { evidence.max(0.5) }).clamp(0.0, 1.0),
+        rules: vec![format!(
+            "no wall face from {:.1} to {:.1} m above the floor over {:.2} m, between wall faces; \
+             lintel over {:.0} % of it; seen through in {:.0} %",
+            c.door_level_m[0],
+            c.door_level_m[1],
+            width,
+            lintel * 100.0,
+            evidence * 100.0
+        )],
+    })
+}

@@ -1,0 +1,338 @@
+//! Staircases (paper, Fig. 6: "the set of parallel lines in the same short distance between
+//! each other can be a projection of stairs"; each step is "above & parallel" to the previous).
+//!
+//! A laser mounted below the upper treads sees a staircase as risers (short parallel lines
+//! across it at equal spacing) and side faces with a stepped top edge. Both show in a height
+//! map (`cell_m` pixels): each pixel's highest point between the floor and `max_height_m`, wall
+//! slabs left out. Pixels within two pixels of each other form blobs (sparse scans leave gaps).
+//! For each blob and each candidate direction of ascent (the walls' directions and normals, and
+//! the blob's own axes), the profile along the direction is examined:
+//!
+//! - levels: the highest point per 1 cm along the direction, kept as a running maximum from
+//!   the low end, plateaus at the tops of the steps; the plateaus (histogram peaks) must sit at
+//!   whole multiples of one rise above the floor, `min_steps` of them at least. The top level's
+//!   index is the step count `n`;
+//! - rise: the top level's height over `n` (the floor is at 0, and the top level, the landing,
+//!   is the best sampled surface);
+//! - run and start: the stair model `top(s) = rise * min(n, floor((s - s0) / run) + 1)` fitted
+//!   by grid search to the profile (see `profile`);
+//! - width: the extent across the direction (1 % to 99 % of the points); if that is under
+//!   `min_width_m`, only a side face was seen and `default_width_m` is assumed, away from the
+//!   side with floor in front of the face; landing: the top level's depth beyond one run.
+//!
+//! The direction with the most levels supported (then the best fit) wins.
+
+use crate::error::Result;
+use crate::image_frame::ImageFrame;
+use cloud::check_range;
+mod profile;
+
+use crate::scene::Scene;
+use crate::walls::WallFit;
+use glam::DVec2;
+use profile::{finish, profile};
+use serde::{Deserialize, Serialize};
+
+/// Configuration of staircase identification.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct StairsConfig {
+    /// Pixel edge of the height map.
+    pub cell_m: f64,
+    /// Fewest steps of a staircase.
+    pub min_steps: u32,
+    /// Plausible step heights.
+    pub rise_m: [f64; 2],
+    /// Plausible tread depths.
+    pub run_m: [f64; 2],
+    /// Highest tread above the floor.
+    pub max_height_m: f64,
+    /// Fewest pixels of a level.
+    pub min_level_pixels: usize,
+    /// Narrowest staircase: a narrower one was seen from its side only.
+    pub min_width_m: f64,
+    /// Width given to a staircase seen from its side only.
+    pub default_width_m: f64,
+    /// The direction of ascent snaps to a wall's (or its normal's) within this angle.
+    pub snap_direction_deg: f64,
+}
+
+impl Default for StairsConfig {
+    fn default() -> Self {
+        StairsConfig {
+            cell_m: 0.05,
+            min_steps: 3,
+            rise_m: [0.08, 0.25],
+            run_m: [0.15, 0.5],
+            max_height_m: 2.6,
+            min_level_pixels: 3,
+            min_width_m: 0.4,
+            default_width_m: 1.0,
+            snap_direction_deg: 10.0,
+        }
+    }
+}
+
+impl StairsConfig {
+    pub(crate) fn validate(&self) -> Result<()> {
+        check_range(
+            "stairs.cell_m",
+            self.cell_m,
+            1e-3,
+            10.0,
+            "within 0.001..10 m",
+        )?;
+        check_range(
+            "stairs.min_steps",
+            self.min_steps as f64,
+            2.0,
+            1000.0,
+            "within 2..1000",
+        )?;
+        check_range(
+            "stairs.rise_m[0]",
+            self.rise_m[0],
+            0.01,
+            1.0,
+            "within 0.01..1 m",
+        )?;
+        check_range(
+            "stairs.rise_m[1]",
+            self.rise_m[1],
+            self.rise_m[0],
+            1.0,
+            "within rise_m[0]..1 m",
+        )?;
+        check_range(
+            "stairs.run_m[0]",
+            self.run_m[0],
+            0.01,
+            2.0,
+            "within 0.01..2 m",
+        )?;
+        check_range(
+            "stairs.run_m[1]",
+            self.run_m[1],
+            self.run_m[0],
+            2.0,
+            "within run_m[0]..2 m",
+        )?;
+        check_range(
+            "stairs.max_height_m",
+            self.max_height_m,
+            0.1,
+            100.0,
+            "within 0.1..100 m",
+        )?;
+        check_range(
+            "stairs.min_level_pixels",
+            self.min_level_pixels as f64,
+            1.0,
+            1e6,
+            "at least 1",
+        )?;
+        check_range(
+            "stairs.min_width_m",
+            self.min_width_m,
+            0.0,
+            100.0,
+            "within 0..100 m",
+        )?;
+        check_range(
+            "stairs.default_width_m",
+            self.default_width_m,
+            0.01,
+            100.0,
+            "within 0.01..100 m",
+        )?;
+        check_range(
+            "stairs.snap_direction_deg",
+            self.snap_direction_deg,
+            0.0,
+            45.0,
+            "within 0..45 deg",
+        )?;
+        Ok(())
+    }
+}
+
+/// A staircase found in the cloud.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct DetectedStairs {
+    pub steps: u32,
+    pub rise: f64,
+    pub run: f64,
+    pub width: f64,
+    pub dir: DVec2,
+    /// Centre of the first step's front edge (XY).
+    pub start: DVec2,
+    pub landing: f64,
+    pub support: u64,
+    pub confidence: f64,
+    pub rules: Vec<String>,
+}
+
+impl DetectedStairs {
+    /// Footprint of step `k` (1-based; `k = steps + 1` is the landing): along range from the start.
+    pub fn step_range(&self, k: u32) -> (f64, f64) {
+        let a = (k - 1) as f64 * self.run;
+        if k > self.steps {
+            (
+                self.steps as f64 * self.run,
+                self.steps as f64 * self.run + self.landing,
+            )
+        } else {
+            (a, a + self.run)
+        }
+    }
+}
+
+/// Finds the staircases.
+pub(crate) fn find_stairs(
+    sc: &Scene,
+    image: &ImageFrame,
+    walls: &[WallFit],
+    c: &StairsConfig,
+    max_pixels: u64,
+) -> Vec<DetectedStairs> {
+    // The height map covers the projection image's area at its own resolution.
+    let scale = image.resolution_m / c.cell_m;
+    let own = ImageFrame {
+        origin_m: image.origin_m,
+        resolution_m: c.cell_m,
+        width_px: (image.width_px as f64 * scale).ceil().max(1.0) as u32,
+        height_px: (image.height_px as f64 * scale).ceil().max(1.0) as u32,
+    };
+    let frame = &if (own.len() as u64) <= max_pixels {
+        own
+    } else {
+        *image
+    };
+    let (w, h) = (frame.width_px as usize, frame.height_px as usize);
+    // Wall slabs (and a margin) are left out of the height map.
+    let mut excluded = vec![false; w * h];
+    for wall in walls {
+        let half = wall.thickness / 2.0 + 0.05;
+        let (a, b) = (wall.start(), wall.end());
+        let lo = a.min(b) - DVec2::splat(half);
+        let hi = a.max(b) + DVec2::splat(half);
+        let Some((c0, c1, r0, r1)) = crate::image_frame::pixel_range(frame, lo, hi) else {
+            continue;
+        };
+        for row in r0..=r1 {
+            for col in c0..=c1 {
+                let q = crate::image_frame::pixel_center(frame, col as f64, row as f64);
+                let (s, d) = wall.line.coords(q);
+                if d.abs() <= half && s >= -0.05 && s <= wall.length + 0.05 {
+                    excluded[row * w + col] = true;
+                }
+            }
+        }
+    }
+    let (z_lo, z_hi) = (
+        sc.floor + 0.04,
+        (sc.floor + c.max_height_m).min(sc.ceiling - 0.3),
+    );
+    let mut hmax = vec![f32::NAN; w * h];
+    let mut pixel_of_point = vec![u32::MAX; sc.points.len()];
+    for (i, p) in sc.points.iter().enumerate() {
+        let z = p.z as f64;
+        if z <= z_lo || z >= z_hi {
+            continue;
+        }
+        let Some((col, row)) = frame.pixel_of(p.x as f64, p.y as f64) else {
+            continue;
+        };
+        let k = row as usize * w + col as usize;
+        if excluded[k] {
+            continue;
+        }
+        pixel_of_point[i] = k as u32;
+        if hmax[k].is_nan() || hmax[k] < p.z {
+            hmax[k] = p.z;
+        }
+    }
+    // Blobs: pixels of the height map within two pixels of each other.
+    let mut blob_of = vec![u32::MAX; w * h];
+    let mut blobs: Vec<Vec<usize>> = Vec::new();
+    for start in 0..w * h {
+        if hmax[start].is_nan() || blob_of[start] != u32::MAX {
+            continue;
+        }
+        let id = blobs.len() as u32;
+        blob_of[start] = id;
+        let mut stack = vec![start];
+        let mut pixels = Vec::new();
+        while let Some(k) = stack.pop() {
+            pixels.push(k);
+            let (x, y) = ((k % w) as isize, (k / w) as isize);
+            for dy in -2..=2isize {
+                for dx in -2..=2isize {
+                    let (nx, ny) = (x + dx, y + dy);
+                    if nx < 0 || ny < 0 || nx >= w as isize || ny >= h as isize {
+                        continue;
+                    }
+                    let n = ny as usize * w + nx as usize;
+                    if blob_of[n] == u32::MAX && !hmax[n].is_nan() {
+                        blob_of[n] = id;
+                        stack.push(n);
+                    }
+                }
+            }
+        }
+        blobs.push(pixels);
+    }
+    // The points of each blob.
+    let mut blob_points: Vec<Vec<usize>> = vec![Vec::new(); blobs.len()];
+    for (i, &px) in pixel_of_point.iter().enumerate() {
+        if px != u32::MAX {
+            blob_points[blob_of[px as usize] as usize].push(i);
+        }
+    }
+    let mut directions: Vec<DVec2> = Vec::new();
+    for wall in walls {
+        let d = wall.line.dir;
+        for cand in [d, d.perp(), -d, -d.perp()] {
+            if !directions
+                .iter()
+                .any(|e| e.angle_to(cand).abs().to_degrees() < c.snap_direction_deg)
+            {
+                directions.push(cand);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for (pixels, members) in blobs.iter().zip(&blob_points) {
+        if pixels.len() < (c.min_steps as usize) * c.min_level_pixels || members.len() < 20 {
+            continue;
+        }
+        let xy: Vec<DVec2> = members
+            .iter()
+            .map(|&i| DVec2::new(sc.points[i].x as f64, sc.points[i].y as f64))
+            .collect();
+        let mut cands = directions.clone();
+        if let Some((_, d)) = crate::points::fit_line(&xy) {
+            for cand in [d, d.perp(), -d, -d.perp()] {
+                if !cands
+                    .iter()
+                    .any(|e| e.angle_to(cand).abs().to_degrees() < c.snap_direction_deg)
+                {
+                    cands.push(cand);
+                }
+            }
+        }
+        let pts: Vec<(DVec2, f64)> = members
+            .iter()
+            .zip(&xy)
+            .map(|(&i, q)| (*q, sc.points[i].z as f64 - sc.floor))
+            .collect();
+        let best = cands
+            .iter()
+            .filter_map(|&dir| profile(&pts, dir, c))
+            .max_by(|a, b| a.score.total_cmp(&b.score));
+        if let Some(p) = best {
+            out.push(finish(&pts, p, sc, c));
+        }
+    }
+    out
+}

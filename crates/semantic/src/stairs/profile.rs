@@ -1,0 +1,294 @@
+//! The profile of a staircase candidate along one direction (its levels, rise, run and start)
+//! and the staircase built from the best one (see the `stairs` module).
+
+use super::{DetectedStairs, StairsConfig};
+use crate::points::{linear_fit, quantile};
+use crate::scene::Scene;
+use glam::DVec2;
+
+/// A staircase profile along one direction.
+pub(crate) struct Profile {
+    pub dir: DVec2,
+    pub rise: f64,
+    pub run: f64,
+    /// Along-coordinate of the first front edge.
+    pub front1: f64,
+    pub steps: u32,
+    pub found: u32,
+    pub score: f64,
+}
+
+/// Fits a staircase profile to points `(xy, height above floor)` climbing along `dir` (see the
+/// module docs for levels and rise).
+///
+/// The run and start: the model is violated by a 1 cm bin whose highest point stands more
+/// than 2.5 cm above it (with 1.5 cm of slack along the direction at an edge) and supported by
+/// one at most 3.5 cm under it; a bin sampled far under its top (the laser missed the edge)
+/// neither supports nor violates. Each level's support counts up to 5 bins, so that the long
+/// top level cannot outweigh the steps. Every `(run, s0)` on the grid (2 mm, 5 mm) with the best
+/// `support - 3 violations` explains the data equally well (a front edge can lie anywhere
+/// between the last sample of the level below and the first of its own): their centroid is the
+/// fit, unbiased by the sampling either side of an edge.
+pub(crate) fn profile(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<Profile> {
+    let bin = 0.01;
+    let mut s: Vec<f64> = pts.iter().map(|(q, _)| q.dot(dir)).collect();
+    let s_lo = quantile(&mut s.clone(), 0.005)? - 0.05;
+    let s_hi = quantile(&mut s, 0.995)? + 0.05;
+    let nb = (((s_hi - s_lo) / bin).ceil() as usize).clamp(1, 100_000);
+    let mut highest_in = vec![f64::NEG_INFINITY; nb];
+    for (q, z) in pts {
+        let v = (q.dot(dir) - s_lo) / bin;
+        if v >= 0.0 && (v as usize) < nb {
+            highest_in[v as usize] = highest_in[v as usize].max(*z);
+        }
+    }
+    // (along, highest point)
+    let env: Vec<(f64, f64)> = highest_in
+        .iter()
+        .enumerate()
+        .filter(|(_, z)| z.is_finite())
+        .map(|(i, z)| (s_lo + (i as f64 + 0.5) * bin, *z))
+        .collect();
+    if env.len() < 10 {
+        return None;
+    }
+    let mut running = f64::NEG_INFINITY;
+    let maxima: Vec<f64> = env
+        .iter()
+        .map(|e| {
+            running = running.max(e.1);
+            running
+        })
+        .collect();
+    let (rise0, offset) = level_grid(&maxima, c)?;
+    let mut highest: Vec<f64> = env.iter().map(|e| e.1).collect();
+    highest.sort_by(|x, y| y.total_cmp(x));
+    let top_height = *highest.get(1)?;
+    let n = ((top_height - offset) / rise0).round();
+    if n < c.min_steps as f64 {
+        return None;
+    }
+    let rise = top_height / n;
+    if rise < c.rise_m[0] || rise > c.rise_m[1] {
+        return None;
+    }
+    let n = n as u32;
+    let nf = n as f64;
+    let level = |s: f64, run: f64, s0: f64| {
+        if s < s0 {
+            0.0
+        } else {
+            (((s - s0) / run).floor() + 1.0).min(nf)
+        }
+    };
+    let score = |run: f64, s0: f64| -> f64 {
+        let mut v = 0.0;
+        let mut support = [0u8; 64];
+        for &(s, z) in &env {
+            let k = level(s, run, s0);
+            if z > rise * level(s + 0.015, run, s0) + 0.025 {
+                v -= 3.0;
+            } else if k > 0.0 && z >= rise * k - 0.035 {
+                let slot = &mut support[(k as usize).min(63)];
+                *slot = slot.saturating_add(1);
+            }
+        }
+        v + support.iter().map(|&n| f64::from(n.min(5))).sum::<f64>()
+    };
+    // The first step starts at most a run before the first point (its front may be unseen)
+    // and before the first point half a rise up.
+    let first = env.iter().find(|e| e.1 >= 0.5 * rise)?.0;
+    let s_start = env.first()?.0 - c.run_m[1];
+    let mut best = f64::NEG_INFINITY;
+    let mut optimal: Vec<(f64, f64)> = Vec::new();
+    let mut run = c.run_m[0];
+    while run <= c.run_m[1] + 1e-9 {
+        let mut s0 = s_start;
+        while s0 <= first + 0.05 {
+            let v = score(run, s0);
+            if v > best + 1e-9 {
+                best = v;
+                optimal.clear();
+            }
+            if (v - best).abs() <= 1e-9 {
+                optimal.push((run, s0));
+            }
+            s0 += 0.005;
+        }
+        run += 0.002;
+    }
+    let m = optimal.len().max(1) as f64;
+    let run = optimal.iter().map(|o| o.0).sum::<f64>() / m;
+    let s0 = optimal.iter().map(|o| o.1).sum::<f64>() / m;
+    let found = {
+        let mut ks: Vec<u32> = env
+            .iter()
+            .filter(|e| {
+                let top = rise * level(e.0, run, s0);
+                top > 0.0 && e.1 >= top - 0.035 && e.1 <= top + 0.025
+            })
+            .map(|e| level(e.0, run, s0) as u32)
+            .collect();
+        ks.sort_unstable();
+        ks.dedup();
+        ks.len() as u32
+    };
+    if (found as f64) < 0.6 * nf || best <= 0.0 || optimal.is_empty() {
+        return None;
+    }
+    Some(Profile {
+        dir,
+        rise,
+        run,
+        front1: s0,
+        steps: n,
+        found,
+        score: found as f64 + best / (5.0 * nf + 1.0),
+    })
+}
+
+/// The rise and offset of a set of heights that pile up at whole multiples of one rise: the
+/// peaks of their histogram (1 cm bins, 3 cm window) fitted to the grid `offset + k rise`.
+fn level_grid(heights: &[f64], c: &StairsConfig) -> Option<(f64, f64)> {
+    let bin = 0.01;
+    let n = ((c.max_height_m / bin).ceil() as usize + 2).min(100_000);
+    let mut hist = vec![0usize; n];
+    for &hgt in heights {
+        if hgt >= 0.0 {
+            hist[((hgt / bin) as usize).min(n - 1)] += 1;
+        }
+    }
+    let smooth: Vec<usize> = (0..n)
+        .map(|i| hist[i.saturating_sub(1)..(i + 2).min(n)].iter().sum())
+        .collect();
+    let peaks: Vec<f64> = (0..n)
+        .filter(|&i| {
+            smooth[i] >= 3
+                && (i == 0 || smooth[i] > smooth[i - 1])
+                && (i + 1 == n || smooth[i] >= smooth[i + 1])
+        })
+        .map(|i| (i as f64 + 0.5) * bin)
+        .collect();
+    if peaks.len() < c.min_steps as usize {
+        return None;
+    }
+    let mut candidates: Vec<f64> = peaks.windows(2).map(|p| p[1] - p[0]).collect();
+    candidates.push(peaks[0] + 0.01);
+    candidates.retain(|r| *r >= c.rise_m[0] && *r <= c.rise_m[1]);
+    let mut best: Option<(f64, f64, f64)> = None; // score, rise, offset
+    for r0 in candidates {
+        let (mut rise, mut offset) = (r0, 0.0);
+        let mut ks: Vec<f64> = Vec::new();
+        for _ in 0..3 {
+            let fit: Vec<(f64, f64)> = peaks
+                .iter()
+                .filter_map(|&p| {
+                    let k = ((p - offset) / rise).round();
+                    (k >= 1.0 && (p - offset - k * rise).abs() <= 0.25 * rise).then_some((k, p))
+                })
+                .collect();
+            ks = fit.iter().map(|f| f.0).collect();
+            ks.dedup();
+            if let Some((a, b)) = linear_fit(&fit) {
+                if b >= c.rise_m[0] && b <= c.rise_m[1] && a.abs() <= 0.3 * b {
+                    rise = b;
+                    offset = a;
+                }
+            }
+        }
+        let top = ks.last().copied().unwrap_or(0.0);
+        let score = ks.len() as f64 - 0.5 * (top - ks.len() as f64);
+        let enough = ks.len() >= c.min_steps as usize && ks.first().is_some_and(|&k| k <= 2.0);
+        if enough && best.is_none_or(|b| score > b.0) {
+            best = Some((score, rise, offset));
+        }
+    }
+    best.map(|b| (b.1, b.2))
+}
+
+/// The staircase of the best profile: its width, landing and start from the blob's points.
+pub(crate) fn finish(
+    pts: &[(DVec2, f64)],
+    p: Profile,
+    sc: &Scene,
+    c: &StairsConfig,
+) -> DetectedStairs {
+    let dir = p.dir;
+    let mut ts: Vec<f64> = pts.iter().map(|(q, _)| dir.perp_dot(*q)).collect();
+    let mut t0 = quantile(&mut ts, 0.01).unwrap_or(0.0);
+    let mut t1 = quantile(&mut ts, 0.99).unwrap_or(0.0);
+    let mut width_rule = format!("{:.2} m wide across its points", t1 - t0);
+    if t1 - t0 < c.min_width_m {
+        // Only a side face was seen (the treads above the laser are hidden): the staircase
+        // extends `default_width_m` away from the side with floor in front of the face.
+        let length = p.run * p.steps as f64;
+        let line = crate::points::Line2 {
+            origin: dir * (p.front1 + length / 2.0) + dir.perp() * ((t0 + t1) / 2.0),
+            dir,
+        };
+        let (mut left, mut right) = (0usize, 0usize);
+        sc.index.for_each_near_line(
+            sc.points,
+            &line,
+            -length / 2.0,
+            length / 2.0,
+            0.4,
+            |i, _, d| {
+                if (sc.points[i].z as f64 - sc.floor).abs() <= 0.03 && d.abs() >= 0.05 {
+                    if d > 0.0 {
+                        left += 1;
+                    } else {
+                        right += 1;
+                    }
+                }
+            },
+        );
+        if left > right {
+            t0 = t1 - c.default_width_m;
+        } else {
+            t1 = t0 + c.default_width_m;
+        }
+        width_rule = format!(
+            "only a side face seen: width assumed {:.2} m, away from the floor seen in front of it",
+            c.default_width_m
+        );
+    }
+    let width = t1 - t0;
+    let top_h = (p.steps as f64 - 0.5) * p.rise;
+    let mut far: Vec<f64> = pts
+        .iter()
+        .filter(|(_, z)| *z >= top_h)
+        .map(|(q, _)| q.dot(dir))
+        .collect();
+    let far = quantile(&mut far, 0.99).unwrap_or(p.front1);
+    let top_depth = far - (p.front1 + p.run * (p.steps as f64 - 1.0));
+    let landing = if top_depth - p.run > 0.1 {
+        top_depth - p.run
+    } else {
+        0.0
+    };
+    let start = dir * p.front1 + dir.perp() * ((t0 + t1) / 2.0);
+    let rules = vec![
+        format!(
+            "{} of {} levels at multiples of a {:.3} m rise, climbing along {:.1} deg, their edges {:.3} m apart (the paper's parallel lines at equal spacing, each step above the previous)",
+            p.found,
+            p.steps,
+            p.rise,
+            dir.y.atan2(dir.x).to_degrees(),
+            p.run
+        ),
+        format!("step count {} from the top level; {width_rule}", p.steps),
+    ];
+    DetectedStairs {
+        steps: p.steps,
+        rise: p.rise,
+        run: p.run,
+        width,
+        dir,
+        start,
+        landing,
+        support: pts.len() as u64,
+        confidence: (p.found as f64 / p.steps as f64).min(1.0),
+        rules,
+    }
+}

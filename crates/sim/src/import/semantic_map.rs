@@ -1,0 +1,151 @@
+//! Building a [`WorldSpec`] from a semantic map (`semantic::SemanticMap`, the map built from
+//! scans): walls from their solid boxes, lintels, floor and ceiling as fixed boxes; each door
+//! leaf hinged to the wall it is `connected_via_joint` to; free spaces linked to their door and
+//! wall through `available_inside`; stairs from their step and landing boxes.
+//!
+//! Semantic entities have ids but no names: each gets `<class>_<id>` (e.g. `door_13`,
+//! `free_space_for_door_14`, `stairs_21`), usable in scenarios like the ids themselves.
+
+use super::ImportConfig;
+use crate::error::Result;
+use crate::spec::{
+    BoxSpec, DoorSpec, FixedBox, FreeSpaceSpec, HingeEnd, OpeningSense, StairsSpec, StepSpec,
+    WorldSpec,
+};
+use cloud::EntityClass;
+use semantic::{HingeEdge, OrientedBox, RelationType, SemanticMap, SwingSide};
+
+/// The name a semantic entity gets in the simulation.
+pub(crate) fn semantic_name(class: EntityClass, id: u32) -> String {
+    format!("{}_{id}", class.name())
+}
+
+fn box_of(b: &OrientedBox) -> BoxSpec {
+    BoxSpec {
+        center_m: b.center_m,
+        half_extents_m: b.size_m.map(|s| s / 2.0),
+        yaw_deg: b.yaw_deg,
+    }
+}
+
+impl WorldSpec {
+    /// The world of a semantic map, with default door properties.
+    pub fn from_semantic_map(map: &SemanticMap) -> Result<WorldSpec> {
+        WorldSpec::from_semantic_map_with(map, &ImportConfig::default())
+    }
+
+    /// The world of a semantic map. A door not `connected_via_joint` to a wall is an error
+    /// ([`crate::SimError::DoorWithoutWall`]), as are degenerate boxes.
+    pub fn from_semantic_map_with(map: &SemanticMap, cfg: &ImportConfig) -> Result<WorldSpec> {
+        cfg.validate()?;
+        let related = |kind: RelationType, a: u32, class: EntityClass| {
+            map.relations_of(kind)
+                .filter(|r| r.a == a)
+                .find(|r| map.entity(r.b).is_some_and(|e| e.class == class))
+                .map(|r| r.b)
+        };
+        let mut spec = WorldSpec {
+            name: "semantic map".into(),
+            ..Default::default()
+        };
+        for e in &map.entities {
+            let fixed = |class: EntityClass, b: &OrientedBox| FixedBox {
+                entity: e.id,
+                class,
+                name: semantic_name(class, e.id),
+                label: String::new(),
+                geometry: box_of(b),
+            };
+            match e.class {
+                EntityClass::Floor | EntityClass::Ceiling | EntityClass::WallAboveDoor => {
+                    spec.fixed.push(fixed(e.class, &e.geometry))
+                }
+                EntityClass::Wall => match &e.wall {
+                    Some(w) if !w.solid_boxes.is_empty() => {
+                        for b in &w.solid_boxes {
+                            spec.fixed.push(fixed(EntityClass::Wall, b));
+                        }
+                    }
+                    _ => spec.fixed.push(fixed(EntityClass::Wall, &e.geometry)),
+                },
+                EntityClass::Door => {
+                    let Some(d) = &e.door else { continue };
+                    let mut leaf = box_of(&e.geometry);
+                    leaf.half_extents_m[1] = leaf.half_extents_m[1].max(0.01);
+                    let yaw = leaf.yaw_deg.to_radians();
+                    let along = (d.hinge_m[0] - leaf.center_m[0]) * yaw.cos()
+                        + (d.hinge_m[1] - leaf.center_m[1]) * yaw.sin();
+                    let hinge_end = if along < 0.0 {
+                        HingeEnd::Start
+                    } else {
+                        HingeEnd::End
+                    };
+                    let opens = match (d.hinge_edge, d.swing) {
+                        (HingeEdge::Start, SwingSide::Left)
+                        | (HingeEdge::End, SwingSide::Right) => OpeningSense::Ccw,
+                        _ => OpeningSense::Cw,
+                    };
+                    let max_deg = cfg.door_max_deg.max(d.observed_open_deg);
+                    spec.doors.push(DoorSpec {
+                        entity: e.id,
+                        name: semantic_name(EntityClass::Door, e.id),
+                        label: String::new(),
+                        wall: related(RelationType::ConnectedViaJoint, e.id, EntityClass::Wall)
+                            .unwrap_or(0),
+                        leaf,
+                        hinge_m: [d.hinge_m[0], d.hinge_m[1]],
+                        hinge_end,
+                        opens,
+                        min_deg: 0.0,
+                        max_deg,
+                        initial_deg: d.observed_open_deg.clamp(0.0, max_deg),
+                        mass_kg: cfg.door_mass_kg,
+                        damping_per_s: cfg.door_damping_per_s,
+                        hinge_friction_nm: cfg.door_hinge_friction_nm,
+                        break_force_n: (cfg.door_break_force_n > 0.0)
+                            .then_some(cfg.door_break_force_n),
+                    });
+                }
+                EntityClass::FreeSpaceForDoor => {
+                    let door = map
+                        .relations_of(RelationType::AvailableInside)
+                        .filter(|r| r.b == e.id)
+                        .find(|r| {
+                            map.entity(r.a)
+                                .is_some_and(|x| x.class == EntityClass::Door)
+                        })
+                        .map(|r| r.a);
+                    spec.free_spaces.push(FreeSpaceSpec {
+                        entity: e.id,
+                        name: semantic_name(EntityClass::FreeSpaceForDoor, e.id),
+                        door,
+                        wall: related(RelationType::AvailableInside, e.id, EntityClass::Wall),
+                        geometry: box_of(&e.geometry),
+                    });
+                }
+                EntityClass::Stairs => {
+                    let Some(s) = &e.stairs else { continue };
+                    spec.stairs.push(StairsSpec {
+                        entity: e.id,
+                        name: semantic_name(EntityClass::Stairs, e.id),
+                        label: String::new(),
+                        steps: s
+                            .steps
+                            .iter()
+                            .enumerate()
+                            .map(|(i, b)| StepSpec {
+                                index: i as u32,
+                                geometry: box_of(b),
+                            })
+                            .collect(),
+                        landing: s.landing.as_ref().map(box_of),
+                    });
+                }
+                // A semantic map holds none of these (see `semantic::MAP_CLASSES`).
+                EntityClass::Unknown | EntityClass::Furniture | EntityClass::Robot => {}
+            }
+        }
+        spec.validate()?;
+        Ok(spec)
+    }
+}

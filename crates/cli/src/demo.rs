@@ -17,6 +17,7 @@ pub struct DemoArgs {
 
 /// Runs the demo.
 pub fn run(a: DemoArgs, cfg: &Config) -> anyhow::Result<()> {
+    pipeline::check_output_dir(&a.out)?;
     let t0 = Instant::now();
     println!("semsim demo -> {}", a.out.display());
     let bar = crate::progress::scan_bar(0, "scanning");

@@ -93,8 +93,22 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", printable(&format!("{e:#}")));
             ExitCode::from(exit::code_for(&e))
         }
     }
+}
+
+/// `text` with control characters (NUL bytes from a file, escape sequences) and byte-order marks
+/// shown as `\u{..}` escapes, so a message quoting a file never drives the terminal.
+fn printable(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if (c.is_control() && c != '\n' && c != '\t') || c == '\u{feff}' {
+                c.escape_unicode().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }

@@ -72,6 +72,7 @@ pub fn run(a: MapArgs, cfg: &Config) -> anyhow::Result<()> {
             )));
         }
     }
+    pipeline::check_output_dir(&a.out)?;
     let t0 = Instant::now();
     let mut cloud = merge_scan_files(&a.clouds, a.poses.as_deref(), a.max_range_m)?;
     if let Some(v) = a.voxel_m {

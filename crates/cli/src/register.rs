@@ -88,7 +88,13 @@ pub fn run(a: RegisterArgs, cfg: &Config, cfg_is_default: bool) -> anyhow::Resul
                 result.fitness
             );
         }
-        Err(e) => return Err(e.into()),
+        Err(e) => {
+            return Err(anyhow::Error::new(e).context(format!(
+                "registering {} (source) onto {} (target)",
+                source_path.display(),
+                target_path.display()
+            )))
+        }
     };
     if let Some(p) = &a.plot {
         pipeline::plot_rmse(p, &[("pair".into(), &result)])?;
@@ -149,6 +155,7 @@ fn run_sequence(a: &RegisterArgs, cfg: &Config) -> anyhow::Result<()> {
         .out
         .clone()
         .ok_or_else(|| bad_input("--sequence needs --out DIR"))?;
+    pipeline::check_output_dir(&out)?;
     let input = pipeline::read_sequence(&a.inputs, a.odometry.as_deref(), a.truth.as_deref())?;
     let outputs = ["poses.txt", "map.pcd", "registration.json", "config.toml"].map(|f| out.join(f));
     pipeline::refuse_overwriting_inputs(&outputs, &input.read)?;

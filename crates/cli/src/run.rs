@@ -30,7 +30,8 @@ pub struct RunArgs {
 /// Runs `semsim run`; exit 0 on a passed verdict, 1 on a failed one.
 pub fn run(a: RunArgs, cfg: &Config) -> anyhow::Result<()> {
     let t0 = Instant::now();
-    // The scenario first: a bad scenario should fail before minutes of work.
+    // The scenario and the output folder first: they should fail before minutes of work.
+    pipeline::check_output_dir(&a.out)?;
     let scenario = ScenarioSource::load(a.scenario.as_deref())?;
     let input = read_sequence(&a.inputs, a.odometry.as_deref(), None)?;
     let scans = read_scans(&input.files, a.max_range_m)?;

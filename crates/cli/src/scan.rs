@@ -46,6 +46,7 @@ fn parse_pose(s: &str) -> Result<ScanPose, String> {
 
 /// Runs `semsim scan`.
 pub fn run(a: ScanArgs, cfg: &Config) -> anyhow::Result<()> {
+    pipeline::check_output_dir(&a.out)?;
     let building = Building::load(&a.building)?;
     let mut cfg = cfg.clone();
     if let Some(n) = a.noise {

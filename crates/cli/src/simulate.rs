@@ -27,6 +27,7 @@ pub struct SimulateArgs {
 
 /// Runs `semsim simulate`; exit 0 on a passed verdict, 1 on a failed one.
 pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
+    pipeline::check_output_dir(&a.out)?;
     let source = ScenarioSource::load(a.scenario.as_deref())?;
     let world = match &a.map {
         Some(m) => WorldSpec::from_semantic_map(&semantic::SemanticMap::load(m)?)?,

@@ -414,7 +414,14 @@ fn register_rejects_bad_input_and_reports_non_convergence() {
     .bad_input(&["g15.txt", "16 numbers", "found 15"]);
     d.write("empty.xyz", "# nothing\n");
     d.run(&["register", "empty.xyz", "demo/scan000.pcd"])
-        .bad_input(&["source"]);
+        .bad_input(&["empty.xyz", "no points"]);
+    d.write(
+        "missing.pcd",
+        "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 2\n\
+         VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 4\nDATA ascii\nnan nan nan\nnan nan nan\nnan nan nan\nnan nan nan\n",
+    );
+    d.run(&["register", "missing.pcd", "demo/scan000.pcd"])
+        .bad_input(&["missing.pcd (source)", "no valid point"]);
     d.write("nan.xyz", "1 2 3\nnan 1 1\n");
     d.run(&["register", "nan.xyz", "demo/scan000.pcd"])
         .bad_input(&["nan.xyz"]);

@@ -1,7 +1,7 @@
 //! PCD I/O benchmark: binary and binary_compressed read/write of 162,841 labelled points
 //! (one 541 x 301 scan). Run: `cargo bench -p cloud --bench pcd`.
 
-use cloud::{io::pcd, Label, Organized, PcdEncoding, PointCloud, EntityClass};
+use cloud::{io::pcd, EntityClass, Label, Organized, PcdEncoding, PointCloud};
 use criterion::{criterion_group, criterion_main, Criterion};
 use glam::Vec3;
 

@@ -19,7 +19,9 @@ use serde::{Deserialize, Serialize};
 /// | 7 | `furniture` | furniture and clutter |
 /// | 8 | `free_space_for_door` | the free volume of a door opening |
 /// | 9 | `robot` | a robot (simulation only) |
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, PartialOrd, Ord, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Default, PartialOrd, Ord, Serialize, Deserialize,
+)]
 #[serde(rename_all = "snake_case")]
 #[repr(u8)]
 pub enum EntityClass {

@@ -1,9 +1,9 @@
 //! The point cloud type: positions in metres (right-handed, z up) with optional
 //! intensity, ground-truth labels and organised (rows x cols) shape.
 
+use crate::class::EntityClass;
 use crate::error::{CloudError, Result};
 use glam::{Affine3A, DAffine3, Quat, Vec3};
-use crate::class::EntityClass;
 use serde::{Deserialize, Serialize};
 
 /// A per-point label: which entity of the building the point lies on, and its class.
@@ -101,7 +101,7 @@ impl PointCloud {
             }
         }
         if let Some(o) = self.organized {
-            if o.rows * o.cols != n {
+            if o.rows.checked_mul(o.cols) != Some(n) {
                 return Err(CloudError::Inconsistent(format!(
                     "organised shape {} x {} does not hold {n} points",
                     o.rows, o.cols

@@ -63,8 +63,14 @@ mod tests {
         assert!(check_range("a", 2.0, 1.0, 2.0, "").is_ok());
         assert!(check_range("a", 2.000_001, 1.0, 2.0, "").is_err());
         assert!(check_range("a", f64::INFINITY, 1.0, f64::INFINITY, "").is_err());
-        let e = check_range(format!("walls[{}].thickness_m", 3), -1.0, 0.0, 1.0, "positive")
-            .unwrap_err();
+        let e = check_range(
+            format!("walls[{}].thickness_m", 3),
+            -1.0,
+            0.0,
+            1.0,
+            "positive",
+        )
+        .unwrap_err();
         assert_eq!(e.name, "walls[3].thickness_m");
         assert!(e.is_bad_input());
     }

@@ -3,6 +3,7 @@
 
 use crate::atomic::write_atomically;
 use crate::error::{CloudError, Result};
+use crate::io::text::{read_file, shown, text};
 use glam::{DAffine3, DMat4, DQuat};
 use std::io::Write;
 use std::path::Path;
@@ -16,9 +17,14 @@ pub struct NamedPose {
     pub world_from_scan: DAffine3,
 }
 
-/// Reads a pose file.
+/// Reads a pose file (a UTF-8 byte-order mark is allowed).
 pub fn read_poses(path: &Path) -> Result<Vec<NamedPose>> {
-    let text = std::fs::read_to_string(path).map_err(|e| CloudError::io(path, e))?;
+    parse_poses(path, &read_file(path)?)
+}
+
+/// Reads the bytes of a pose file; `path` is for messages.
+pub(crate) fn parse_poses(path: &Path, bytes: &[u8]) -> Result<Vec<NamedPose>> {
+    let text = text(path, bytes)?;
     let mut out = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let line = line.trim();
@@ -33,7 +39,8 @@ pub fn read_poses(path: &Path) -> Result<Vec<NamedPose>> {
                     .ok()
                     .filter(|v| v.is_finite())
                     .ok_or_else(|| {
-                        CloudError::parse(path, i + 1, format!("'{f}' is not a finite number"))
+                        let msg = format!("'{}' is not a finite number", shown(f));
+                        CloudError::parse(path, i + 1, msg)
                     })
             })
             .collect::<Result<_>>()?;

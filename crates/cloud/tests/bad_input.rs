@@ -168,7 +168,7 @@ fn bad_values_in_pcd_data_name_the_point() {
         "FIELDS x y z label class\nSIZE 4 4 4 4 1\nTYPE F F F U U\nWIDTH 2\nHEIGHT 1\nDATA ascii\n";
     let (dir, path) = file(
         "class.pcd",
-        format!("{head}0 0 0 1 1\n0 0 0 2 9\n").as_bytes(),
+        format!("{head}0 0 0 1 1\n0 0 0 2 10\n").as_bytes(),
     );
     let e = read_err(&dir, &path);
     assert!(
@@ -184,15 +184,16 @@ fn bad_values_in_pcd_data_name_the_point() {
         e.to_string().contains("'zero'") && matches!(e, CloudError::Parse { line: 8, .. }),
         "{e}"
     );
+    // An 8-byte label is converted (with a note), not refused; one beyond u32 is no entity.
     let wide = head.replace("SIZE 4 4 4 4 1", "SIZE 4 4 4 8 1");
-    let (dir, path) = file(
+    let (_dir, path) = file(
         "wide.pcd",
-        format!("{wide}0 0 0 1 1\n0 0 0 2 1\n").as_bytes(),
+        format!("{wide}0 0 0 1 1\n0 0 0 4294967296 1\n").as_bytes(),
     );
-    assert!(matches!(
-        read_err(&dir, &path),
-        CloudError::Parse { line: 3, .. }
-    ));
+    let (c, notes) = cloud::read_cloud_with_notes(&path).expect("converted");
+    let entities: Vec<u32> = c.labels.expect("labels").iter().map(|l| l.entity).collect();
+    assert_eq!(entities, [1, 0]);
+    assert_eq!(notes.len(), 2, "{notes:?}");
     // The same unknown class in binary data.
     let mut c = cloud(4);
     c.labels = Some(vec![Label::default(); 4]);

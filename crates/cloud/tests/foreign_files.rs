@@ -2,7 +2,7 @@
 //! PLY with extra elements and list properties, 3DTK shape lines, poses and frames.
 
 use cloud::io::threedtk::{read_3d, read_frames_3dtk, read_pose_3dtk};
-use cloud::{read_cloud, Label, Organized, EntityClass};
+use cloud::{read_cloud, EntityClass, Label, Organized};
 use glam::{DVec3, Quat, Vec3};
 use std::path::PathBuf;
 
@@ -133,7 +133,7 @@ fn ply_big_endian_with_extra_elements_and_lists() {
         [Vec3::new(0.0, 0.5, 0.0), Vec3::new(1.0, 1.5, -1.0)]
     );
     assert_eq!(c.intensity, Some(vec![200.0, 201.0]));
-    let ascii = "ply\nformat ascii 1.0\nelement camera 1\nproperty float view\nelement vertex 2\nproperty float x\nproperty list uchar int near\nproperty float y\nproperty float z\nproperty float scalar_intensity\nproperty int label\nproperty uchar class\nend_header\n9\n0 2 5 6 0.5 0 200 4 1\n1 0 1.5 -1 201 0 6\n3 0 1 2\n";
+    let ascii = "ply\nformat ascii 1.0\nelement camera 1\nproperty float view\nelement vertex 2\nproperty float x\nproperty list uchar int near\nproperty float y\nproperty float z\nproperty float scalar_intensity\nproperty int label\nproperty uchar class\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n9\n0 2 5 6 0.5 0 200 4 1\n1 0 1.5 -1 201 0 6\n3 0 1 2\n";
     let (_dir, path) = file("lists_ascii.ply", ascii.as_bytes());
     let d = read_cloud(&path).expect("valid");
     assert_eq!((&d.points, &d.intensity), (&c.points, &c.intensity));

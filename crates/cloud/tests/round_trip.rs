@@ -2,8 +2,8 @@
 
 use cloud::io::{pcd, ply, threedtk, xyz};
 use cloud::{
-    read_cloud, write_cloud, CloudFormat, Label, Organized, PcdEncoding, PlyEncoding, PointCloud,
-    EntityClass,
+    read_cloud, write_cloud, CloudFormat, EntityClass, Label, Organized, PcdEncoding, PlyEncoding,
+    PointCloud,
 };
 use glam::{Quat, Vec3};
 use std::path::Path;

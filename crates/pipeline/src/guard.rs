@@ -29,6 +29,29 @@ pub fn refuse_overwriting_inputs(outputs: &[PathBuf], inputs: &[PathBuf]) -> Res
     Ok(())
 }
 
+/// `Err` (bad input, naming the path) if `dir` cannot become an output folder: it is a file,
+/// or one of its ancestors is. Checked before any work, so a run does not compute for minutes
+/// and then fail to write.
+pub fn check_output_dir(dir: &Path) -> Result<()> {
+    let mut at = Some(dir);
+    while let Some(p) = at {
+        if p.exists() && !p.is_dir() {
+            let msg = if p == dir {
+                "the output folder is a file".to_string()
+            } else {
+                format!("{} is a file, not a folder", p.display())
+            };
+            return Err(cloud::CloudError::io(
+                dir,
+                std::io::Error::new(std::io::ErrorKind::NotADirectory, msg),
+            )
+            .into());
+        }
+        at = p.parent().filter(|q| !q.as_os_str().is_empty());
+    }
+    Ok(())
+}
+
 /// An output path resolved through its folder (which must exist to clash with anything).
 fn resolve_output(out: &Path) -> Option<PathBuf> {
     if let Ok(c) = std::fs::canonicalize(out) {
@@ -57,6 +80,9 @@ mod tests {
         assert!(e.to_string().contains("would replace the input"), "{e}");
         assert!(cloud::BadInput::is_bad_input(&e));
         let other = dir.path().join("registered.txt");
-        assert!(refuse_overwriting_inputs(&[other], &[truth]).is_ok());
+        assert!(refuse_overwriting_inputs(&[other], std::slice::from_ref(&truth)).is_ok());
+        assert!(check_output_dir(&truth).is_err());
+        assert!(check_output_dir(&truth.join("below")).is_err());
+        assert!(check_output_dir(&dir.path().join("new/folder")).is_ok());
     }
 }

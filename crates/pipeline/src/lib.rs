@@ -57,7 +57,7 @@ pub use chain::{scans_to_verdict, write_chain, ChainDirs, ChainOutcome, Observer
 pub use config::Config;
 pub use demo::{prepare_demo, score_demo, DemoScans, DemoScore};
 pub use error::{PipelineError, Result};
-pub use guard::refuse_overwriting_inputs;
+pub use guard::{check_output_dir, refuse_overwriting_inputs};
 pub use guess::parse_guess;
 pub use map::{build_map, map_summary, write_map, MAP_PICTURES};
 pub use plot::{line_chart, plot_rmse, Series};

@@ -43,6 +43,15 @@ pub fn line_chart(
             path.display()
         )));
     }
+    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
+        if !parent.is_dir() {
+            return Err(cloud::CloudError::io(
+                path,
+                std::io::Error::new(std::io::ErrorKind::NotFound, "its folder does not exist"),
+            )
+            .into());
+        }
+    }
     register_font();
     let tmp = path.with_file_name(format!(
         ".{}.{}.tmp.{ext}",

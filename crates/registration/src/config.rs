@@ -302,20 +302,20 @@ impl IcpConfig {
         )?;
         if self.device == Device::Gpu {
             if !cfg!(feature = "gpu") {
-                return Err(RegistrationError::invalid(
-                    "device",
-                    f64::NAN,
-                    "device = gpu: this build has no GPU support (the registration crate's \
-                     `gpu` feature is off); use device = cpu or auto",
-                ));
+                return Err(RegistrationError::UnsupportedChoice {
+                    name: "device",
+                    choice: "gpu".into(),
+                    msg: "this build has no GPU support (the registration crate's `gpu` feature \
+                          is off); use device = cpu or auto",
+                });
             }
             if self.method == Method::Gicp {
-                return Err(RegistrationError::invalid(
-                    "device",
-                    f64::NAN,
-                    "device = gpu runs point-to-point and point-to-plane only; GICP runs on the \
-                     CPU (use device = cpu or auto, or method p2p / p2plane)",
-                ));
+                return Err(RegistrationError::UnsupportedChoice {
+                    name: "device",
+                    choice: "gpu".into(),
+                    msg: "the GPU runs point-to-point and point-to-plane only; GICP runs on the \
+                          CPU (use device = cpu or auto, or method p2p / p2plane)",
+                });
             }
             if self.reject_worst_fraction > 0.0 {
                 return Err(RegistrationError::invalid(

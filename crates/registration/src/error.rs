@@ -48,6 +48,17 @@ pub enum RegistrationError {
     /// the configuration file).
     #[error(transparent)]
     InvalidParameter(#[from] cloud::InvalidParameter),
+    /// A choice (not a number) that this configuration or build cannot run, e.g. `device = gpu`
+    /// with GICP.
+    #[error("{name} = {choice}: {msg}")]
+    UnsupportedChoice {
+        /// The parameter, as in the configuration file.
+        name: &'static str,
+        /// The value chosen.
+        choice: String,
+        /// Why it cannot run and what to choose instead.
+        msg: &'static str,
+    },
     /// The GPU path failed: no adapter for `device = gpu`, an input too large for the device,
     /// or a device / driver error.
     /// (The GPU error is part of the message, not a separate `source()`, so that printing the

@@ -31,31 +31,10 @@
 //! less than `rmse_relative_epsilon`; running out of iterations, or ending with a fitness below
 //! `min_fitness`, is [`RegistrationError::NotConverged`], which carries the result.
 //!
-//! # Measurements
-//! Release build, this project's 2-core machine, two 541 x 301 virtual-laser scans (162,841
-//! points, 1 cm noise) of the default building's corridor 1 m / 5 degrees apart, started 0.3 m /
-//! 5 degrees off; `cargo test --release -p registration --test measure -- --ignored --nocapture`
-//! (the machine is shared, so timings vary by up to 2x between runs; these are the quiet runs):
-//!
-//! | what | figure |
-//! |---|---|
-//! | one NN pass (162,841 hinted queries), 1 thread CPU time: k-d tree (kiddo 6) | 92 ms from the start, 96-103 ms at the truth |
-//! | same, bucket grid 0.5 m | 56-65 ms from the start, 36-40 ms at the truth |
-//! | same, bucket grid 0.15 / 0.3 m | 60-64 / 64-73 ms from the start, 40-45 / 32-38 ms at the truth |
-//! | build: grid (0.5 m buckets) / k-d tree | 4-7 ms / 15-23 ms |
-//! | point-to-point, full resolution, 0.5 m gate, 2 threads, grid 0.5 m | 19-21 ms per iteration (23 ms of CPU time per thread under heavy load) |
-//! | same with the k-d tree | 52-56 ms per iteration; the same result (0.162 m, 0.386 degrees off after 10 iterations) |
-//! | point-to-point on 5 cm voxels | 5 ms per iteration |
-//! | point-to-point to convergence (corridor!) | 100-105 iterations, 1.4 s, still 7.5 cm off |
-//! | point-to-plane, 10 cm voxels, 1 m gate | 41-61 ms in all (target 23-30 ms), 7 iterations, 1.5 mm / 0.011 degrees |
-//! | GICP, 10 cm voxels, 1 m gate (the defaults) | 55-67 ms in all (target 24-30 ms), 6 iterations, 0.5 mm / 0.004 degrees |
-//! | GICP, 5 cm voxels | 168 ms in all, 0.4 mm / 0.006 degrees |
-//! | GICP, 20 cm voxels | 23-32 ms in all, 1.1 mm / 0.03 degrees |
-//!
-//! The reference figures on the same machine kind (`shared/ANCHORS.md`): Open3D point-to-point
-//! 44 ms per iteration, small_gicp 76 ms; small_gicp GICP 534 ms to 2.6 mm.
-//!
-//! Choices made from these: the grid is the default backend (hinted searches make it 2.5x faster
+//! # Choices
+//! Measured (figures and conditions in `bench/results/README.md`, "Registration measurements";
+//! rerun with `cargo test --release -p registration --test measure -- --ignored --nocapture`):
+//! the grid is the default backend (hinted searches make it 2.5x faster
 //! than the k-d tree per query); buckets as wide as the gate (the grid is then exact, and wider
 //! buckets cost little once searches are hinted); buckets cut into at most 3 x 3 x 3 sub-cells
 //! (finer cuts measured slower); GICP on 10 cm voxels as the default method.

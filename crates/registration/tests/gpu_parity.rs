@@ -516,9 +516,10 @@ fn device_choices_are_explained_and_checked() {
         ..IcpConfig::default()
     };
     match Registrar::new(&gicp_on_gpu) {
-        Err(RegistrationError::InvalidParameter(cloud::InvalidParameter { name, msg, .. })) => {
+        Err(e @ RegistrationError::UnsupportedChoice { name, msg, .. }) => {
             assert_eq!(name, "device");
             assert!(msg.contains("GICP"), "{msg}");
+            assert!(!e.to_string().contains("NaN"), "{e}");
         }
         other => panic!("GICP on the GPU: {other:?}"),
     }

@@ -135,9 +135,16 @@ pub(crate) fn validate_commands(
             v.from_s,
             0.0,
             1.0e7,
-            "a time of at least 0 s",
+            "a time from 0 to 1e7 s",
         )?;
-        check_range(&el, "to_s", v.to_s, v.from_s, 1.0e7, "at least from_s")?;
+        check_range(
+            &el,
+            "to_s",
+            v.to_s,
+            v.from_s,
+            1.0e7,
+            &format!("a time from from_s ({} s) to 1e7 s", v.from_s),
+        )?;
     }
     for (i, w) in waypoints.iter().enumerate() {
         let el = format!("waypoints[{i}]");

@@ -11,6 +11,10 @@ pub enum SimError {
     /// The building could not be loaded.
     #[error(transparent)]
     Building(#[from] scanner::ScannerError),
+    /// The semantic map could not be loaded.
+    #[cfg(feature = "semantic")]
+    #[error(transparent)]
+    SemanticMap(#[from] semantic::SemanticError),
     /// A file could not be read.
     #[error("{path}: {source}")]
     Io {
@@ -52,8 +56,13 @@ pub enum SimError {
         msg: String,
     },
     /// A door whose `wall` names no wall of the world.
-    #[error("door {door}: its wall (entity {wall}) is not a wall of this world")]
+    #[error(
+        "{}door {door}: its wall (entity {wall}) is not a wall of this world",
+        prefix(source_name)
+    )]
     DoorWithoutWall {
+        /// The file (or built-in input) the world came from; empty when unknown.
+        source_name: String,
         /// The door's name.
         door: String,
         /// The wall entity id it names.
@@ -89,6 +98,19 @@ pub enum SimError {
         /// What is wrong.
         msg: String,
     },
+    /// A world with more elements of a kind than a simulation can hold (refused up front,
+    /// before any memory is spent on them).
+    #[error("{element}: {count} {what} is more than the {limit} a simulation can hold")]
+    TooMany {
+        /// The input, e.g. `world` or `stairs stairs_3`.
+        element: String,
+        /// What was counted, e.g. `static boxes (fixed boxes, stair steps and landings)`.
+        what: String,
+        /// How many there are.
+        count: usize,
+        /// The most accepted.
+        limit: usize,
+    },
     /// An unknown built-in robot model name (and not an existing file).
     #[error("unknown robot model {name:?}: not a built-in ({builtins}) and no such file")]
     UnknownRobotModel {
@@ -115,28 +137,139 @@ impl cloud::BadInput for SimError {
         match self {
             SimError::Cloud(e) => e.is_bad_input(),
             SimError::Building(e) => e.is_bad_input(),
+            #[cfg(feature = "semantic")]
+            SimError::SemanticMap(e) => e.is_bad_input(),
             _ => true,
         }
+    }
+}
+
+impl SimError {
+    /// The same error naming the file (or built-in input) it is about, e.g. a scenario's path:
+    /// the element of [`NonFinite`](SimError::NonFinite), [`OutOfRange`](SimError::OutOfRange),
+    /// [`UnknownEntity`](SimError::UnknownEntity), [`WrongEntityClass`](SimError::WrongEntityClass),
+    /// [`Invalid`](SimError::Invalid) and [`TooMany`](SimError::TooMany) becomes
+    /// `<source>: <element>`, and a [`DoorWithoutWall`](SimError::DoorWithoutWall) names it.
+    /// Errors that name their file already (syntax, I/O, ...) are returned as they are, as are
+    /// all errors when `source` is empty.
+    pub fn in_source(self, source: &str) -> SimError {
+        if source.is_empty() {
+            return self;
+        }
+        let pre = |element: String| {
+            if element.starts_with(&format!("{source}: ")) {
+                element
+            } else {
+                format!("{source}: {element}")
+            }
+        };
+        match self {
+            SimError::NonFinite {
+                element,
+                field,
+                value,
+            } => SimError::NonFinite {
+                element: pre(element),
+                field,
+                value,
+            },
+            SimError::OutOfRange {
+                element,
+                field,
+                value,
+                msg,
+            } => SimError::OutOfRange {
+                element: pre(element),
+                field,
+                value,
+                msg,
+            },
+            SimError::UnknownEntity {
+                element,
+                reference,
+                hint,
+            } => SimError::UnknownEntity {
+                element: pre(element),
+                reference,
+                hint,
+            },
+            SimError::WrongEntityClass {
+                element,
+                reference,
+                found,
+                expected,
+            } => SimError::WrongEntityClass {
+                element: pre(element),
+                reference,
+                found,
+                expected,
+            },
+            SimError::Invalid { element, msg } => SimError::Invalid {
+                element: pre(element),
+                msg,
+            },
+            SimError::TooMany {
+                element,
+                what,
+                count,
+                limit,
+            } => SimError::TooMany {
+                element: pre(element),
+                what,
+                count,
+                limit,
+            },
+            SimError::DoorWithoutWall {
+                source_name,
+                door,
+                wall,
+            } if source_name.is_empty() => SimError::DoorWithoutWall {
+                source_name: source.to_string(),
+                door,
+                wall,
+            },
+            e => e,
+        }
+    }
+}
+
+/// `"<s>: "`, or nothing for an empty `s`.
+fn prefix(s: &str) -> String {
+    if s.is_empty() {
+        String::new()
+    } else {
+        format!("{s}: ")
     }
 }
 
 /// Result with [`SimError`].
 pub type Result<T, E = SimError> = std::result::Result<T, E>;
 
-/// Fails with [`SimError::NonFinite`] unless every value is finite.
+/// Fails with [`SimError::NonFinite`] unless every value is finite. `field` names the values:
+/// one name per value (`"x_m, y_m"`: the one at fault is named), or one name for them all
+/// (`"center_m"`: the one at fault is named `center_m[i]`).
 pub(crate) fn check_finite(element: &str, field: &str, values: &[f64]) -> Result<()> {
-    match values.iter().find(|v| !v.is_finite()) {
-        Some(&value) => Err(SimError::NonFinite {
-            element: element.to_string(),
-            field: field.to_string(),
-            value,
-        }),
-        None => Ok(()),
-    }
+    let Some((i, &value)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) else {
+        return Ok(());
+    };
+    let names: Vec<&str> = field.split(", ").collect();
+    let field = if names.len() == values.len() {
+        names[i].to_string()
+    } else if values.len() > 1 {
+        format!("{field}[{i}]")
+    } else {
+        field.to_string()
+    };
+    Err(SimError::NonFinite {
+        element: element.to_string(),
+        field,
+        value,
+    })
 }
 
 /// Fails unless `lo <= value <= hi` (and finite): [`SimError::NonFinite`] for NaN or an
-/// infinity, else [`cloud::check_range`]'s verdict as [`SimError::OutOfRange`] on `element`.
+/// infinity, else [`SimError::OutOfRange`] on `element` saying which bound it passes
+/// (`less than <lo>` or `more than <hi>`) and then `msg`, what would be valid.
 pub(crate) fn check_range(
     element: &str,
     field: &str,
@@ -147,11 +280,16 @@ pub(crate) fn check_range(
 ) -> Result<()> {
     check_finite(element, field, &[value])?;
     cloud::check_range(field.to_string(), value, lo, hi, msg.to_string()).map_err(|e| {
+        let bound = if value < lo {
+            format!("less than {lo}")
+        } else {
+            format!("more than {hi}")
+        };
         SimError::OutOfRange {
             element: element.to_string(),
             field: e.name.into_owned(),
             value: e.value,
-            msg: e.msg.into_owned(),
+            msg: format!("{bound}; expected {}", e.msg),
         }
     })
 }

@@ -302,7 +302,7 @@ impl EventConfig {
             self.stuck_after_s,
             0.1,
             1.0e6,
-            "at least 0.1 s",
+            "0.1 s to 1e6 s",
         )?;
         check_range(
             el,

@@ -20,6 +20,14 @@ pub struct RuleResult {
     pub reason: String,
     /// When it was decided (s).
     pub decided_s: f64,
+    /// The run was interrupted before the rule was decided (then `passed` is false, `reason`
+    /// says so and what was seen so far, and `decided_s` is when the run was interrupted).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub undecided: bool,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 /// The verdict on a run.
@@ -31,6 +39,11 @@ pub struct Verdict {
     pub rules: Vec<RuleResult>,
     /// When the run ended (s).
     pub end_time_s: f64,
+    /// When the run was interrupted (s), if it was stopped before its end (see
+    /// [`crate::run_scenario_with`]); then `passed` is false and the rules not yet decided
+    /// say so.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub interrupted_at_s: Option<f64>,
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -208,6 +221,7 @@ impl Judge {
                     passed,
                     reason,
                     decided_s: t,
+                    undecided: false,
                 });
             };
             match &mut r.check {
@@ -345,8 +359,9 @@ impl Judge {
         goals.peek().is_some() && goals.all(|r| r.result.as_ref().is_some_and(|x| x.passed))
     }
 
-    /// The verdict at `end_s`: undecided goals fail, undecided constraints pass.
-    pub(crate) fn verdict(&self, end_s: f64, wall_contact_s: f64) -> Verdict {
+    /// The verdict at `end_s`: undecided goals fail, undecided constraints pass; or, when the
+    /// run was `interrupted` at `end_s`, undecided rules fail as not decided.
+    pub(crate) fn verdict(&self, end_s: f64, wall_contact_s: f64, interrupted: bool) -> Verdict {
         let rules: Vec<RuleResult> = self
             .rules
             .iter()
@@ -378,13 +393,18 @@ impl Judge {
                     }
                     Check::NoStuck => (true, "never stuck".into()),
                 };
-                RuleResult { rule: r.rule.clone(), passed, reason, decided_s: end_s }
+                if interrupted {
+                    let reason = format!("not decided: the run was interrupted at {end_s:.2} s (so far: {reason})");
+                    return RuleResult { rule: r.rule.clone(), passed: false, reason, decided_s: end_s, undecided: true };
+                }
+                RuleResult { rule: r.rule.clone(), passed, reason, decided_s: end_s, undecided: false }
             })
             .collect();
         Verdict {
-            passed: rules.iter().all(|r| r.passed),
+            passed: !interrupted && rules.iter().all(|r| r.passed),
             rules,
             end_time_s: end_s,
+            interrupted_at_s: interrupted.then_some(end_s),
         }
     }
 }

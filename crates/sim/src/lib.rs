@@ -79,7 +79,9 @@ pub use report::{
     write_trajectory_csv, ReportConfig,
 };
 pub use scenario::{ReachGoal, Rules, Scenario};
-pub use simulation::{run_scenario, Outcome, Simulation, TrajectoryPoint};
+pub use simulation::{
+    run_scenario, run_scenario_with, Outcome, Simulation, TrajectoryPoint, PROGRESS_EVERY_STEPS,
+};
 pub use spec::{
     BoxSpec, DoorSpec, EntityInfo, FixedBox, FreeSpaceSpec, HingeEnd, OpeningSense, StairsSpec,
     StepSpec, WorldSpec,

@@ -217,7 +217,7 @@ impl RobotModel {
             source_name: source.to_string(),
             msg: e.to_string().trim_end().to_string(),
         })?;
-        m.validate()?;
+        m.validate().map_err(|e| e.in_source(source))?;
         Ok(m)
     }
 
@@ -354,10 +354,10 @@ impl RobotModel {
                     "0 to 1e5 N m",
                 )?;
                 if let Some(f) = l.break_force_n {
-                    check_range(&lel, "break_force_n", f, 1.0, 1.0e9, "at least 1 N")?;
+                    check_range(&lel, "break_force_n", f, 1.0, 1.0e9, "1 N to 1e9 N")?;
                 }
                 if let Some(t) = l.break_torque_nm {
-                    check_range(&lel, "break_torque_nm", t, 0.1, 1.0e9, "at least 0.1 N m")?;
+                    check_range(&lel, "break_torque_nm", t, 0.1, 1.0e9, "0.1 N m to 1e9 N m")?;
                 }
             }
         }

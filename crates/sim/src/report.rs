@@ -69,11 +69,23 @@ pub fn report_markdown(outcome: &Outcome, cfg: &ReportConfig) -> String {
             .filter(|e| e.kind.is_significant())
             .count()
     );
-    let _ = writeln!(
-        s,
-        "## Verdict: {}\n",
-        if v.passed { "PASSED" } else { "FAILED" }
-    );
+    match v.interrupted_at_s {
+        Some(t) => {
+            let _ = writeln!(
+                s,
+                "## Verdict: FAILED (interrupted at {} s)\n\nThe run was interrupted at {} s, before its end; the rules not decided by then say so.\n",
+                fmt_secs(t),
+                fmt_secs(t)
+            );
+        }
+        None => {
+            let _ = writeln!(
+                s,
+                "## Verdict: {}\n",
+                if v.passed { "PASSED" } else { "FAILED" }
+            );
+        }
+    }
     if v.rules.is_empty() {
         let _ = writeln!(s, "No rules.\n");
     } else {
@@ -86,7 +98,11 @@ pub fn report_markdown(outcome: &Outcome, cfg: &ReportConfig) -> String {
                 s,
                 "| `{}` | {} | {} | {} |",
                 r.rule,
-                if r.passed { "passed" } else { "FAILED" },
+                match (r.passed, r.undecided) {
+                    (_, true) => "not decided",
+                    (true, false) => "passed",
+                    (false, false) => "FAILED",
+                },
                 fmt_secs(r.decided_s),
                 r.reason.replace('|', "\\|")
             );

@@ -58,6 +58,20 @@ pub struct Scenario {
     /// Waypoint follower gains.
     #[serde(default)]
     pub controller: ControllerConfig,
+    /// Where it came from (its file, `<built-in default scenario>`, or the `source` given to
+    /// [`Scenario::from_toml_str`]): errors about it name this. Not part of its value.
+    #[serde(skip)]
+    source: SourceName,
+}
+
+/// A scenario's source, for error messages; it never makes two scenarios differ.
+#[derive(Debug, Clone, Default)]
+struct SourceName(String);
+
+impl PartialEq for SourceName {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
 }
 
 fn default_building() -> String {
@@ -151,17 +165,35 @@ impl Scenario {
 
     /// Parses and validates a scenario; `source` names it in errors.
     pub fn from_toml_str(text: &str, source: &str) -> Result<Scenario> {
-        let s: Scenario = toml::from_str(text).map_err(|e| SimError::Syntax {
+        let mut s: Scenario = toml::from_str(text).map_err(|e| SimError::Syntax {
             source_name: source.to_string(),
             msg: e.to_string().trim_end().to_string(),
         })?;
+        s.source = SourceName(source.to_string());
         s.validate()?;
         Ok(s)
     }
 
+    /// Where the scenario came from (its file, `<built-in default scenario>`, or the source
+    /// given to [`Scenario::from_toml_str`]; empty for one made otherwise). Errors about the
+    /// scenario, from [`Scenario::validate`] and [`crate::Simulation::new`], name it.
+    pub fn source_name(&self) -> &str {
+        &self.source.0
+    }
+
+    /// Sets what [`Scenario::source_name`] answers.
+    pub fn set_source_name(&mut self, source: &str) {
+        self.source = SourceName(source.to_string());
+    }
+
     /// Checks numbers and settings (entity references are checked against a world by
-    /// [`crate::Simulation::new`]).
+    /// [`crate::Simulation::new`]); errors name [`Scenario::source_name`].
     pub fn validate(&self) -> Result<()> {
+        self.validate_fields()
+            .map_err(|e| e.in_source(self.source_name()))
+    }
+
+    fn validate_fields(&self) -> Result<()> {
         let el = "scenario";
         check_range(
             el,
@@ -169,7 +201,7 @@ impl Scenario {
             self.time_limit_s,
             1.0e-3,
             1.0e6,
-            "a positive time of at most 1e6 s",
+            "a time of 1 ms to 1e6 s",
         )?;
         check_range(
             el,
@@ -194,7 +226,7 @@ impl Scenario {
             "0 to 180",
         )?;
         if let Some(m) = r.max_wall_contact_s {
-            check_range("rules", "max_wall_contact_s", m, 0.0, 1.0e6, "at least 0 s")?;
+            check_range("rules", "max_wall_contact_s", m, 0.0, 1.0e6, "0 to 1e6 s")?;
         }
         if let Some(g) = &r.reach {
             check_finite("rules.reach", "x_m, y_m", &[g.x_m, g.y_m])?;
@@ -204,7 +236,7 @@ impl Scenario {
                 g.radius_m,
                 1.0e-3,
                 1.0e4,
-                "a positive radius",
+                "a radius of 1 mm to 10 km",
             )?;
         }
         Ok(())

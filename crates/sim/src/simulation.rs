@@ -16,6 +16,7 @@ use crate::spec::WorldSpec;
 use crate::world::robot::{robot_pose, RobotPose};
 use crate::world::World;
 use serde::{Deserialize, Serialize};
+use std::ops::ControlFlow;
 
 /// One trajectory sample of the robot's chassis.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -58,6 +59,9 @@ pub struct Simulation {
     pub(crate) trajectory: Vec<TrajectoryPoint>,
     pub(crate) next_sample_s: f64,
     pub(crate) step_limit: u64,
+    /// Set when [`Simulation::run_with`] was stopped before the end; cleared by the next step.
+    #[serde(default)]
+    pub(crate) interrupted_at_s: Option<f64>,
 }
 
 impl Simulation {
@@ -85,6 +89,7 @@ impl Simulation {
             trajectory: vec![],
             next_sample_s: 0.0,
             step_limit,
+            interrupted_at_s: None,
         };
         sim.sample();
         Ok(sim)
@@ -92,6 +97,7 @@ impl Simulation {
 
     /// Advances one fixed step: controller, physics, broken joints, event detectors, judge.
     pub fn step(&mut self) {
+        self.interrupted_at_s = None;
         let t = self.world.time_s();
         let pose = self.robot_pose();
         let s = &self.scenario;
@@ -162,6 +168,35 @@ impl Simulation {
         self.verdict()
     }
 
+    /// Like [`Simulation::run`], but calls `progress` with the simulated time every
+    /// `every_steps` steps (at least 1); when it answers [`ControlFlow::Break`] the run stops
+    /// there, interrupted: the verdict (and [`Simulation::outcome`]) then says so (see
+    /// [`Verdict::interrupted_at_s`]) until the simulation is stepped again.
+    pub fn run_with(
+        &mut self,
+        every_steps: u64,
+        progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
+    ) -> Verdict {
+        let every = every_steps.max(1);
+        while !self.is_finished() {
+            self.step();
+            if self.world.steps % every == 0
+                && !self.is_finished()
+                && progress(self.time_s()).is_break()
+            {
+                self.interrupted_at_s = Some(self.time_s());
+                break;
+            }
+        }
+        self.verdict()
+    }
+
+    /// When the run was interrupted (s), if [`Simulation::run_with`] was stopped before the
+    /// end and the simulation has not been stepped since.
+    pub fn interrupted_at_s(&self) -> Option<f64> {
+        self.interrupted_at_s
+    }
+
     /// Whether the run is over (time limit, or goals met with `stop_when_goals_met`).
     pub fn is_finished(&self) -> bool {
         self.world.steps >= self.step_limit
@@ -212,9 +247,14 @@ impl Simulation {
         self.doors.widest_deg.get(&door_entity).copied()
     }
 
-    /// The verdict now (undecided goals count as failed).
+    /// The verdict now (undecided goals count as failed; after an interrupted
+    /// [`Simulation::run_with`], undecided rules are failed as not decided).
     pub fn verdict(&self) -> Verdict {
-        self.judge.verdict(self.time_s(), self.wall_contact_s())
+        self.judge.verdict(
+            self.time_s(),
+            self.wall_contact_s(),
+            self.interrupted_at_s.is_some(),
+        )
     }
 
     /// The world.
@@ -243,5 +283,42 @@ impl Simulation {
 pub fn run_scenario(spec: &WorldSpec, scenario: &Scenario, model: &RobotModel) -> Result<Outcome> {
     let mut sim = Simulation::new(spec, scenario, model)?;
     sim.run();
+    Ok(sim.outcome())
+}
+
+/// How often [`run_scenario_with`] calls its `progress` (steps; 10 steps are 1/6 s of
+/// simulated time with the default step).
+pub const PROGRESS_EVERY_STEPS: u64 = 10;
+
+/// Like [`run_scenario`], but calls `progress` with the simulated time (s) every
+/// [`PROGRESS_EVERY_STEPS`] steps, to show progress (the run ends at
+/// `scenario.time_limit_s`, or earlier with `stop_when_goals_met`) and to stop it: when
+/// `progress` answers [`ControlFlow::Break`] (e.g. on Ctrl-C) the run stops there and the
+/// outcome holds the events and trajectory so far, with the verdict failed and marked
+/// interrupted ([`Verdict::interrupted_at_s`]; rules not decided by then say so, and so does
+/// `report.md`). A run that is not stopped gives exactly [`run_scenario`]'s outcome.
+///
+/// ```no_run
+/// # fn demo(spec: &sim::WorldSpec, scenario: &sim::Scenario, model: &sim::RobotModel) -> sim::Result<()> {
+/// use std::ops::ControlFlow;
+/// use std::sync::atomic::{AtomicBool, Ordering};
+/// static STOP: AtomicBool = AtomicBool::new(false); // set by a Ctrl-C handler
+/// let outcome = sim::run_scenario_with(spec, scenario, model, &mut |t_s| {
+///     eprint!("\rsimulated {t_s:.1} of {} s", scenario.time_limit_s);
+///     if STOP.load(Ordering::Relaxed) { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
+/// })?;
+/// if let Some(t) = outcome.verdict.interrupted_at_s {
+///     eprintln!("interrupted at {t} s");
+/// }
+/// # Ok(()) }
+/// ```
+pub fn run_scenario_with(
+    spec: &WorldSpec,
+    scenario: &Scenario,
+    model: &RobotModel,
+    progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
+) -> Result<Outcome> {
+    let mut sim = Simulation::new(spec, scenario, model)?;
+    sim.run_with(PROGRESS_EVERY_STEPS, progress);
     Ok(sim.outcome())
 }

@@ -11,13 +11,73 @@ use std::collections::BTreeMap;
 const MAX_HALF_M: f64 = 500.0;
 
 impl WorldSpec {
+    /// The most static boxes (fixed boxes, stair steps and landings together) a world may
+    /// have. The static geometry is merged into one compound collider when it overlaps much,
+    /// so memory grows linearly with the count (about 1 kB per box).
+    pub const MAX_STATIC_BOXES: usize = 100_000;
+    /// The most door leaves a world may have (each is a dynamic body on a joint).
+    pub const MAX_DOORS: usize = 2_000;
+    /// The most door free-space sensors a world may have.
+    pub const MAX_FREE_SPACES: usize = 2_000;
+    /// The most steps a staircase may have.
+    pub const MAX_STEPS: usize = 1_000;
+
+    /// The number of static boxes: fixed boxes, stair steps and landings.
+    pub fn static_box_count(&self) -> usize {
+        self.fixed.len()
+            + self
+                .stairs
+                .iter()
+                .map(|s| s.steps.len() + usize::from(s.landing.is_some()))
+                .sum::<usize>()
+    }
+
+    /// Fails with [`SimError::TooMany`] when the world has more elements of a kind than a
+    /// simulation can hold ([`WorldSpec::MAX_STATIC_BOXES`], [`WorldSpec::MAX_DOORS`],
+    /// [`WorldSpec::MAX_FREE_SPACES`], [`WorldSpec::MAX_STEPS`]).
+    pub fn check_limits(&self) -> Result<()> {
+        let too_many = |element: &str, what: &str, count: usize, limit: usize| {
+            if count > limit {
+                Err(SimError::TooMany {
+                    element: element.to_string(),
+                    what: what.to_string(),
+                    count,
+                    limit,
+                })
+            } else {
+                Ok(())
+            }
+        };
+        for s in &self.stairs {
+            too_many(
+                &format!("stairs {}", s.name),
+                "steps",
+                s.steps.len(),
+                Self::MAX_STEPS,
+            )?;
+        }
+        too_many(
+            "world",
+            "static boxes (fixed boxes, stair steps and landings)",
+            self.static_box_count(),
+            Self::MAX_STATIC_BOXES,
+        )?;
+        too_many("world", "doors", self.doors.len(), Self::MAX_DOORS)?;
+        too_many(
+            "world",
+            "door free spaces",
+            self.free_spaces.len(),
+            Self::MAX_FREE_SPACES,
+        )
+    }
+
     /// Parses and validates a world spec from JSON; `source` names it in errors.
     pub fn from_json_str(text: &str, source: &str) -> Result<WorldSpec> {
         let spec: WorldSpec = serde_json::from_str(text).map_err(|e| SimError::Syntax {
             source_name: source.to_string(),
             msg: e.to_string(),
         })?;
-        spec.validate()?;
+        spec.validate().map_err(|e| e.in_source(source))?;
         Ok(spec)
     }
 
@@ -155,8 +215,10 @@ impl WorldSpec {
             .ok_or_else(|| unknown(""))
     }
 
-    /// Checks ids, references and numbers; see [`SimError`] for what is reported.
+    /// Checks sizes ([`WorldSpec::check_limits`]), ids, references and numbers; see
+    /// [`SimError`] for what is reported.
     pub fn validate(&self) -> Result<()> {
+        self.check_limits()?;
         let mut classes: BTreeMap<u32, (EntityClass, String)> = BTreeMap::new();
         let mut claim = |id: u32, class: EntityClass, name: &str, element: &str| -> Result<()> {
             if id == 0 {
@@ -263,6 +325,7 @@ impl WorldSpec {
         let el = format!("door {}", d.name);
         if classes.get(&d.wall).map(|c| c.0) != Some(EntityClass::Wall) {
             return Err(SimError::DoorWithoutWall {
+                source_name: String::new(),
                 door: d.name.clone(),
                 wall: d.wall,
             });
@@ -324,7 +387,7 @@ impl WorldSpec {
                 f,
                 1.0,
                 1.0e9,
-                "a force of at least 1 N",
+                "a force of 1 N to 1e9 N",
             )?;
         }
         // The hinge must sit at the hinged end of the closed leaf.

@@ -14,13 +14,38 @@ const MAX_LIT: usize = 32;
 const MAX_OFF: usize = 1 << 13;
 /// Longest match: 2 + 7 + 255.
 const MAX_REF: usize = 264;
+/// Largest expansion of LZF data: a 3-byte back-reference yields at most 264 bytes, so `n`
+/// compressed bytes never expand to more than `88 n`. A header promising more is refused
+/// before anything is allocated.
+pub(crate) const LZF_MAX_RATIO: usize = MAX_REF / 3;
 
 /// Decompresses `input`, which must expand to exactly `expected_len` bytes.
 ///
 /// The output never grows past `expected_len`, so a corrupt stream cannot make us allocate
 /// more than the caller allowed. The error says what is wrong and where in the stream.
+#[cfg(test)]
 pub(crate) fn decompress(input: &[u8], expected_len: usize) -> Result<Vec<u8>, String> {
-    let mut out: Vec<u8> = Vec::with_capacity(expected_len);
+    let mut out = Vec::new();
+    decompress_into(input, expected_len, &mut out)?;
+    Ok(out)
+}
+
+/// [`decompress`] appending to `out`, which should have room for `expected_len` bytes (the
+/// caller allocates, so that it can report a failed allocation); `out` must start empty.
+/// An `expected_len` beyond [`LZF_MAX_RATIO`] times the input is refused at once.
+pub(crate) fn decompress_into(
+    input: &[u8],
+    expected_len: usize,
+    out: &mut Vec<u8>,
+) -> Result<(), String> {
+    if expected_len > input.len().saturating_mul(LZF_MAX_RATIO) {
+        return Err(format!(
+            "{} compressed bytes cannot expand to {expected_len} bytes (LZF expands at most {LZF_MAX_RATIO}-fold)",
+            input.len()
+        ));
+    }
+    out.clear();
+    out.reserve_exact(expected_len);
     let mut i = 0usize;
     while let Some(&ctrl) = input.get(i) {
         let at = i;
@@ -55,7 +80,7 @@ pub(crate) fn decompress(input: &[u8], expected_len: usize) -> Result<Vec<u8>, S
             if out.len() + len > expected_len {
                 return Err(overflow(at, expected_len));
             }
-            copy_back(&mut out, back, len);
+            copy_back(out, back, len);
         }
     }
     if out.len() != expected_len {
@@ -64,7 +89,7 @@ pub(crate) fn decompress(input: &[u8], expected_len: usize) -> Result<Vec<u8>, S
             out.len()
         ));
     }
-    Ok(out)
+    Ok(())
 }
 
 /// Appends `len` bytes copied from `back` bytes before the end (`1 <= back <= out.len()`);
@@ -182,6 +207,19 @@ mod tests {
     }
 
     #[test]
+    fn the_largest_expansion_is_the_ratio() {
+        // One literal byte, then back-references of the longest length (2 + 7 + 255).
+        let mut stream = vec![0u8, 7];
+        let refs = 1000;
+        for _ in 0..refs {
+            stream.extend([0xe0, 255, 0]);
+        }
+        let n = 1 + refs * MAX_REF;
+        assert_eq!(decompress(&stream, n).expect("valid").len(), n);
+        assert!(n <= stream.len() * LZF_MAX_RATIO);
+    }
+
+    #[test]
     fn decodes_a_hand_made_liblzf_stream() {
         // literal "ab", then a match of length 4 at offset 2: "abab" -> "ababab".
         let stream = [1u8, b'a', b'b', (2 << 5), 1];
@@ -200,6 +238,9 @@ mod tests {
         assert!(decompress(&[3, 1, 2, 3, 4], 2).is_err());
         // expands to less than promised
         assert!(decompress(&[0, 1], 2).is_err());
+        // promises more than any stream of that length can hold: refused before allocating
+        let e = decompress(&[0, 1], usize::MAX).unwrap_err();
+        assert!(e.contains("cannot expand"), "{e}");
         // every truncation and every single-byte corruption of a real stream: no panic
         let data: Vec<u8> = (0..3000u32).flat_map(|k| (k % 97).to_le_bytes()).collect();
         let c = compress(&data);

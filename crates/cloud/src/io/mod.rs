@@ -1,16 +1,19 @@
 //! Point cloud files, picked by extension: PCD (`.pcd`), PLY (`.ply`), XYZ (`.xyz`, `.txt`)
 //! and 3DTK (`.3d`). All writers are atomic (temporary file + rename).
 
+mod labels;
 pub(crate) mod lzf;
 pub mod pcd;
 pub mod ply;
 mod scalar;
+pub(crate) mod text;
 pub mod threedtk;
 pub mod xyz;
 
 use crate::cloud::PointCloud;
 use crate::error::{CloudError, Result};
 use std::path::Path;
+use text::{print_notes, read_file};
 
 pub use pcd::PcdEncoding;
 pub use ply::PlyEncoding;
@@ -48,13 +51,47 @@ impl CloudFormat {
     }
 }
 
-/// Reads a point cloud, choosing the format by the file extension.
+/// Reads a point cloud, choosing the format by the file extension. What the reader converted
+/// or skipped rather than refusing the file (see [`read_cloud_with_notes`]) is printed to
+/// standard error, one `note: ...` line each.
 pub fn read_cloud(path: &Path) -> Result<PointCloud> {
-    match CloudFormat::from_path(path)? {
-        CloudFormat::Pcd(_) => pcd::read_pcd(path),
-        CloudFormat::Ply(_) => ply::read_ply(path),
-        CloudFormat::Xyz => xyz::read_xyz(path),
-        CloudFormat::ThreeDtk => threedtk::read_3d(path),
+    let (cloud, notes) = read_cloud_with_notes(path)?;
+    print_notes(&notes);
+    Ok(cloud)
+}
+
+/// Reads a point cloud like [`read_cloud`], returning the notes instead of printing them: one
+/// per thing converted or skipped rather than refusing the file (a field of another type than
+/// semsim's, a label that is no entity id, a field semsim does not use...), each starting with
+/// the file's path.
+///
+/// ```
+/// let dir = tempfile::tempdir().unwrap();
+/// let path = dir.path().join("foreign.pcd");
+/// let head = "FIELDS x y z label\nSIZE 4 4 4 4\nTYPE F F F I\nWIDTH 2\nHEIGHT 1\nDATA ascii\n";
+/// std::fs::write(&path, format!("{head}0 0 0 7\n1 1 1 -1\n")).unwrap();
+/// let (cloud, notes) = cloud::read_cloud_with_notes(&path).unwrap();
+/// let entities: Vec<u32> = cloud.labels.unwrap().iter().map(|l| l.entity).collect();
+/// assert_eq!(entities, [7, 0]);
+/// assert_eq!(notes.len(), 2, "{notes:?}"); // label TYPE I read as entity ids; -1 read as none
+/// assert!(notes.iter().all(|n| n.starts_with(&path.display().to_string())));
+/// ```
+pub fn read_cloud_with_notes(path: &Path) -> Result<(PointCloud, Vec<String>)> {
+    let format = CloudFormat::from_path(path)?;
+    read_cloud_bytes(path, format, &read_file(path)?)
+}
+
+/// Reads a point cloud of the given format from bytes; `path` is for messages.
+pub(crate) fn read_cloud_bytes(
+    path: &Path,
+    format: CloudFormat,
+    bytes: &[u8],
+) -> Result<(PointCloud, Vec<String>)> {
+    match format {
+        CloudFormat::Pcd(_) => pcd::parse_pcd(path, bytes),
+        CloudFormat::Ply(_) => ply::parse_ply(path, bytes),
+        CloudFormat::Xyz => Ok((xyz::parse_xyz(path, bytes)?, Vec::new())),
+        CloudFormat::ThreeDtk => Ok((threedtk::parse_3d(path, bytes)?, Vec::new())),
     }
 }
 

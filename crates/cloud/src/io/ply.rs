@@ -3,10 +3,16 @@
 //! Reading takes the `vertex` element: `x y z` (any scalar type; `float`, `double` and the
 //! `float32`/`float64` aliases are the usual ones), an optional intensity (`intensity` or
 //! `scalar_intensity`, any scalar type) and optional `label` (entity id) and `class`
-//! ([`crate::EntityClass`] code). Other vertex properties, list properties included, are
-//! skipped, as are the elements before `vertex`; reading stops after the vertex element
-//! (faces and the like are ignored). PLY has no organised shape, so a non-finite point is an
-//! error, and writing an organised cloud drops its missing returns.
+//! ([`crate::EntityClass`] code). semsim's own types for these are `uchar`, `ushort` or `uint`
+//! labels and `uchar` classes; other types are converted with a note, as in PCD (a label value
+//! that is no entity id reads as no entity; a class property of another type holding a value
+//! that is no class code is skipped). Other vertex properties, list properties included, and
+//! the other elements are skipped with a note. The elements after `vertex` (faces and the
+//! like) are not decoded, but the file must not hold more than its header declares: in ASCII
+//! a non-blank line beyond the declared items is an error, in binary any byte beyond the
+//! declared data but trailing whitespace. Elements after `vertex` cut short are noted, not
+//! refused. PLY has no organised shape, so a non-finite point is an error, and writing an
+//! organised cloud drops its missing returns.
 //!
 //! Writing produces `float x y z`, `float intensity` if present, and `uint label` +
 //! `uchar class` if labels are present.
@@ -15,10 +21,12 @@
 //! line or the expected and found byte counts, a fixed set of properties decoded straight into
 //! the cloud's arrays (no per-vertex property maps), and nothing to read after the vertices.
 
-use super::scalar::{class_from_value, entity_from_value, Scalar};
+use super::labels::LabelConv;
+use super::scalar::Scalar;
+use super::text::{print_notes, read_file, shown, strip_bom, Notes};
 use crate::atomic::write_atomically;
 use crate::cloud::{Label, PointCloud};
-use crate::error::{CloudError, Result};
+use crate::error::{try_vec, CloudError, Result};
 use glam::Vec3;
 use std::io::Write;
 use std::path::Path;
@@ -53,32 +61,66 @@ const INTENSITY: usize = 3;
 const LABEL: usize = 4;
 const CLASS: usize = 5;
 
-/// Reads the vertices of a PLY file.
+/// Reads the vertices of a PLY file; notes on converted or skipped properties go to standard
+/// error.
 pub fn read_ply(path: &Path) -> Result<PointCloud> {
-    let bytes = std::fs::read(path).map_err(|e| CloudError::io(path, e))?;
-    let h = header::parse(path, &bytes)?;
+    let (cloud, notes) = parse_ply(path, &read_file(path)?)?;
+    print_notes(&notes);
+    Ok(cloud)
+}
+
+/// Reads the bytes of a PLY file (`path` is for messages), with the notes on what was
+/// converted or skipped.
+pub(crate) fn parse_ply(path: &Path, bytes: &[u8]) -> Result<(PointCloud, Vec<String>)> {
+    let bytes = strip_bom(bytes);
+    let h = header::parse(path, bytes)?;
     let before = h.elements.iter().take_while(|e| e.name != "vertex").count();
     let vertex = h.elements.get(before).ok_or_else(|| {
         CloudError::parse(path, h.end_line, "the header declares no vertex element")
     })?;
-    let slots = slots(path, vertex)?;
+    let mut notes = Notes::new(path);
+    let slots = slots(path, vertex, &mut notes)?;
+    let others: Vec<String> = h
+        .elements
+        .iter()
+        .enumerate()
+        .filter(|&(k, _)| k != before)
+        .map(|(_, e)| shown(&e.name))
+        .collect();
+    if !others.is_empty() {
+        notes.add(format_args!(
+            "element(s) {} not used by semsim (skipped)",
+            others.join(", ")
+        ));
+    }
     let body = bytes.get(h.data_offset..).unwrap_or_default();
     let skipped = h.elements.get(..before).unwrap_or_default();
-    let mut reader = Reader::new(vertex.count, &slots);
+    let after = h.elements.get(before + 1..).unwrap_or_default();
+    let binary = h.encoding != PlyEncoding::Ascii;
+    let mut reader = Reader::new(path, vertex, &slots, body.len(), binary)?;
     match h.encoding {
-        PlyEncoding::Ascii => read_ascii(path, h.end_line, skipped, vertex, body, &mut reader)?,
+        PlyEncoding::Ascii => read_ascii(
+            path,
+            h.end_line,
+            skipped,
+            vertex,
+            after,
+            body,
+            &mut reader,
+            &mut notes,
+        )?,
         enc => read_binary(
             path,
             enc == PlyEncoding::BinaryBigEndian,
-            skipped,
-            vertex,
+            (skipped, vertex, after),
             body,
             &mut reader,
+            &mut notes,
         )?,
     }
-    let cloud = reader.finish();
+    let cloud = reader.finish(path, &mut notes)?;
     cloud.check_finite(path)?;
-    Ok(cloud)
+    Ok((cloud, notes.list))
 }
 
 /// Writes a PLY file atomically (an organised cloud loses its missing returns).
@@ -97,8 +139,9 @@ pub fn write_ply(path: &Path, cloud: &PointCloud, encoding: PlyEncoding) -> Resu
     })
 }
 
-/// For each vertex property, the slot its value goes to (x y z intensity label class), if kept.
-fn slots(path: &Path, vertex: &Element) -> Result<Vec<Option<usize>>> {
+/// For each vertex property, the slot its value goes to (x y z intensity label class), if kept;
+/// notes the properties skipped.
+fn slots(path: &Path, vertex: &Element, notes: &mut Notes) -> Result<Vec<Option<usize>>> {
     let find = |names: &[&str]| {
         vertex
             .props
@@ -124,11 +167,30 @@ fn slots(path: &Path, vertex: &Element) -> Result<Vec<Option<usize>>> {
         };
         if let (Some(s), Some(prop)) = (slots.get_mut(p), vertex.props.get(p)) {
             if !matches!(prop.kind, Kind::Scalar(_)) {
-                let msg = format!("vertex property {} must be a scalar, not a list", prop.name);
-                return Err(CloudError::parse(path, prop.line, msg));
+                if slot <= 2 {
+                    let msg = format!(
+                        "vertex property {} must be a scalar, not a list",
+                        shown(&prop.name)
+                    );
+                    return Err(CloudError::parse(path, prop.line, msg));
+                }
+                continue; // skipped with the others below
             }
             *s = Some(slot);
         }
+    }
+    let skipped: Vec<String> = vertex
+        .props
+        .iter()
+        .zip(&slots)
+        .filter(|(_, s)| s.is_none())
+        .map(|(p, _)| shown(&p.name))
+        .collect();
+    if !skipped.is_empty() {
+        notes.add(format_args!(
+            "vertex property(ies) {} not used by semsim (skipped)",
+            skipped.join(", ")
+        ));
     }
     Ok(slots)
 }
@@ -140,23 +202,58 @@ struct Reader<'a> {
     points: Vec<Vec3>,
     intensity: Vec<f32>,
     labels: Vec<Label>,
+    codes: Vec<u8>,
+    conv: LabelConv,
     /// The values of the vertex being read.
     cur: [f64; 6],
 }
 
 impl<'a> Reader<'a> {
-    fn new(count: usize, slots: &'a [Option<usize>]) -> Self {
+    /// Room for the vertices, but never more than `body_len` bytes can hold: a vertex takes at
+    /// least its properties' smallest sizes in binary, two bytes per property in ASCII.
+    fn new(
+        path: &Path,
+        vertex: &Element,
+        slots: &'a [Option<usize>],
+        body_len: usize,
+        binary: bool,
+    ) -> Result<Self> {
         let mut has = [false; 6];
         slots.iter().flatten().for_each(|&s| has[s.min(5)] = true);
-        let cap = count.min(1 << 20);
-        Reader {
+        let min: usize = if binary {
+            vertex.props.iter().map(|p| p.kind.min_size()).sum()
+        } else {
+            2 * vertex.props.len()
+        };
+        let cap = vertex.count.min(body_len / min.max(1) + 1);
+        let described = |slot: usize, own: fn(Scalar) -> bool| {
+            let k = slots.iter().position(|&s| s == Some(slot))?;
+            match vertex.props.get(k)?.kind {
+                Kind::Scalar(t) => Some((
+                    format!(
+                        "vertex property {} ({})",
+                        shown(&vertex.props.get(k)?.name),
+                        t.ply_name()
+                    ),
+                    own(t),
+                )),
+                Kind::List { .. } => None,
+            }
+        };
+        let conv = LabelConv::new(
+            described(LABEL, |t| t.is_unsigned() && t.size() <= 4),
+            described(CLASS, |t| t == Scalar::U8),
+        );
+        Ok(Reader {
             slots,
             has,
-            points: Vec::with_capacity(cap),
-            intensity: Vec::new(),
-            labels: Vec::new(),
+            points: try_vec(path, cap, "the points")?,
+            intensity: room(path, has[INTENSITY], cap, "the intensities")?,
+            labels: room(path, conv.any(), cap, "the labels")?,
+            codes: room(path, conv.has_class(), cap, "the class codes")?,
+            conv,
             cur: [0.0; 6],
-        }
+        })
     }
 
     fn set(&mut self, prop: usize, v: f64) {
@@ -165,42 +262,69 @@ impl<'a> Reader<'a> {
         }
     }
 
-    /// Stores the current vertex; the error message is for a bad label or class.
-    fn push(&mut self) -> std::result::Result<(), String> {
+    /// Stores the current vertex, read at `line` (0 in binary data).
+    fn push(&mut self, line: usize) {
         let [x, y, z, i, l, c] = self.cur;
+        let index = self.points.len();
         self.points.push(Vec3::new(x as f32, y as f32, z as f32));
         if self.has[INTENSITY] {
             self.intensity.push(i as f32);
         }
-        if self.has[LABEL] || self.has[CLASS] {
-            let label = Label {
-                entity: entity_from_value(l)?,
-                class: class_from_value(c)?,
+        if self.conv.any() {
+            let entity = if self.has[LABEL] {
+                self.conv.entity(index, l)
+            } else {
+                0
             };
-            self.labels.push(label);
+            self.labels.push(Label {
+                entity,
+                ..Label::default()
+            });
+        }
+        if self.conv.has_class() {
+            self.codes.push(self.conv.class_code(index, c, line));
         }
         self.cur = [0.0; 6];
-        Ok(())
     }
 
-    fn finish(self) -> PointCloud {
+    fn finish(self, path: &Path, notes: &mut Notes) -> Result<PointCloud> {
+        let codes = self.conv.has_class().then_some(self.codes);
+        let labels = self.conv.finish(path, self.labels, codes, notes)?;
         let mut cloud = PointCloud::from_points(self.points);
         cloud.intensity = self.has[INTENSITY].then_some(self.intensity);
-        cloud.labels = (self.has[LABEL] || self.has[CLASS]).then_some(self.labels);
-        cloud
+        cloud.labels = labels;
+        Ok(cloud)
     }
 }
 
-fn read_binary(
+/// An empty vector with room for `cap` items where `on`, else an empty one.
+fn room<T>(path: &Path, on: bool, cap: usize, what: &str) -> Result<Vec<T>> {
+    if on {
+        try_vec(path, cap, what)
+    } else {
+        Ok(Vec::new())
+    }
+}
+
+/// The declared items as a message shows them: `vertex 3, face 1`.
+fn declared(elements: &[&[Element]]) -> String {
+    let parts: Vec<String> = elements
+        .iter()
+        .flat_map(|e| e.iter())
+        .map(|e| format!("{} {}", shown(&e.name), e.count))
+        .collect();
+    parts.join(", ")
+}
+
+/// Skips the binary items of `elements` from `pos`; the position after them.
+fn skip_binary(
     path: &Path,
-    big: bool,
-    skipped: &[Element],
-    vertex: &Element,
+    elements: &[Element],
     body: &[u8],
-    r: &mut Reader,
-) -> Result<()> {
-    let mut pos = 0usize;
-    for e in skipped {
+    mut pos: usize,
+    big: bool,
+) -> Result<usize> {
+    for e in elements {
         if e.props.iter().all(|p| matches!(p.kind, Kind::Scalar(_))) {
             // Fixed size: skip all items at once (also bounds a huge count of empty items).
             let size: usize = e.props.iter().map(|p| p.kind.min_size()).sum();
@@ -208,7 +332,8 @@ fn read_binary(
             if pos > body.len() {
                 let msg = format!(
                     "element {} ({} items) runs past the end of the file",
-                    e.name, e.count
+                    shown(&e.name),
+                    e.count
                 );
                 return Err(CloudError::Truncated {
                     path: path.to_path_buf(),
@@ -216,11 +341,24 @@ fn read_binary(
                 });
             }
         } else {
+            // Each item takes at least one byte (a list's count), so this ends within the data.
             for _ in 0..e.count {
                 pos = walk(path, e, body, pos, big, &mut |_, _| {})?;
             }
         }
     }
+    Ok(pos)
+}
+
+fn read_binary(
+    path: &Path,
+    big: bool,
+    (skipped, vertex, after): (&[Element], &Element, &[Element]),
+    body: &[u8],
+    r: &mut Reader,
+    notes: &mut Notes,
+) -> Result<()> {
+    let mut pos = skip_binary(path, skipped, body, 0, big)?;
     let min = vertex
         .props
         .iter()
@@ -238,10 +376,27 @@ fn read_binary(
             msg,
         });
     }
-    for i in 0..vertex.count {
+    for _ in 0..vertex.count {
         pos = walk(path, vertex, body, pos, big, &mut |p, v| r.set(p, v))?;
-        r.push()
-            .map_err(|m| CloudError::parse(path, 0, format!("vertex {i}: {m}")))?;
+        r.push(0);
+    }
+    r.conv.class_error(path)?;
+    match skip_binary(path, after, body, pos, big) {
+        Ok(end) => {
+            let rest = body.get(end..).unwrap_or_default();
+            if !rest.iter().all(u8::is_ascii_whitespace) {
+                let msg = format!(
+                    "{} bytes after the data the header declares ({}): more vertices than declared, or a wrong element count",
+                    rest.len(),
+                    declared(&[std::slice::from_ref(vertex), after])
+                );
+                return Err(CloudError::parse(path, 0, msg));
+            }
+        }
+        Err(_) => notes.add(format_args!(
+            "the elements after the vertices ({}) are cut short (ignored)",
+            declared(&[after])
+        )),
     }
     Ok(())
 }
@@ -259,7 +414,7 @@ fn walk(
     let short = |pos: usize| {
         CloudError::Truncated {
         path: path.to_path_buf(),
-        msg: format!("element {} ends past the end of the file ({} bytes of data, needed more at byte {pos})", e.name, body.len()),
+        msg: format!("element {} ends past the end of the file ({} bytes of data, needed more at byte {pos})", shown(&e.name), body.len()),
     }
     };
     for (k, p) in e.props.iter().enumerate() {
@@ -282,13 +437,16 @@ fn walk(
     Ok(pos)
 }
 
+#[allow(clippy::too_many_arguments)]
 fn read_ascii(
     path: &Path,
     end_line: usize,
     skipped: &[Element],
     vertex: &Element,
+    after: &[Element],
     body: &[u8],
     r: &mut Reader,
+    notes: &mut Notes,
 ) -> Result<()> {
     let text = String::from_utf8_lossy(body);
     let mut lines = text
@@ -296,7 +454,9 @@ fn read_ascii(
         .enumerate()
         .map(|(k, l)| (end_line + 1 + k, l))
         .filter(|(_, l)| !l.trim().is_empty());
-    let to_skip: usize = skipped.iter().map(|e| e.count).sum();
+    let to_skip = skipped
+        .iter()
+        .fold(0usize, |n, e| n.saturating_add(e.count));
     for _ in 0..to_skip {
         if lines.next().is_none() {
             let msg = format!(
@@ -325,12 +485,12 @@ fn read_ascii(
                     let what = if tok.is_empty() {
                         "missing".to_string()
                     } else {
-                        format!("'{tok}' is not a valid")
+                        format!("'{}' is not a valid", shown(tok))
                     };
                     CloudError::parse(
                         path,
                         line_no,
-                        format!("{what} value of vertex property {}", p.name),
+                        format!("{what} value of vertex property {}", shown(&p.name)),
                     )
                 })
             };
@@ -347,8 +507,26 @@ fn read_ascii(
                 }
             }
         }
-        r.push()
-            .map_err(|m| CloudError::parse(path, line_no, format!("vertex {i}: {m}")))?;
+        r.push(line_no);
+        r.conv.class_error(path)?;
+    }
+    // The items after the vertices take one line each; nothing may follow them.
+    let to_skip = after.iter().fold(0usize, |n, e| n.saturating_add(e.count));
+    let mut found = 0usize;
+    while found < to_skip && lines.next().is_some() {
+        found += 1;
+    }
+    if found < to_skip {
+        notes.add(format_args!(
+            "the elements after the vertices ({}) are cut short: {found} of {to_skip} lines (ignored)",
+            declared(&[after])
+        ));
+    } else if let Some((line_no, _)) = lines.next() {
+        let msg = format!(
+            "a line beyond the items the header declares ({}): more vertices than declared, or a wrong element count",
+            declared(&[std::slice::from_ref(vertex), after])
+        );
+        return Err(CloudError::parse(path, line_no, msg));
     }
     Ok(())
 }

@@ -43,6 +43,31 @@ impl Scalar {
         matches!(self, Scalar::F32 | Scalar::F64)
     }
 
+    /// The PCD `TYPE` letter: `F`, `U` or `I`.
+    pub(crate) fn pcd_letter(self) -> char {
+        match self {
+            Scalar::F32 | Scalar::F64 => 'F',
+            Scalar::U8 | Scalar::U16 | Scalar::U32 | Scalar::U64 => 'U',
+            Scalar::I8 | Scalar::I16 | Scalar::I32 | Scalar::I64 => 'I',
+        }
+    }
+
+    /// The PLY type name (`uint64`/`int64` for the 8-byte integers PLY does not have).
+    pub(crate) fn ply_name(self) -> &'static str {
+        match self {
+            Scalar::F32 => "float",
+            Scalar::F64 => "double",
+            Scalar::U8 => "uchar",
+            Scalar::U16 => "ushort",
+            Scalar::U32 => "uint",
+            Scalar::U64 => "uint64",
+            Scalar::I8 => "char",
+            Scalar::I16 => "short",
+            Scalar::I32 => "int",
+            Scalar::I64 => "int64",
+        }
+    }
+
     /// True for the unsigned integer types.
     pub(crate) fn is_unsigned(self) -> bool {
         matches!(self, Scalar::U8 | Scalar::U16 | Scalar::U32 | Scalar::U64)
@@ -63,20 +88,6 @@ impl Scalar {
             Scalar::I32 => decode_as!(i32, b, big_endian),
             Scalar::I64 => decode_as!(i64, b, big_endian),
         })
-    }
-
-    /// Decodes `n` little-endian values spaced `stride` bytes apart from the start of `src`,
-    /// converting each with `conv`; `None` if `src` is too short.
-    pub(crate) fn decode_column<T: Default + Clone>(
-        self,
-        src: &[u8],
-        stride: usize,
-        n: usize,
-        conv: impl Fn(f64) -> T,
-    ) -> Option<Vec<T>> {
-        let mut out = vec![T::default(); n];
-        self.decode_into(src, stride, &mut out, |o, v| *o = conv(v))?;
-        Some(out)
     }
 
     /// Decodes `out.len()` little-endian values spaced `stride` bytes apart from the start of
@@ -134,20 +145,6 @@ impl Scalar {
     }
 }
 
-/// A stored surface-class value as a class: `Err` with a message for a code no class has.
-pub(crate) fn class_from_value(v: f64) -> Result<crate::EntityClass, String> {
-    let code = (v.fract() == 0.0 && (0.0..=255.0).contains(&v)).then_some(v as u8);
-    code.and_then(crate::EntityClass::from_code)
-        .ok_or_else(|| format!("unknown surface class code {v}"))
-}
-
-/// A stored label value as an entity id: `Err` with a message unless it is an integer that fits a `u32`.
-pub(crate) fn entity_from_value(v: f64) -> Result<u32, String> {
-    (v.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&v))
-        .then_some(v as u32)
-        .ok_or_else(|| format!("label {v} is not an entity id (an integer 0..=4294967295)"))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -163,21 +160,17 @@ mod tests {
             .iter()
             .flat_map(|v| v.to_le_bytes())
             .collect();
-        assert_eq!(
-            Scalar::F32.decode_column(&data, 4, 3, |v| v as f32),
-            Some(vec![1.0, 2.0, 3.0])
-        );
-        assert_eq!(
-            Scalar::U16.decode_column(&data, 8, 2, |v| v),
-            Some(vec![0.0, 0.0])
-        );
-        assert_eq!(Scalar::F32.decode_column(&data, 4, 4, |v| v), None);
-        assert_eq!(Scalar::F32.decode_column(&data, 4, 0, |v| v), Some(vec![]));
+        let column = |ty: Scalar, stride: usize, n: usize| {
+            let mut out = vec![0.0; n];
+            ty.decode_into(&data, stride, &mut out, |o, v| *o = v)
+                .map(|()| out)
+        };
+        assert_eq!(column(Scalar::F32, 4, 3), Some(vec![1.0, 2.0, 3.0]));
+        assert_eq!(column(Scalar::U16, 8, 2), Some(vec![0.0, 0.0]));
+        assert_eq!(column(Scalar::F32, 4, 4), None);
+        assert_eq!(column(Scalar::F32, 4, 0), Some(vec![]));
         assert_eq!(Scalar::U8.parse("255"), Some(255.0));
         assert_eq!(Scalar::U8.parse("256"), None);
         assert!(Scalar::F32.parse("nan").is_some_and(f64::is_nan));
-        assert!(class_from_value(8.0).is_err());
-        assert!(entity_from_value(-1.0).is_err());
-        assert_eq!(entity_from_value(7.0), Ok(7));
     }
 }

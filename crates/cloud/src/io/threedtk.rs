@@ -18,7 +18,12 @@
 //!   the intensity. Old files start with a `W x H` line (e.g. `360 x 225`): it makes the cloud
 //!   organised (`H` rows of `W` columns) when `W * H` equals the point count, and is ignored
 //!   otherwise. Writing drops missing returns; it writes the `W x H` line only for an organised
-//!   cloud without missing returns.
+//!   cloud without missing returns. Reading is strict where a cut-off file could pass for a
+//!   shorter one: every line, the last included, ends with a newline (3DTK writes whole
+//!   lines, so a last line without one means the file was cut, possibly inside a number), every
+//!   point line has at least 3 numbers and as many used columns as the first, every coordinate
+//!   is finite (3DTK has no missing-return marker; the error quotes the line as written) and a
+//!   file without a point is an error ("no points").
 //! - `.pose`: position `x y z` (cm), then orientation `rx ry rz` in degrees, the Euler angles of
 //!   3DTK's `EulerToMatrix4` (see [`read_pose_3dtk`]).
 //! - `.frames`: one line per registration step: the 16 numbers of a column-major 4x4 matrix
@@ -26,10 +31,13 @@
 //!
 //! Both pose readers return `world_from_scan` in semsim's frame.
 
-use super::xyz::{check_columns, data_lines, parse_columns, read_text, valid_points};
+use super::text::{read_file, shown, text};
+use super::xyz::{
+    check_columns, data_lines, max_point_lines, no_points, parse_columns, valid_points,
+};
 use crate::atomic::write_atomically;
 use crate::cloud::{Organized, PointCloud};
-use crate::error::{CloudError, Result};
+use crate::error::{try_reserve, try_vec, CloudError, Result};
 use crate::poses::affine_from_mat4;
 use glam::{DAffine3, DMat3, DMat4, DVec3, DVec4, Vec3};
 use std::io::Write;
@@ -44,29 +52,67 @@ const P: DMat3 = DMat3::from_cols(
 
 /// Reads a 3DTK `.3d` scan into semsim's frame (metres, right-handed, z up).
 pub fn read_3d(path: &Path) -> Result<PointCloud> {
-    let text = read_text(path)?;
-    let mut lines = data_lines(&text).peekable();
+    parse_3d(path, &read_file(path)?)
+}
+
+/// Reads the bytes of a `.3d` scan; `path` is for messages.
+pub(crate) fn parse_3d(path: &Path, bytes: &[u8]) -> Result<PointCloud> {
+    let text = text(path, bytes)?;
+    check_last_line_complete(path, text)?;
+    let mut lines = data_lines(text).peekable();
     let shape = lines.peek().and_then(|(_, l)| shape_line(l));
     if shape.is_some() {
         lines.next();
     }
-    let mut points = Vec::new();
+    let cap = max_point_lines(text);
+    let mut points = try_vec(path, cap, "the points")?;
     let mut intensity = Vec::new();
     let mut used = None;
     for (line_no, line) in lines {
-        let (v, n) = parse_columns::<f64>(path, line_no, line)?;
+        let (v, n) = parse_columns::<f64>(path, line_no, line, true)?;
         check_columns(path, line_no, n, *used.get_or_insert(n))?;
         let [x, y, z, i] = v;
-        points.push((P * DVec3::new(x, y, z) / 100.0).as_vec3());
+        let p = (P * DVec3::new(x, y, z) / 100.0).as_vec3();
+        if !p.is_finite() {
+            let msg = format!(
+                "'{}' is beyond the range of a coordinate in metres",
+                shown(line)
+            );
+            return Err(CloudError::parse(path, line_no, msg));
+        }
+        points.push(p);
         if n == 4 {
+            if intensity.capacity() == 0 {
+                try_reserve(path, &mut intensity, cap, "the intensities")?;
+            }
             intensity.push(i as f32);
         }
     }
+    if points.is_empty() {
+        return Err(no_points(path, "x y z [reflectance]"));
+    }
     let mut cloud = PointCloud::from_points(points);
     cloud.intensity = (used == Some(4)).then_some(intensity);
-    cloud.organized = shape.filter(|o| o.rows * o.cols == cloud.len());
+    cloud.organized = shape.filter(|o| o.rows.checked_mul(o.cols) == Some(cloud.len()));
     cloud.check_finite(path)?;
     Ok(cloud)
+}
+
+/// Fails where the file's last line holds text but no newline: 3DTK writes whole lines, so
+/// the file was cut short (possibly inside a number, which would read as a different one).
+fn check_last_line_complete(path: &Path, text: &str) -> Result<()> {
+    let last = text.rsplit('\n').next().unwrap_or_default();
+    if last.trim().is_empty() {
+        return Ok(());
+    }
+    let line = text.matches('\n').count() + 1;
+    Err(CloudError::Truncated {
+        path: path.to_path_buf(),
+        msg: format!(
+            "line {line} ('{}') does not end with a newline: the file was cut short (every line of a .3d file ends with one)",
+            shown(last)
+        ),
+    })
 }
 
 /// Writes a 3DTK `.3d` scan (centimetres, left-handed, y up), missing returns dropped.
@@ -100,9 +146,18 @@ pub fn write_3d(path: &Path, cloud: &PointCloud) -> Result<()> {
 /// m[4] = -cy sz, m[5] = -sx sy sz + cx cz, m[6] = cx sy sz + sx cz, m[8] = sy, m[9] = -sx cy,
 /// m[10] = cx cy`.
 pub fn read_pose_3dtk(path: &Path) -> Result<DAffine3> {
-    let text = read_text(path)?;
+    parse_pose_3dtk(path, &read_file(path)?)
+}
+
+/// Reads the bytes of a `.pose` file; `path` is for messages.
+pub(crate) fn parse_pose_3dtk(path: &Path, bytes: &[u8]) -> Result<DAffine3> {
+    let text = text(path, bytes)?;
     let mut rows = Vec::with_capacity(2);
-    for (line_no, line) in data_lines(&text) {
+    for (line_no, line) in data_lines(text) {
+        if rows.len() == 2 {
+            let msg = "expected 2 lines (position in cm, orientation in degrees), found more";
+            return Err(CloudError::parse(path, line_no, msg));
+        }
         let v = numbers(path, line_no, line)?;
         let triple = <[f64; 3]>::try_from(v.as_slice()).map_err(|_| {
             CloudError::parse(
@@ -131,9 +186,14 @@ pub fn read_pose_3dtk(path: &Path) -> Result<DAffine3> {
 /// Reads a 3DTK `.frames` file: one `world_from_scan` per line (in semsim's frame), in file
 /// order; the last is the final registration. A file without frames is an error.
 pub fn read_frames_3dtk(path: &Path) -> Result<Vec<DAffine3>> {
-    let text = read_text(path)?;
+    parse_frames_3dtk(path, &read_file(path)?)
+}
+
+/// Reads the bytes of a `.frames` file; `path` is for messages.
+pub(crate) fn parse_frames_3dtk(path: &Path, bytes: &[u8]) -> Result<Vec<DAffine3>> {
+    let text = text(path, bytes)?;
     let mut out = Vec::new();
-    for (line_no, line) in data_lines(&text) {
+    for (line_no, line) in data_lines(text) {
         let v = numbers(path, line_no, line)?;
         let m = v
             .get(..16)
@@ -156,7 +216,7 @@ pub fn read_frames_3dtk(path: &Path) -> Result<Vec<DAffine3>> {
         )?);
     }
     if out.is_empty() {
-        return Err(CloudError::parse(path, 1, "no frame lines"));
+        return Err(CloudError::parse(path, 0, "no frame lines"));
     }
     Ok(out)
 }
@@ -199,7 +259,8 @@ fn numbers(path: &Path, line_no: usize, line: &str) -> Result<Vec<f64>> {
                 .ok()
                 .filter(|v| v.is_finite())
                 .ok_or_else(|| {
-                    CloudError::parse(path, line_no, format!("'{t}' is not a finite number"))
+                    let msg = format!("'{}' is not a finite number", shown(t));
+                    CloudError::parse(path, line_no, msg)
                 })
         })
         .collect()

@@ -1,15 +1,17 @@
 //! XYZ / TXT: one point per line, columns `x y z [intensity]` in metres, separated by
 //! whitespace or commas. Blank lines and lines starting with `#` are skipped; columns after the
 //! fourth are ignored. Whether there is an intensity is decided by the first point line, and
-//! every later line must have the same number of used columns (3, or 4 and more).
+//! every later line must have the same number of used columns (3, or 4 and more). A file
+//! without any point line is an error ("no points"); a UTF-8 byte-order mark is allowed.
 //!
 //! The format has no organised shape and no labels: writing drops the labels and the missing
 //! returns of an organised cloud, and numbers are written as the shortest decimal that reads
 //! back to the same `f32`, so a write-read round trip is exact.
 
+use super::text::{read_file, shown, text};
 use crate::atomic::write_atomically;
 use crate::cloud::PointCloud;
-use crate::error::{CloudError, Result};
+use crate::error::{try_reserve, try_vec, CloudError, Result};
 use glam::Vec3;
 use std::borrow::Cow;
 use std::io::Write;
@@ -18,23 +20,51 @@ use std::str::FromStr;
 
 /// Reads an XYZ/TXT file; a NaN or infinite coordinate is a [`CloudError::NonFinite`] error.
 pub fn read_xyz(path: &Path) -> Result<PointCloud> {
-    let text = read_text(path)?;
-    let mut points = Vec::new();
+    parse_xyz(path, &read_file(path)?)
+}
+
+/// Reads the bytes of an XYZ/TXT file; `path` is for messages.
+pub(crate) fn parse_xyz(path: &Path, bytes: &[u8]) -> Result<PointCloud> {
+    let text = text(path, bytes)?;
+    let cap = max_point_lines(text);
+    let mut points = try_vec(path, cap, "the points")?;
     let mut intensity = Vec::new();
     let mut used = None;
-    for (line_no, line) in data_lines(&text) {
-        let (v, n) = parse_columns::<f32>(path, line_no, line)?;
-        check_columns(path, line_no, n, *used.get_or_insert(n))?;
+    for (line_no, line) in data_lines(text) {
+        let (v, n) = parse_columns::<f32>(path, line_no, line, false)?;
+        let first = *used.get_or_insert(n);
+        check_columns(path, line_no, n, first)?;
         let [x, y, z, i] = v;
         points.push(Vec3::new(x, y, z));
         if n == 4 {
+            if intensity.capacity() == 0 {
+                try_reserve(path, &mut intensity, cap, "the intensities")?;
+            }
             intensity.push(i);
         }
+    }
+    if points.is_empty() {
+        return Err(no_points(path, "x y z [intensity]"));
     }
     let mut cloud = PointCloud::from_points(points);
     cloud.intensity = (used == Some(4)).then_some(intensity);
     cloud.check_finite(path)?;
     Ok(cloud)
+}
+
+/// The error for a text cloud without a single point line.
+pub(super) fn no_points(path: &Path, columns: &str) -> CloudError {
+    CloudError::parse(
+        path,
+        0,
+        format!("no points (the file has no line of numbers {columns})"),
+    )
+}
+
+/// The most point lines `text` can hold: a point line takes at least 6 bytes (`1 2 3` and its
+/// newline), so the points allocated never exceed what the file's bytes can hold.
+pub(super) fn max_point_lines(text: &str) -> usize {
+    (text.len() + 1) / 6
 }
 
 /// Writes an XYZ file atomically: `x y z [intensity]` per line, missing returns dropped.
@@ -53,19 +83,6 @@ pub fn write_xyz(path: &Path, cloud: &PointCloud) -> Result<()> {
     })
 }
 
-/// Reads a whole text file; invalid UTF-8 is a parse error naming its line.
-pub(super) fn read_text(path: &Path) -> Result<String> {
-    let bytes = std::fs::read(path).map_err(|e| CloudError::io(path, e))?;
-    String::from_utf8(bytes).map_err(|e| {
-        let good = e
-            .as_bytes()
-            .get(..e.utf8_error().valid_up_to())
-            .unwrap_or_default();
-        let line = 1 + good.iter().filter(|&&b| b == b'\n').count();
-        CloudError::parse(path, line, "not UTF-8 text")
-    })
-}
-
 /// The non-blank, non-comment lines, trimmed, with their 1-based line numbers.
 pub(super) fn data_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
     text.lines()
@@ -76,10 +93,13 @@ pub(super) fn data_lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
 
 /// The first four numbers of a line (separated by whitespace or commas) and how many of those
 /// four there are (at least 3, else an error).
-pub(super) fn parse_columns<T: FromStr + Copy + Default>(
+///
+/// With `finite`, a NaN or infinite number is an error naming the line and the text as written.
+pub(super) fn parse_columns<T: FromStr + Copy + Default + Finite>(
     path: &Path,
     line_no: usize,
     line: &str,
+    finite: bool,
 ) -> Result<([T; 4], usize)> {
     let mut v = [T::default(); 4];
     let mut n = 0;
@@ -87,16 +107,40 @@ pub(super) fn parse_columns<T: FromStr + Copy + Default>(
         .split(|c: char| c.is_whitespace() || c == ',')
         .filter(|t| !t.is_empty());
     for (slot, tok) in v.iter_mut().zip(tokens) {
-        *slot = tok
-            .parse()
-            .map_err(|_| CloudError::parse(path, line_no, format!("'{tok}' is not a number")))?;
+        *slot = tok.parse().map_err(|_| {
+            CloudError::parse(path, line_no, format!("'{}' is not a number", shown(tok)))
+        })?;
+        if finite && !slot.finite() {
+            let msg = format!("'{}' is not a finite number", shown(tok));
+            return Err(CloudError::parse(path, line_no, msg));
+        }
         n += 1;
     }
     if n < 3 {
-        let msg = format!("expected at least 3 columns (x y z), found {n} in '{line}'");
+        let msg = format!(
+            "expected at least 3 columns (x y z), found {n} in '{}'",
+            shown(line)
+        );
         return Err(CloudError::parse(path, line_no, msg));
     }
     Ok((v, n))
+}
+
+/// Numbers that can be checked for being finite.
+pub(super) trait Finite {
+    fn finite(self) -> bool;
+}
+
+impl Finite for f32 {
+    fn finite(self) -> bool {
+        self.is_finite()
+    }
+}
+
+impl Finite for f64 {
+    fn finite(self) -> bool {
+        self.is_finite()
+    }
 }
 
 /// Fails unless a line uses as many columns (3, or 4 with intensity) as the first point line.
@@ -130,6 +174,14 @@ mod tests {
         let path = dir.path().join("t.xyz");
         std::fs::write(&path, text).expect("write");
         read_xyz(&path)
+    }
+
+    #[test]
+    fn a_file_without_points_is_an_error() {
+        for text in ["", "\n\n", "# only a comment\n"] {
+            let e = read_str(text).expect_err("no points").to_string();
+            assert!(e.contains("t.xyz: no points"), "{e}");
+        }
     }
 
     #[test]

@@ -62,7 +62,15 @@ pub fn read_sequence(
             read.push(p.clone());
             poses_for(&files, &cloud::read_poses(&p)?, &p)?
         }
-        _ if files.iter().all(|f| f.with_extension("pose").is_file()) => {
+        None if files.iter().any(|f| f.with_extension("pose").is_file()) => {
+            if let Some(missing) = files.iter().find(|f| !f.with_extension("pose").is_file()) {
+                return Err(PipelineError::bad_input(format!(
+                    "{}: no {} beside it, while other scans have their 3DTK .pose file: give \
+                     every scan its .pose, or an odometry file (--odometry)",
+                    missing.display(),
+                    missing.with_extension("pose").display()
+                )));
+            }
             read.extend(files.iter().map(|f| f.with_extension("pose")));
             files
                 .iter()

@@ -8,9 +8,10 @@
 //! climbing events instead; chassis and arm contacts with steps are collisions.
 
 use crate::events::{Emitter, EventConfig, EventKind};
-use crate::world::tags::Part;
+use crate::world::tags::{Part, Tag};
 use crate::world::{entity_refs, World};
 use cloud::EntityClass;
+use rapier3d::prelude::{ContactManifold, ContactPair};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -53,33 +54,43 @@ pub(crate) fn scan(world: &World) -> ContactScan {
                 } else {
                     (pair.collider1, 1.0)
                 };
-                let Some(tag) = world.tag(other) else {
-                    continue;
+                // (the other entity's tag, the contact normal's z towards `c`) per touch.
+                let touches: Vec<(Tag, f64)> = if Some(other) == world.static_compound {
+                    compound_touches(pair, pair.collider1 == other, flip, min_impulse)
+                        .into_iter()
+                        .filter_map(|(sub, nz)| Some((world.static_tag(sub)?, nz)))
+                        .collect()
+                } else {
+                    let Some(tag) = world.tag(other) else {
+                        continue;
+                    };
+                    let mut touching = None;
+                    for m in pair.solver_manifolds() {
+                        if m.points.iter().map(|p| p.data.impulse).sum::<f32>() > min_impulse {
+                            // data.normal points from collider1 to collider2.
+                            touching = Some(flip * m.data.normal.z as f64);
+                            break;
+                        }
+                    }
+                    touching.map(|nz| (tag, nz)).into_iter().collect()
                 };
-                if tag.entity == robot.entity {
-                    continue;
-                }
-                let mut touching = None;
-                for m in pair.solver_manifolds() {
-                    if m.points.iter().map(|p| p.data.impulse).sum::<f32>() > min_impulse {
-                        // data.normal points from collider1 to collider2.
-                        touching = Some(flip * m.data.normal.z as f64);
-                        break;
+                for (tag, normal_z) in touches {
+                    if tag.entity == robot.entity {
+                        continue;
                     }
-                }
-                let Some(normal_z) = touching else { continue };
-                match (tag.class, me.part) {
-                    (EntityClass::Floor, Part::Wheel) => {
-                        on_floor.insert(me.index);
-                    }
-                    (EntityClass::Stairs, Part::Wheel) => on_stairs.push(WheelOnStairs {
-                        wheel: me.index,
-                        stairs: tag.entity,
-                        index: tag.index,
-                        normal_z,
-                    }),
-                    _ => {
-                        out.pairs.insert((ri, tag.entity));
+                    match (tag.class, me.part) {
+                        (EntityClass::Floor, Part::Wheel) => {
+                            on_floor.insert(me.index);
+                        }
+                        (EntityClass::Stairs, Part::Wheel) => on_stairs.push(WheelOnStairs {
+                            wheel: me.index,
+                            stairs: tag.entity,
+                            index: tag.index,
+                            normal_z,
+                        }),
+                        _ => {
+                            out.pairs.insert((ri, tag.entity));
+                        }
                     }
                 }
             }
@@ -88,6 +99,67 @@ pub(crate) fn scan(world: &World) -> ContactScan {
         out.wheels_on_floor.push(on_floor);
     }
     out
+}
+
+/// The sub-shapes of the static compound (collider 1 of the pair if `static_is_1`) that
+/// exchanged more than `min_impulse` with the other collider in the last step, each with the
+/// contact normal's z (times `flip`), in the order of the pair's manifolds.
+///
+/// Rapier hands the solver "clusters" instead of the per-sub-shape manifolds when a pair has
+/// several (merging manifolds with nearly the same normal, e.g. the floor and a stair tread):
+/// their points are copies of the manifolds' points (moved into collider 1's frame), and only
+/// they receive impulses, so each impulse goes back to the manifold its point was copied from.
+fn compound_touches(
+    pair: &ContactPair,
+    static_is_1: bool,
+    flip: f64,
+    min_impulse: f32,
+) -> Vec<(u32, f64)> {
+    let Some(rigid) = pair.rigid() else {
+        return vec![];
+    };
+    let sub = |m: &ContactManifold| {
+        if static_is_1 {
+            m.subshape1
+        } else {
+            m.subshape2
+        }
+    };
+    // (sub-shape, impulse, normal z), by first appearance.
+    let mut acc: Vec<(u32, f32, f64)> = vec![];
+    let mut add = |m: &ContactManifold, impulse: f32| {
+        let s = sub(m);
+        match acc.iter_mut().find(|a| a.0 == s) {
+            Some(a) => a.1 += impulse,
+            None => acc.push((s, impulse, flip * m.data.normal.z as f64)),
+        }
+    };
+    if rigid.solver_clusters.is_empty() {
+        for m in &rigid.manifolds {
+            add(m, m.points.iter().map(|p| p.data.impulse).sum());
+        }
+    } else {
+        for cluster in &rigid.solver_clusters {
+            for p in cluster.points.iter().filter(|p| p.data.impulse > 0.0) {
+                let origin = rigid.manifolds.iter().find(|m| {
+                    m.points.iter().any(|q| {
+                        let q1 = match m.subshape_pos1() {
+                            Some(pos1) => *pos1 * q.local_p1,
+                            None => q.local_p1,
+                        };
+                        q1 == p.local_p1
+                    })
+                });
+                if let Some(m) = origin {
+                    add(m, p.data.impulse);
+                }
+            }
+        }
+    }
+    acc.into_iter()
+        .filter(|a| a.1 > min_impulse)
+        .map(|a| (a.0, a.2))
+        .collect()
 }
 
 /// One touching pair.

@@ -12,6 +12,7 @@ use crate::spec::{
 use cloud::EntityClass;
 use scanner::{Building, BuildingGeometry, Door, Hinge, Leaf, Swing, Wall};
 use std::collections::HashMap;
+use std::path::Path;
 
 /// A wall shorter than this (m) has no direction: it gets no doors and no free spaces.
 const MIN_WALL_LENGTH_M: f64 = 1e-9;
@@ -27,6 +28,13 @@ impl WorldSpec {
     /// The ground-truth world of a (validated) building, with default door properties.
     pub fn from_building(b: &Building) -> Result<WorldSpec> {
         WorldSpec::from_building_with(b, &ImportConfig::default())
+    }
+
+    /// The ground-truth world of a building file (TOML/JSON, see [`Building::load`]), with
+    /// default door properties; every error names the file.
+    pub fn from_building_file(path: &Path) -> Result<WorldSpec> {
+        let b = Building::load(path)?;
+        WorldSpec::from_building(&b).map_err(|e| e.in_source(&path.display().to_string()))
     }
 
     /// The ground-truth world of a (validated) building.

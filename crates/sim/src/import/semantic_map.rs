@@ -14,6 +14,7 @@ use crate::spec::{
 };
 use cloud::EntityClass;
 use semantic::{HingeEdge, OrientedBox, RelationType, SemanticMap, SwingSide};
+use std::path::Path;
 
 /// The name a semantic entity gets in the simulation.
 pub(crate) fn semantic_name(class: EntityClass, id: u32) -> String {
@@ -32,6 +33,19 @@ impl WorldSpec {
     /// The world of a semantic map, with default door properties.
     pub fn from_semantic_map(map: &SemanticMap) -> Result<WorldSpec> {
         WorldSpec::from_semantic_map_with(map, &ImportConfig::default())
+    }
+
+    /// The world of a semantic map file (`semantic_map.json`, see `semantic::SemanticMap::load`),
+    /// with default door properties; every error names the file.
+    pub fn from_semantic_map_file(path: &Path) -> Result<WorldSpec> {
+        WorldSpec::from_semantic_map_file_with(path, &ImportConfig::default())
+    }
+
+    /// The world of a semantic map file; every error names the file.
+    pub fn from_semantic_map_file_with(path: &Path, cfg: &ImportConfig) -> Result<WorldSpec> {
+        let map = SemanticMap::load(path)?;
+        WorldSpec::from_semantic_map_with(&map, cfg)
+            .map_err(|e| e.in_source(&path.display().to_string()))
     }
 
     /// The world of a semantic map. A door not `connected_via_joint` to a wall is an error

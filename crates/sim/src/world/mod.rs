@@ -18,6 +18,7 @@ use door::{spawn_door, DoorBody};
 use glam::{Quat, Vec3};
 use rapier3d::prelude::{
     ColliderBuilder, ColliderHandle, PhysicsWorld, Pose, RigidBodyBuilder, RigidBodyHandle,
+    SharedShape,
 };
 use robot::Robot;
 use serde::{Deserialize, Serialize};
@@ -56,6 +57,108 @@ pub struct World {
     pub(crate) robots: Vec<Robot>,
     pub(crate) steps: u64,
     pub(crate) config: WorldConfig,
+    /// The one collider holding every static box when they overlap too much to be colliders
+    /// of their own (see [`add_statics`]); `None` when each box is its own collider.
+    #[serde(default)]
+    pub(crate) static_compound: Option<ColliderHandle>,
+    /// The packed [`Tag`] of each of `static_compound`'s sub-shapes, by sub-shape index.
+    #[serde(default)]
+    pub(crate) static_tags: Vec<u128>,
+}
+
+/// How many pairs of static boxes may have overlapping bounding boxes before the boxes are
+/// merged into one compound collider. Rapier's broad phase lists every overlapping pair of
+/// colliders when they are added (8 bytes each; it drops static-static pairs only afterwards),
+/// so thousands of boxes at one place would cost gigabytes; a compound makes no such pairs.
+/// Ordinary buildings stay far below this and keep one collider per box.
+pub(crate) const STATIC_PAIR_BUDGET: usize = 100_000;
+
+/// The axis-aligned bounds (min, max) of a box, widened by `margin`.
+fn bounds(b: &BoxSpec, margin: f64) -> ([f64; 3], [f64; 3]) {
+    let (s, c) = b.yaw_deg.to_radians().sin_cos();
+    let h = b.half_extents_m;
+    let e = [
+        c.abs() * h[0] + s.abs() * h[1] + margin,
+        s.abs() * h[0] + c.abs() * h[1] + margin,
+        h[2] + margin,
+    ];
+    let m = b.center_m;
+    (
+        [m[0] - e[0], m[1] - e[1], m[2] - e[2]],
+        [m[0] + e[0], m[1] + e[1], m[2] + e[2]],
+    )
+}
+
+/// Whether more than `budget` pairs of the boxes have overlapping bounds (widened by 10 cm,
+/// more than rapier's margins). Sort and sweep along x; it gives up (answering yes) after
+/// `64 * budget` comparisons, so it is cheap even when every box overlaps every other.
+pub(crate) fn overlaps_exceed(boxes: &[&BoxSpec], budget: usize) -> bool {
+    let mut b: Vec<([f64; 3], [f64; 3])> = boxes.iter().map(|b| bounds(b, 0.1)).collect();
+    b.sort_by(|p, q| p.0[0].total_cmp(&q.0[0]));
+    let (mut pairs, mut checks) = (0usize, 0usize);
+    for (i, (lo, hi)) in b.iter().enumerate() {
+        for (lo2, hi2) in &b[i + 1..] {
+            if lo2[0] > hi[0] {
+                break;
+            }
+            checks += 1;
+            if lo2[1] <= hi[1] && lo[1] <= hi2[1] && lo2[2] <= hi[2] && lo[2] <= hi2[2] {
+                pairs += 1;
+            }
+            if pairs > budget || checks > 64 * budget {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// Makes the colliders of the static boxes: one each (tagged in its user data), or, when they
+/// overlap much ([`STATIC_PAIR_BUDGET`]), one compound collider with a sub-shape per box, whose
+/// tags are returned by sub-shape index.
+fn add_statics(
+    physics: &mut PhysicsWorld,
+    statics: &[(&BoxSpec, Tag)],
+    friction: f32,
+) -> (Option<ColliderHandle>, Vec<u128>) {
+    let fixed_groups = groups(G_STATIC, G_ROBOT | G_DOOR);
+    let boxes: Vec<&BoxSpec> = statics.iter().map(|(b, _)| *b).collect();
+    if !overlaps_exceed(&boxes, STATIC_PAIR_BUDGET) {
+        for (b, tag) in statics {
+            physics.colliders.insert(
+                cuboid(b)
+                    .position(pose_of(b))
+                    .friction(friction)
+                    .collision_groups(fixed_groups)
+                    .user_data(tag.pack()),
+            );
+        }
+        return (None, vec![]);
+    }
+    let parts = statics
+        .iter()
+        .map(|(b, _)| {
+            let h = b.half_extents_m;
+            (
+                pose_of(b),
+                SharedShape::cuboid(h[0] as f32, h[1] as f32, h[2] as f32),
+            )
+        })
+        .collect();
+    let tag = Tag {
+        entity: 0,
+        class: EntityClass::Wall,
+        part: Part::Static,
+        index: 0,
+    };
+    let handle = physics.colliders.insert(
+        ColliderBuilder::compound(parts)
+            .friction(friction)
+            .collision_groups(fixed_groups)
+            .user_data(tag.pack()),
+    );
+    let tags = statics.iter().map(|(_, t)| t.pack()).collect();
+    (Some(handle), tags)
 }
 
 pub(crate) fn pose_of(b: &BoxSpec) -> Pose {
@@ -86,16 +189,8 @@ impl World {
         physics.integration_parameters.max_ccd_substeps = config.ccd_substeps;
         let ground = physics.bodies.insert(RigidBodyBuilder::fixed());
         let friction = config.static_friction as f32;
-        let fixed_groups = groups(G_STATIC, G_ROBOT | G_DOOR);
-        let add_fixed = |physics: &mut PhysicsWorld, b: &BoxSpec, tag: Tag| {
-            physics.colliders.insert(
-                cuboid(b)
-                    .position(pose_of(b))
-                    .friction(friction)
-                    .collision_groups(fixed_groups)
-                    .user_data(tag.pack()),
-            );
-        };
+        // The static boxes, in the order their colliders have always been made in.
+        let mut statics: Vec<(&BoxSpec, Tag)> = Vec::with_capacity(spec.static_box_count());
         for f in &spec.fixed {
             let tag = Tag {
                 entity: f.entity,
@@ -103,7 +198,7 @@ impl World {
                 part: Part::Static,
                 index: 0,
             };
-            add_fixed(&mut physics, &f.geometry, tag);
+            statics.push((&f.geometry, tag));
         }
         let mut stairs = vec![];
         for s in &spec.stairs {
@@ -114,7 +209,7 @@ impl World {
                     part: Part::Step,
                     index: step.index as u16,
                 };
-                add_fixed(&mut physics, &step.geometry, tag);
+                statics.push((&step.geometry, tag));
             }
             if let Some(l) = &s.landing {
                 let tag = Tag {
@@ -123,7 +218,7 @@ impl World {
                     part: Part::Landing,
                     index: s.steps.len() as u16,
                 };
-                add_fixed(&mut physics, l, tag);
+                statics.push((l, tag));
             }
             stairs.push(StairsInfo {
                 entity: s.entity,
@@ -131,6 +226,7 @@ impl World {
                 has_landing: s.landing.is_some(),
             });
         }
+        let (static_compound, static_tags) = add_statics(&mut physics, &statics, friction);
         let mut free_spaces = vec![];
         for f in &spec.free_spaces {
             let tag = Tag {
@@ -171,6 +267,8 @@ impl World {
             robots: vec![],
             steps: 0,
             config,
+            static_compound,
+            static_tags,
         })
     }
 
@@ -244,6 +342,17 @@ impl World {
     pub(crate) fn step_physics(&mut self) {
         self.physics.step();
         self.steps += 1;
+    }
+
+    /// The tag of sub-shape `i` of the static compound (see [`add_statics`]).
+    pub(crate) fn static_tag(&self, i: u32) -> Option<Tag> {
+        self.static_tags.get(i as usize).map(|t| Tag::unpack(*t))
+    }
+
+    /// Whether the static boxes are one compound collider (they overlap too much to be
+    /// colliders of their own).
+    pub fn statics_merged(&self) -> bool {
+        self.static_compound.is_some()
     }
 
     /// The tag of a collider (static if it has none).

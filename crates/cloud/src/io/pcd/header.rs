@@ -3,6 +3,7 @@
 use super::PcdEncoding;
 use crate::error::{CloudError, Result};
 use crate::io::scalar::Scalar;
+use crate::io::text::shown;
 use std::path::Path;
 
 /// One field of the file's point layout.
@@ -29,8 +30,6 @@ pub(super) struct Header {
     /// Byte offset of the data (just after the `DATA` line).
     pub data_offset: usize,
     pub data_line: usize,
-    pub fields_line: usize,
-    pub type_line: usize,
 }
 
 /// A header line's values with its 1-based line number.
@@ -48,7 +47,7 @@ struct Lines<'a> {
     viewpoint: Entry<'a>,
 }
 
-/// Parses the header at the start of `bytes`.
+/// Parses the header at the start of `bytes` (a byte-order mark already removed).
 pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Header> {
     let err = |line: usize, msg: String| CloudError::parse(path, line, msg);
     let mut lines = Lines::default();
@@ -89,14 +88,17 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Header> {
                     other => {
                         let msg = format!(
                             "DATA must be ascii, binary or binary_compressed, found '{}'",
-                            other.unwrap_or_default()
+                            shown(other.unwrap_or_default())
                         );
                         return Err(err(line_no, msg));
                     }
                 };
                 break (enc, line_no);
             }
-            _ => return Err(err(line_no, format!("unknown header keyword '{key}'"))),
+            _ => {
+                let msg = format!("unknown header keyword '{}'", shown(key));
+                return Err(err(line_no, msg));
+            }
         }
     };
     build(path, lines, encoding, data_line, pos)
@@ -134,15 +136,15 @@ fn build<'a>(
     for (((name, size), ty), count) in names.iter().zip(&sizes).zip(&types).zip(&counts) {
         let size: usize = size
             .parse()
-            .map_err(|_| err(size_line, format!("SIZE '{size}' is not a number")))?;
+            .map_err(|_| err(size_line, format!("SIZE '{}' is not a number", shown(size))))?;
         let ty = scalar(ty, size).ok_or_else(|| {
-            err(type_line, format!("field {name}: TYPE {ty} with SIZE {size} is not supported (F: 4 or 8; I, U: 1, 2, 4 or 8)"))
+            err(type_line, format!("field {}: TYPE {} with SIZE {size} is not supported (F: 4 or 8; I, U: 1, 2, 4 or 8)", shown(name), shown(ty)))
         })?;
         let count = count.parse::<usize>().ok().filter(|&c| c > 0);
         let count = count.ok_or_else(|| {
             err(
                 count_line,
-                format!("field {name}: COUNT must be a positive integer"),
+                format!("field {}: COUNT must be a positive integer", shown(name)),
             )
         })?;
         fields.push(Field {
@@ -155,6 +157,12 @@ fn build<'a>(
             .checked_mul(size)
             .and_then(|b| offset.checked_add(b))
             .ok_or_else(|| err(count_line, "the point size overflows".into()))?;
+    }
+    for axis in ["x", "y", "z"] {
+        if !fields.iter().any(|f| f.name == axis) {
+            let msg = format!("no field {axis} (FIELDS must include x y z)");
+            return Err(err(fields_line, msg));
+        }
     }
     let (width_line, width) = one_number(path, &need("WIDTH", l.width)?)?;
     let (height_line, height) = match &l.height {
@@ -196,8 +204,6 @@ fn build<'a>(
         encoding,
         data_offset,
         data_line,
-        fields_line,
-        type_line,
     })
 }
 
@@ -220,7 +226,8 @@ fn scalar(ty: &str, size: usize) -> Option<Scalar> {
 fn one_number(path: &Path, (line, vals): &(usize, Vec<&str>)) -> Result<(usize, usize)> {
     match vals.as_slice() {
         [v] => v.parse().map(|n| (*line, n)).map_err(|_| {
-            CloudError::parse(path, *line, format!("'{v}' is not a non-negative integer"))
+            let msg = format!("'{}' is not a non-negative integer", shown(v));
+            CloudError::parse(path, *line, msg)
         }),
         _ => Err(CloudError::parse(
             path,
@@ -239,23 +246,22 @@ fn viewpoint(path: &Path, entry: Entry<'_>) -> Result<[f32; 7]> {
         .iter()
         .filter_map(|v| v.parse::<f32>().ok().filter(|v| v.is_finite()))
         .collect();
-    let Ok(mut v) = <[f32; 7]>::try_from(nums) else {
+    let Ok(v) = <[f32; 7]>::try_from(nums) else {
         return Err(err("expected 7 finite numbers: tx ty tz qw qx qy qz"));
     };
-    let norm = v
-        .get(3..)
-        .unwrap_or_default()
-        .iter()
-        .map(|q| q * q)
-        .sum::<f32>()
-        .sqrt();
+    // In f64: the squares of large f32 components would overflow in f32.
+    let [tx, ty, tz, q @ ..] = v;
+    let q = q.map(f64::from);
+    let norm = q.iter().map(|c| c * c).sum::<f64>().sqrt();
     if norm < 1e-6 {
         return Err(err("the orientation quaternion is zero"));
     }
-    if (norm - 1.0).abs() > 1e-5 {
-        v.iter_mut().skip(3).for_each(|q| *q /= norm);
-    }
-    Ok(v)
+    let q = if (norm - 1.0).abs() > 1e-5 {
+        q.map(|c| (c / norm) as f32)
+    } else {
+        q.map(|c| c as f32)
+    };
+    Ok([tx, ty, tz, q[0], q[1], q[2], q[3]])
 }
 
 #[cfg(test)]

@@ -3,6 +3,7 @@
 use super::PlyEncoding;
 use crate::error::{CloudError, Result};
 use crate::io::scalar::Scalar;
+use crate::io::text::shown;
 use crate::PointCloud;
 use std::path::Path;
 
@@ -51,7 +52,7 @@ pub(super) struct Header {
     pub end_line: usize,
 }
 
-/// Parses the header at the start of `bytes`.
+/// Parses the header at the start of `bytes` (a byte-order mark already removed).
 pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Header> {
     let err = |line: usize, msg: String| CloudError::parse(path, line, msg);
     let mut encoding = None;
@@ -91,7 +92,7 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Header> {
                     "ascii" => PlyEncoding::Ascii,
                     "binary_little_endian" => PlyEncoding::BinaryLittleEndian,
                     "binary_big_endian" => PlyEncoding::BinaryBigEndian,
-                    _ => return Err(err(line_no, format!("unknown format '{enc}'"))),
+                    _ => return Err(err(line_no, format!("unknown format '{}'", shown(enc)))),
                 });
             }
             ["format", ..] => {
@@ -100,7 +101,10 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Header> {
             }
             ["element", name, count] => {
                 let count = count.parse().map_err(|_| {
-                    err(line_no, format!("element count '{count}' is not a number"))
+                    err(
+                        line_no,
+                        format!("element count '{}' is not a number", shown(count)),
+                    )
                 })?;
                 elements.push(Element {
                     name: (*name).into(),
@@ -119,7 +123,12 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Header> {
                         name,
                     ),
                     [t, name] => (Kind::Scalar(scalar(path, line_no, t)?), name),
-                    _ => return Err(err(line_no, format!("malformed property line '{line}'"))),
+                    _ => {
+                        return Err(err(
+                            line_no,
+                            format!("malformed property line '{}'", shown(line)),
+                        ))
+                    }
                 };
                 let e = elements
                     .last_mut()
@@ -131,7 +140,12 @@ pub(super) fn parse(path: &Path, bytes: &[u8]) -> Result<Header> {
                 });
             }
             ["end_header"] => break,
-            _ => return Err(err(line_no, format!("unexpected header line '{line}'"))),
+            _ => {
+                return Err(err(
+                    line_no,
+                    format!("unexpected header line '{}'", shown(line)),
+                ))
+            }
         }
     }
     let encoding = encoding.ok_or_else(|| err(line_no, "the header has no format line".into()))?;
@@ -157,7 +171,7 @@ fn scalar(path: &Path, line: usize, name: &str) -> Result<Scalar> {
             return Err(CloudError::parse(
                 path,
                 line,
-                format!("unknown property type '{name}'"),
+                format!("unknown property type '{}'", shown(name)),
             ))
         }
     })

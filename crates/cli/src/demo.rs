@@ -32,6 +32,7 @@ pub fn run(a: DemoArgs, cfg: &Config) -> anyhow::Result<()> {
 
     let scenario = ScenarioSource::load(None)?;
     let chain_t0 = Instant::now();
+    crate::interrupt::install();
     let mut printer = crate::print::Printer::default();
     let chain = scans_to_verdict(
         &demo.input,

@@ -8,6 +8,7 @@ mod convert;
 mod demo;
 mod exit;
 mod info;
+mod interrupt;
 mod map;
 mod print;
 mod progress;

@@ -5,6 +5,7 @@ use crate::progress::scan_bar;
 use indicatif::ProgressBar;
 use pipeline::{ChainDirs, ChainOutcome, Observer, Registration};
 use semantic::MapOutput;
+use std::ops::ControlFlow;
 use std::path::Path;
 
 /// Prints the registration table (with errors against ground truth where known).
@@ -66,9 +67,15 @@ pub fn simulation_written(dir: &Path) {
     );
 }
 
-/// `Ok` for a passed verdict; an error (exit 1) naming the report for a failed one.
-pub fn verdict(passed: bool, dir: &Path) -> anyhow::Result<()> {
-    if !passed {
+/// `Ok` for a passed verdict; an error (exit 1) naming the report for a failed or interrupted one.
+pub fn verdict(outcome: &sim::Outcome, dir: &Path) -> anyhow::Result<()> {
+    if let Some(t) = outcome.verdict.interrupted_at_s {
+        anyhow::bail!(
+            "verdict: FAILED: interrupted at {t:.2} s (events so far in {})",
+            dir.display()
+        );
+    }
+    if !outcome.verdict.passed {
         anyhow::bail!("verdict: FAILED (see {})", dir.join("report.md").display());
     }
     println!("verdict: PASSED");
@@ -79,6 +86,16 @@ pub fn verdict(passed: bool, dir: &Path) -> anyhow::Result<()> {
 #[derive(Default)]
 pub struct Printer {
     bar: Option<ProgressBar>,
+    sim_bar: Option<ProgressBar>,
+}
+
+impl Printer {
+    /// Clears the progress bars still shown.
+    pub fn clear(&mut self) {
+        for bar in [self.bar.take(), self.sim_bar.take()].into_iter().flatten() {
+            bar.finish_and_clear();
+        }
+    }
 }
 
 impl Observer for Printer {
@@ -107,7 +124,21 @@ impl Observer for Printer {
         map(output);
     }
 
+    fn simulating(&mut self, sim_time_s: f64, time_limit_s: f64) -> ControlFlow<()> {
+        self.sim_bar
+            .get_or_insert_with(|| crate::progress::sim_bar(time_limit_s))
+            .set_position(sim_time_s as u64);
+        if crate::interrupt::requested() {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    }
+
     fn simulated(&mut self, _outcome: &sim::Outcome, report: &str) {
+        if let Some(bar) = self.sim_bar.take() {
+            bar.finish_and_clear();
+        }
         println!("{report}");
     }
 

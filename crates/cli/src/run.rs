@@ -35,8 +35,9 @@ pub fn run(a: RunArgs, cfg: &Config) -> anyhow::Result<()> {
     let scenario = ScenarioSource::load(a.scenario.as_deref())?;
     let input = read_sequence(&a.inputs, a.odometry.as_deref(), None)?;
     let scans = read_scans(&input.files, a.max_range_m)?;
+    crate::interrupt::install();
     let mut printer = crate::print::Printer::default();
     let outcome = scans_to_verdict(&input, scans, &scenario, cfg, &a.out, &mut printer)?;
     println!("scans to verdict in {:.1} s", t0.elapsed().as_secs_f64());
-    crate::print::verdict(outcome.passed(), &a.out.join("simulation"))
+    crate::print::verdict(&outcome.simulation, &a.out.join("simulation"))
 }

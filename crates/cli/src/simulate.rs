@@ -3,7 +3,7 @@
 //! description (ground truth).
 
 use clap::Args;
-use pipeline::{simulate, write_simulation, ScenarioSource};
+use pipeline::{simulate, write_simulation, Observer, ScenarioSource};
 use sim::WorldSpec;
 use std::path::PathBuf;
 
@@ -30,13 +30,17 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
     pipeline::check_output_dir(&a.out)?;
     let source = ScenarioSource::load(a.scenario.as_deref())?;
     let world = match &a.map {
-        Some(m) => WorldSpec::from_semantic_map(&semantic::SemanticMap::load(m)?)?,
+        Some(m) => WorldSpec::from_semantic_map_file(m)?,
         None => WorldSpec::from_building(&source.building(a.building.as_deref())?)?,
     };
-    let outcome = simulate(&world, &source)?;
+    crate::interrupt::install();
+    let mut printer = crate::print::Printer::default();
+    let limit_s = source.scenario.time_limit_s;
+    let outcome = simulate(&world, &source, &mut |t| printer.simulating(t, limit_s))?;
+    printer.clear();
     std::fs::create_dir_all(&a.out).map_err(|e| cloud::CloudError::io(&a.out, e))?;
     let report = write_simulation(&outcome, &source, &a.out)?;
     println!("{report}");
     crate::print::simulation_written(&a.out);
-    crate::print::verdict(outcome.verdict.passed, &a.out)
+    crate::print::verdict(&outcome, &a.out)
 }

@@ -1,13 +1,13 @@
 //! Evaluation of door openings and leaves (see the crate docs).
 
 use crate::config::EvalConfig;
-use crate::line::Line2;
 use crate::score::ClassScore;
 use crate::truth::Truth;
 use crate::Evaluation;
 use cloud::EntityClass;
 use glam::DVec2;
 use scanner::{Building, Hinge, Swing};
+use semantic::Line2;
 use semantic::{RelationType, SemanticMap, SwingSide};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;

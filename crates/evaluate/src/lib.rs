@@ -49,7 +49,6 @@ mod config;
 mod doors;
 mod ground_truth;
 mod labels;
-mod line;
 mod score;
 mod slabs;
 mod stairs;

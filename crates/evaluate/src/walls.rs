@@ -2,13 +2,14 @@
 //! map's walls, and the end errors.
 
 use crate::config::EvalConfig;
-use crate::line::{undirected_angle_deg, Line2};
 use crate::score::ClassScore;
 use crate::truth::Truth;
 use crate::Evaluation;
 use cloud::EntityClass;
 use glam::DVec2;
 use scanner::Building;
+use semantic::undirected_angle_deg;
+use semantic::Line2;
 use semantic::SemanticMap;
 use serde::{Deserialize, Serialize};
 

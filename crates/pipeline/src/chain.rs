@@ -13,6 +13,7 @@ use crate::simulate::{simulate, write_simulation, ScenarioSource};
 use cloud::PointCloud;
 use semantic::MapOutput;
 use sim::{Outcome, WorldSpec};
+use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 
 /// What the chain reports as it goes (the CLI prints it; the console streams it). Every
@@ -28,6 +29,11 @@ pub trait Observer {
     fn registered(&mut self, _registration: &Registration) {}
     /// The semantic map is done.
     fn mapped(&mut self, _map: &MapOutput) {}
+    /// The simulation has reached `sim_time_s` of at most `time_limit_s`; `Break` stops it
+    /// cleanly (the outcome then says it was interrupted).
+    fn simulating(&mut self, _sim_time_s: f64, _time_limit_s: f64) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
     /// The scenario ran and was judged; `report` is what `report.md` holds.
     fn simulated(&mut self, _outcome: &Outcome, _report: &str) {}
     /// Every stage's files are written into `dirs`.
@@ -127,7 +133,8 @@ pub fn scans_to_verdict(
         ),
     );
     let world = WorldSpec::from_semantic_map(&map.map)?;
-    let simulation = simulate(&world, scenario)?;
+    let limit_s = scenario.scenario.time_limit_s;
+    let simulation = simulate(&world, scenario, &mut |t| observer.simulating(t, limit_s))?;
     observer.simulated(
         &simulation,
         &sim::report_markdown(&simulation, &sim::ReportConfig::default()),

@@ -4,6 +4,7 @@
 use crate::error::Result;
 use scanner::Building;
 use sim::{Outcome, ReportConfig, RobotModel, Scenario, WorldSpec};
+use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 
 /// A scenario with its text (written beside the outputs) and the folder its relative paths
@@ -55,9 +56,20 @@ impl ScenarioSource {
     }
 }
 
-/// Runs the scenario in `world` and judges it.
-pub fn simulate(world: &WorldSpec, source: &ScenarioSource) -> Result<Outcome> {
-    Ok(sim::run_scenario(world, &source.scenario, &source.robot)?)
+/// Runs the scenario in `world` and judges it. `progress(sim_time_s)` is called every few
+/// steps; returning `ControlFlow::Break` stops the run cleanly (Ctrl-C): the outcome keeps the
+/// events so far and its verdict says it was interrupted.
+pub fn simulate(
+    world: &WorldSpec,
+    source: &ScenarioSource,
+    progress: &mut dyn FnMut(f64) -> ControlFlow<()>,
+) -> Result<Outcome> {
+    Ok(sim::run_scenario_with(
+        world,
+        &source.scenario,
+        &source.robot,
+        progress,
+    )?)
 }
 
 /// Writes `events.jsonl`, `trajectory.csv`, `report.md` and `scenario.toml` into `out`

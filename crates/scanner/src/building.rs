@@ -221,10 +221,16 @@ impl Building {
         let is_json = path
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("json"));
-        if !is_json {
-            return Building::from_toml_str(&text, path);
+        if is_json {
+            Building::from_json_str(&text, path)
+        } else {
+            Building::from_toml_str(&text, path)
         }
-        let b: Building = serde_json::from_str(&text).map_err(|e| ScannerError::Syntax {
+    }
+
+    /// Parses and validates a JSON description; `path` only names the source in errors.
+    pub fn from_json_str(text: &str, path: &Path) -> Result<Building> {
+        let b: Building = serde_json::from_str(text).map_err(|e| ScannerError::Syntax {
             path: path.to_path_buf(),
             msg: e.to_string(),
         })?;

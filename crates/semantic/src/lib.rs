@@ -101,6 +101,7 @@ pub use merge::{MergeConfig, Segment};
 pub use net::NetConfig;
 pub use noise_filter::{noise_filter, NoiseFilterConfig};
 pub use pipeline::{build_semantic_map, MapOutput, SemanticConfig, StageTime};
+pub use points::{undirected_angle_deg, Line2};
 pub use projection::{HeightBand, ProjectionConfig, ProjectionValue};
 pub use render::{class_color, render_labels, render_segments, render_top_view, save_png};
 pub use skeleton::skeletonize;

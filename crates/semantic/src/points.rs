@@ -123,10 +123,13 @@ impl XyIndex {
     }
 }
 
-/// A 2D line through `origin` with unit direction `dir`; `normal` is `dir` turned left.
+/// A 2D line through `origin` with unit direction `dir`; `normal` is `dir` turned left (the
+/// map frame's lines along walls, shared with the evaluation).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Line2 {
+pub struct Line2 {
+    /// A point on the line.
     pub origin: DVec2,
+    /// Its unit direction.
     pub dir: DVec2,
 }
 
@@ -173,7 +176,7 @@ impl Line2 {
 }
 
 /// The angle between two undirected directions, in degrees (0..=90).
-pub(crate) fn undirected_angle_deg(a: DVec2, b: DVec2) -> f64 {
+pub fn undirected_angle_deg(a: DVec2, b: DVec2) -> f64 {
     let c = a
         .normalize_or_zero()
         .dot(b.normalize_or_zero())

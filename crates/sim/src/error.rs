@@ -44,7 +44,7 @@ pub enum SimError {
         value: f64,
     },
     /// A size, mass, time or rate outside its sensible range.
-    #[error("{element}: {field} = {value} is out of range: {msg}")]
+    #[error("{element}: {field} = {} is out of range: {msg}", fmt_num(*value))]
     OutOfRange {
         /// Which element.
         element: String,
@@ -233,6 +233,16 @@ impl SimError {
     }
 }
 
+/// A number for people: plain (`2000000`, `0.5`), or in exponent form when very large or
+/// small (`1e300`, `1e-9`).
+pub(crate) fn fmt_num(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-4..1e7).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
 /// `"<s>: "`, or nothing for an empty `s`.
 fn prefix(s: &str) -> String {
     if s.is_empty() {
@@ -281,9 +291,9 @@ pub(crate) fn check_range(
     check_finite(element, field, &[value])?;
     cloud::check_range(field.to_string(), value, lo, hi, msg.to_string()).map_err(|e| {
         let bound = if value < lo {
-            format!("less than {lo}")
+            format!("less than {}", fmt_num(lo))
         } else {
-            format!("more than {hi}")
+            format!("more than {}", fmt_num(hi))
         };
         SimError::OutOfRange {
             element: element.to_string(),

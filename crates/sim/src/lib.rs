@@ -14,6 +14,14 @@
 //!   door free space entered/left, door opened/closed, stairs climbing, joint broken, tipped,
 //!   stuck) and the judge, giving events, a trajectory and a [`Verdict`]. It is deterministic,
 //!   and can be checkpointed and resumed with identical results.
+//!   [`run_scenario_with`] reports progress and can be stopped (e.g. on Ctrl-C), giving the
+//!   outcome so far with the verdict marked interrupted.
+//! * Worlds are refused up front when too big to simulate ([`WorldSpec::check_limits`]); static
+//!   boxes that overlap much (thousands at one place) become one compound collider, so memory
+//!   stays linear, and contacts still name each box's entity.
+//! * Errors name their file: [`Scenario::load`], [`RobotModel::load`],
+//!   [`WorldSpec::from_building_file`], `WorldSpec::from_semantic_map_file` (see
+//!   [`SimError::in_source`]).
 //! * [`write_outputs`] writes `events.jsonl`, `trajectory.csv` and `report.md`.
 //!
 //! ```

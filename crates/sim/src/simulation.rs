@@ -69,7 +69,8 @@ impl Simulation {
     /// the rules (unknown entities are errors).
     pub fn new(spec: &WorldSpec, scenario: &Scenario, model: &RobotModel) -> Result<Simulation> {
         scenario.validate()?;
-        let judge = Judge::new(&scenario.rules, spec)?;
+        let judge =
+            Judge::new(&scenario.rules, spec).map_err(|e| e.in_source(scenario.source_name()))?;
         let mut world = World::new(spec, scenario.world.clone())?;
         world.add_robot(model, &scenario.start, &scenario.robot_name)?;
         let doors = DoorDetector::new(&world, &scenario.events);
@@ -180,7 +181,7 @@ impl Simulation {
         let every = every_steps.max(1);
         while !self.is_finished() {
             self.step();
-            if self.world.steps % every == 0
+            if self.world.steps.is_multiple_of(every)
                 && !self.is_finished()
                 && progress(self.time_s()).is_break()
             {

@@ -22,11 +22,13 @@ fn unknown_entity_in_a_scenario_is_named() {
         SimError::UnknownEntity {
             element, reference, ..
         } => {
-            assert_eq!(element, "rules.pass_through_door");
+            assert_eq!(element, "test: rules.pass_through_door");
             assert_eq!(reference, "walls[99].doors[0]");
         }
         e => panic!("wrong error {e:?}"),
     }
+    // The message names the scenario (its file, here the source name "test") and the reference.
+    assert!(err.to_string().starts_with("test: "), "{err}");
     assert!(err.to_string().contains("walls[99].doors[0]"), "{err}");
     // A known entity of the wrong class.
     let sc = scenario(r#"reach_top_of_stairs = "corridor north""#);

@@ -13,7 +13,6 @@ fn the_default_scenario_passes() {
     assert_eq!(sc.robot, "inspection");
     let model = RobotModel::builtin(&sc.robot).unwrap();
     let o = sim::run_scenario(&spec, &sc, &model).unwrap();
-    common::dump("default scenario", &o);
     let t = timeline(&o);
     assert!(o.verdict.passed, "{:#?}\n{t}", o.verdict);
     assert_eq!(o.verdict.rules.len(), 6);

@@ -103,3 +103,36 @@ fn a_semantic_door_not_jointed_to_a_wall_is_an_error() {
         "{err}"
     );
 }
+
+#[test]
+fn semantic_map_file_errors_name_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let relations =
+        r#"{"type":"available_inside","a":6,"b":3},{"type":"available_inside","a":5,"b":6}"#;
+    let path = dir.path().join("map.json");
+    std::fs::write(&path, map_json(relations)).unwrap();
+    let err = WorldSpec::from_semantic_map_file(&path).err().unwrap();
+    assert!(
+        matches!(&err, SimError::DoorWithoutWall { door, .. } if door == "door_5"),
+        "{err}"
+    );
+    assert_eq!(
+        err.to_string(),
+        format!(
+            "{}: door door_5: its wall (entity 0) is not a wall of this world",
+            path.display()
+        )
+    );
+    // A good map loads; a missing one is the semantic crate's error, naming it.
+    std::fs::write(&path, map_json(RELATIONS)).unwrap();
+    assert_eq!(
+        WorldSpec::from_semantic_map_file(&path)
+            .unwrap()
+            .doors
+            .len(),
+        1
+    );
+    let missing = dir.path().join("nothing.json");
+    let err = WorldSpec::from_semantic_map_file(&missing).err().unwrap();
+    assert!(err.to_string().contains("nothing.json"), "{err}");
+}

@@ -19,26 +19,7 @@ pub fn default_world() -> WorldSpec {
 pub fn run(spec: &WorldSpec, scenario_toml: &str) -> Outcome {
     let sc = Scenario::from_toml_str(scenario_toml, "test scenario").unwrap();
     let model = RobotModel::builtin(&sc.robot).unwrap();
-    let o = sim::run_scenario(spec, &sc, &model).unwrap();
-    dump(&format!("{spec:?}{scenario_toml}"), &o);
-    o
-}
-
-/// TEMP: dumps events for before/after comparison.
-pub fn dump(key: &str, o: &Outcome) {
-    if let Ok(dir) = std::env::var("SIM_DUMP_DIR") {
-        use std::hash::{Hash, Hasher};
-        let mut h = std::collections::hash_map::DefaultHasher::new();
-        key.hash(&mut h);
-        std::fs::create_dir_all(&dir).unwrap();
-        let body = format!(
-            "{}\n{:?}\n{:?}",
-            sim::events_to_jsonl(&o.events),
-            o.trajectory,
-            o.verdict
-        );
-        std::fs::write(format!("{dir}/{:016x}.txt", h.finish()), body).unwrap();
-    }
+    sim::run_scenario(spec, &sc, &model).unwrap()
 }
 
 /// The events of a kind.

@@ -1,0 +1,14 @@
+//! Any bytes as a scenario (TOML): parsed and validated, never a panic; an error names the
+//! file and is bad input.
+#![no_main]
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let name = "scenario.toml";
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    if let Err(e) = sim::Scenario::from_toml_str(text, name) {
+        semsim_fuzz::check_other_error(&e, name);
+    }
+});

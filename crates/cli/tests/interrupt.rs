@@ -13,7 +13,7 @@ fn ctrl_c_stops_a_long_simulation_cleanly_with_the_events_so_far() {
     let scenario = include_str!("../../sim/data/default_scenario.toml")
         .replace("time_limit_s = 60.0", "time_limit_s = 1000000.0");
     d.write("long.toml", scenario);
-    let mut child = Command::new(env!("CARGO_BIN_EXE_semsim"))
+    let child = Command::new(env!("CARGO_BIN_EXE_semsim"))
         .args(["simulate", "--scenario", "long.toml", "--out", "run"])
         .current_dir(d.path())
         .stdout(std::process::Stdio::null())

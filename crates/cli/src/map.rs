@@ -5,7 +5,6 @@ use crate::exit::bad_input;
 use anyhow::Context;
 use clap::{Args, Subcommand};
 use pipeline::{build_map, merge_scan_files, write_map, Config};
-use semantic::SemanticMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -96,59 +95,12 @@ pub fn run(a: MapArgs, cfg: &Config) -> anyhow::Result<()> {
 /// Runs `semsim eval ...`.
 pub fn run_eval(c: EvalCommand) -> anyhow::Result<()> {
     let EvalCommand::Map(a) = c;
-    let map = SemanticMap::load(&a.map)?;
-    let building = if a.building.as_os_str() == "default" {
-        scanner::Building::default_building()?
-    } else {
-        scanner::Building::load(&a.building)?
-    };
-    let observed = if a.cloud.is_empty() {
-        None
-    } else {
-        let merged = merge_scan_files(&a.cloud, a.poses.as_deref(), None)?;
-        evaluate::check_ground_truth(&merged, &building)?;
-        Some(merged)
-    };
-    let ev = evaluate::evaluate(&map, &building, observed.as_ref());
+    let ev = pipeline::score_map_file(&a.map, &a.building, &a.cloud, a.poses.as_deref())?;
     if a.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&ev).context("serialising the evaluation")?
-        );
-        return Ok(());
-    }
-    println!(
-        "{:<16} {:>8} {:>8} {:>8} {:>6} {:>6} {:>6}",
-        "class", "expected", "detected", "matched", "P", "R", "F1"
-    );
-    for (name, s) in [
-        ("walls", &ev.walls),
-        ("door openings", &ev.door_openings),
-        ("door leaves", &ev.doors),
-        ("floor", &ev.floor),
-        ("ceiling", &ev.ceiling),
-        ("stairs", &ev.stairs),
-    ] {
-        println!(
-            "{name:<16} {:>8} {:>8} {:>8} {:>6.3} {:>6.3} {:>6.3}",
-            s.expected, s.detected, s.matched, s.precision, s.recall, s.f1
-        );
-    }
-    println!(
-        "wall endpoint error: mean {:.3} m, max {:.3} m",
-        ev.wall_endpoint_error_mean_m, ev.wall_endpoint_error_max_m
-    );
-    for s in &ev.stairs_matches {
-        println!(
-            "stairs {}: {} steps (truth {}), rise error {:+.3} m, run error {:+.3} m",
-            s.truth, s.steps, s.steps_truth, s.rise_error_m, s.run_error_m
-        );
-    }
-    if !ev.missed.is_empty() {
-        println!("missed: {}", ev.missed.join(", "));
-    }
-    if !ev.spurious.is_empty() {
-        println!("spurious entity ids: {:?}", ev.spurious);
+        let text = serde_json::to_string_pretty(&ev).context("serialising the evaluation")?;
+        println!("{text}");
+    } else {
+        println!("{ev}");
     }
     Ok(())
 }

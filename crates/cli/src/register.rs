@@ -100,7 +100,7 @@ pub fn run(a: RegisterArgs, cfg: &Config, cfg_is_default: bool) -> anyhow::Resul
         pipeline::plot_rmse(p, &[("pair".into(), &result)])?;
     }
     if a.json {
-        let mut v = pair_json(&result);
+        let mut v = serde_json::to_value(pipeline::PairReport::of(&result))?;
         v["device"] = serde_json::Value::from(registrar.description());
         println!("{v}");
     } else {
@@ -132,22 +132,6 @@ fn print_pair(r: &IcpResult) {
         r.total_ms / n.max(1) as f64,
         r.total_ms
     );
-}
-
-fn pair_json(r: &IcpResult) -> serde_json::Value {
-    let m = DMat4::from(r.target_from_source)
-        .transpose()
-        .to_cols_array();
-    let n = r.iterations.len();
-    serde_json::json!({
-        "transform": m.to_vec(),
-        "iterations": n,
-        "rmse_m": r.rmse_m,
-        "fitness": r.fitness,
-        "ms_per_iteration": r.total_ms / n.max(1) as f64,
-        "total_ms": r.total_ms,
-        "converged": r.converged,
-    })
 }
 
 fn run_sequence(a: &RegisterArgs, cfg: &Config) -> anyhow::Result<()> {

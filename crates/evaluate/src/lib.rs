@@ -49,6 +49,7 @@ mod config;
 mod doors;
 mod ground_truth;
 mod labels;
+mod report;
 mod score;
 mod slabs;
 mod stairs;

@@ -49,6 +49,7 @@ mod plot;
 mod register;
 pub mod scan_folder;
 mod scans;
+mod score;
 mod simulate;
 mod truth;
 
@@ -61,8 +62,11 @@ pub use guard::{check_output_dir, refuse_overwriting_inputs};
 pub use guess::parse_guess;
 pub use map::{build_map, map_summary, write_map, MAP_PICTURES};
 pub use plot::{line_chart, plot_rmse, Series};
-pub use register::{open_registrar, register_scans, write_registration, Registration, ScanRow};
+pub use register::{
+    open_registrar, register_scans, write_registration, PairReport, Registration, ScanRow,
+};
 pub use scan_folder::{read_sequence, write_scan_folder, ScanFolderSummary, SequenceInput};
 pub use scans::{merge_scan_files, place_and_merge, read_scans};
+pub use score::score_map_file;
 pub use simulate::{simulate, write_simulation, ScenarioSource};
 pub use truth::{relative_pose_errors, worst_pose_error};

@@ -116,3 +116,42 @@ pub fn write_registration(reg: &Registration, out: &Path) -> Result<()> {
     cloud::write_bytes_atomically(&out.join("registration.json"), json.as_bytes())?;
     Ok(())
 }
+
+/// A pair registration as `semsim register --json` prints it: the row-major 4x4
+/// `target_from_source` as 16 numbers and the run's figures.
+#[derive(Debug, Clone, Serialize)]
+pub struct PairReport {
+    /// `target_from_source`, row-major.
+    pub transform: Vec<f64>,
+    /// ICP iterations.
+    pub iterations: usize,
+    /// Final RMSE of the pairs.
+    pub rmse_m: f64,
+    /// Fraction of the source paired.
+    pub fitness: f64,
+    /// Mean time per iteration.
+    pub ms_per_iteration: f64,
+    /// Time in all.
+    pub total_ms: f64,
+    /// Whether the stop criteria were met.
+    pub converged: bool,
+}
+
+impl PairReport {
+    /// The report of a result.
+    pub fn of(r: &IcpResult) -> PairReport {
+        let n = r.iterations.len();
+        PairReport {
+            transform: glam::DMat4::from(r.target_from_source)
+                .transpose()
+                .to_cols_array()
+                .to_vec(),
+            iterations: n,
+            rmse_m: r.rmse_m,
+            fitness: r.fitness,
+            ms_per_iteration: r.total_ms / n.max(1) as f64,
+            total_ms: r.total_ms,
+            converged: r.converged,
+        }
+    }
+}

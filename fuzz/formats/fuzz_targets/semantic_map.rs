@@ -8,12 +8,12 @@ fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
     };
-    match semantic::SemanticMap::from_json_str(text, semsim_fuzz::path(name)) {
+    match semantic::SemanticMap::from_json_str(text, semsim_fuzz_formats::path(name)) {
         Ok(map) => {
             if let Err(e) = sim::WorldSpec::from_semantic_map(&map) {
                 assert!(cloud::BadInput::is_bad_input(&e), "{e}");
             }
         }
-        Err(e) => semsim_fuzz::check_other_error(&e, name),
+        Err(e) => semsim_fuzz_formats::check_other_error(&e, name),
     }
 });

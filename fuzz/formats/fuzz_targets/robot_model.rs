@@ -9,6 +9,6 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     if let Err(e) = sim::RobotModel::from_toml_str(text, name) {
-        semsim_fuzz::check_other_error(&e, name);
+        semsim_fuzz_formats::check_other_error(&e, name);
     }
 });

@@ -28,12 +28,19 @@ fn main() {
         d
     };
     own_clouds(&dir("pcd"), &dir("ply"), &dir("xyz"), &dir("threedtk_3d"));
-    own_poses(&dir("poses"), &dir("threedtk_pose"), &dir("threedtk_frames"));
+    own_poses(
+        &dir("poses"),
+        &dir("threedtk_pose"),
+        &dir("threedtk_frames"),
+    );
     foreign(&dir("pcd"), &dir("ply"));
     if real.is_dir() {
         real_cuts(&real, &corpus);
     } else {
-        eprintln!("note: {} not found: no seeds from the real scans", real.display());
+        eprintln!(
+            "note: {} not found: no seeds from the real scans",
+            real.display()
+        );
     }
     let mut total = 0;
     for entry in walk(&corpus) {
@@ -97,7 +104,11 @@ fn plain(n: usize) -> PointCloud {
 fn own_clouds(pcd_dir: &Path, ply_dir: &Path, xyz_dir: &Path, tdk_dir: &Path) {
     let org = organised();
     let unorg = org.without_invalid();
-    for enc in [PcdEncoding::Ascii, PcdEncoding::Binary, PcdEncoding::BinaryCompressed] {
+    for enc in [
+        PcdEncoding::Ascii,
+        PcdEncoding::Binary,
+        PcdEncoding::BinaryCompressed,
+    ] {
         let name = format!("own_organised_{}.pcd", enc.keyword());
         write_cloud_as(&pcd_dir.join(name), &org, CloudFormat::Pcd(enc)).expect("pcd");
         let name = format!("own_plain_{}.pcd", enc.keyword());
@@ -126,8 +137,18 @@ fn own_clouds(pcd_dir: &Path, ply_dir: &Path, xyz_dir: &Path, tdk_dir: &Path) {
             *p = Vec3::ONE;
         }
     });
-    write_cloud_as(&tdk_dir.join("own_organised.3d"), &full, CloudFormat::ThreeDtk).expect("3d");
-    write_cloud_as(&tdk_dir.join("own_plain.3d"), &plain(30), CloudFormat::ThreeDtk).expect("3d");
+    write_cloud_as(
+        &tdk_dir.join("own_organised.3d"),
+        &full,
+        CloudFormat::ThreeDtk,
+    )
+    .expect("3d");
+    write_cloud_as(
+        &tdk_dir.join("own_plain.3d"),
+        &plain(30),
+        CloudFormat::ThreeDtk,
+    )
+    .expect("3d");
 }
 
 fn own_poses(dir: &Path, pose_dir: &Path, frames_dir: &Path) {
@@ -217,7 +238,10 @@ fn real_cuts(real: &Path, corpus: &Path) {
     let bytes = std::fs::read(&room).expect("room");
     let pcl_head = header(&bytes, "DATA");
     let full = cloud::read_cloud(&room).expect("room reads");
-    for (n, enc) in [(2500, PcdEncoding::BinaryCompressed), (300, PcdEncoding::Ascii)] {
+    for (n, enc) in [
+        (2500, PcdEncoding::BinaryCompressed),
+        (300, PcdEncoding::Ascii),
+    ] {
         let cut = full.select(&(0..n).collect::<Vec<_>>());
         let out = corpus.join(format!("pcd/pcl_room_{n}_{}.pcd", enc.keyword()));
         pcd::write_pcd(&out, &cut, enc).expect("write");

@@ -48,7 +48,8 @@ pub fn check_notes(notes: &[String], name: &str) {
 
 /// Checks a cloud a reader returned.
 pub fn check_cloud(c: &PointCloud) {
-    c.validate().expect("a cloud read from a file is consistent");
+    c.validate()
+        .expect("a cloud read from a file is consistent");
     if c.organized.is_none() {
         assert!(
             c.points.iter().all(|p| p.is_finite()),

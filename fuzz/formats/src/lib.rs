@@ -13,5 +13,8 @@ pub fn path(name: &str) -> &std::path::Path {
 pub fn check_other_error<E: Display + cloud::BadInput>(e: &E, name: &str) {
     let text = e.to_string();
     assert!(text.contains(name), "message does not name {name}: {text}");
-    assert!(e.is_bad_input(), "an error reading a file must be the input's fault: {text}");
+    assert!(
+        e.is_bad_input(),
+        "an error reading a file must be the input's fault: {text}"
+    );
 }

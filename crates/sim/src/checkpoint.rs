@@ -53,9 +53,9 @@ impl Simulation {
 
     /// Loads a state saved by [`Simulation::save_checkpoint`].
     pub fn load_checkpoint(path: &Path) -> Result<Simulation> {
-        let bytes = std::fs::read(path).map_err(|source| SimError::Io {
+        let bytes = std::fs::read(path).map_err(|error| SimError::Io {
             path: path.to_path_buf(),
-            source,
+            error,
         })?;
         Self::decode(&bytes, path)
     }

@@ -16,13 +16,12 @@ pub enum SimError {
     #[error(transparent)]
     SemanticMap(#[from] semantic::SemanticError),
     /// A file could not be read.
-    #[error("{path}: {source}")]
+    #[error("{path}: {error}")]
     Io {
         /// The file concerned.
         path: PathBuf,
-        /// The underlying error.
-        #[source]
-        source: std::io::Error,
+        /// The underlying error (in the message, not chained, so the OS text appears once).
+        error: std::io::Error,
     },
     /// A robot model, scenario or world file is not valid TOML/JSON for its kind
     /// (including unknown fields, which the parser names).
@@ -306,8 +305,8 @@ pub(crate) fn check_range(
 
 /// Reads a text file, mapping the error to [`SimError::Io`].
 pub(crate) fn read_text(path: &std::path::Path) -> Result<String> {
-    std::fs::read_to_string(path).map_err(|source| SimError::Io {
+    std::fs::read_to_string(path).map_err(|error| SimError::Io {
         path: path.to_path_buf(),
-        source,
+        error,
     })
 }

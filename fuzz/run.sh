@@ -10,7 +10,8 @@
 # fuzz/work/<target>/ (ignored by git, reused by the next run). A crash, OOM or timeout stops
 # that target: its input is in fuzz/artifacts/<target>/ and the log in fuzz/work/<target>.log.
 #
-# Prints a summary table and writes it to fuzz/results.md. Exits 0 (with a message) where
+# Prints a summary table and writes it to fuzz/results.md (or to $FUZZ_RESULTS, as CI does so
+# that a smoke run never replaces the committed 10-minute figures). Exits 0 (with a message) where
 # the nightly toolchain or cargo-fuzz is missing; 1 if any target found a failure.
 set -uo pipefail
 cd "$(dirname "$0")"
@@ -99,7 +100,7 @@ fi
   echo "|---|---|---|---|---|---|---|"
   [ "${#kept[@]}" -gt 0 ] && printf '%s\n' "${kept[@]}"
   printf '%s\n' "${rows[@]}"
-} >results.md
+} >"${FUZZ_RESULTS:-results.md}"
 echo
-cat results.md
+cat "${FUZZ_RESULTS:-results.md}"
 exit "$failed"

@@ -1,5 +1,7 @@
-//! `semsim convert IN OUT`: point cloud format conversion.
+//! `semsim convert IN OUT`: point cloud format conversion between every format semsim reads
+//! and writes (a multi-scan E57 or ROS 2 bag is placed by its scans' poses and merged).
 
+use crate::scan_input::ScanReadArgs;
 use anyhow::Context;
 use clap::{Args, ValueEnum};
 use cloud::{CloudFormat, PcdEncoding, PlyEncoding};
@@ -8,9 +10,9 @@ use std::path::PathBuf;
 /// Arguments of `semsim convert`.
 #[derive(Args)]
 pub struct ConvertArgs {
-    /// Input cloud (.pcd .ply .xyz .txt .3d).
+    /// Input cloud (.pcd .ply .xyz .txt .3d .e57 .las .laz .mcap).
     input: PathBuf,
-    /// Output cloud; the format follows the extension.
+    /// Output cloud; the format follows the extension (.pcd .ply .xyz .txt .3d .e57 .las .laz).
     output: PathBuf,
     /// Encoding of the output (PCD: ascii, binary, binary-compressed; PLY: ascii, binary-le, binary-be).
     #[arg(long, value_enum)]
@@ -18,6 +20,17 @@ pub struct ConvertArgs {
     /// Voxel-downsample to this edge length in metres (centroid per voxel) before writing.
     #[arg(long, value_name = "M")]
     voxel: Option<f64>,
+    #[command(flatten)]
+    read: ScanReadArgs,
+}
+
+/// Where the output goes: a format of the cloud crate, or one of interop's.
+enum Output {
+    Cloud(CloudFormat),
+    /// E57, LAS or LAZ; `keeps_shape` where the format stores an organised grid.
+    Interop {
+        keeps_shape: bool,
+    },
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -36,12 +49,16 @@ pub fn run(a: ConvertArgs) -> anyhow::Result<()> {
         std::slice::from_ref(&a.output),
         std::slice::from_ref(&a.input),
     )?;
-    let mut cloud = cloud::read_cloud(&a.input)?;
+    let (mut cloud, notes) = interop::read_cloud(&a.input, &a.read.options())?;
+    cloud::io::print_notes(&notes);
     if let Some(v) = a.voxel {
         cloud = cloud::voxel_downsample(&cloud, v)?;
     }
-    let organised_only = !matches!(format, CloudFormat::Pcd(_));
-    if organised_only && cloud.organized.is_some() {
+    let keeps_shape = match format {
+        Output::Cloud(f) => matches!(f, CloudFormat::Pcd(_)),
+        Output::Interop { keeps_shape } => keeps_shape,
+    };
+    if !keeps_shape && cloud.organized.is_some() {
         let before = cloud.len();
         cloud = cloud.without_invalid();
         if cloud.len() < before {
@@ -52,8 +69,12 @@ pub fn run(a: ConvertArgs) -> anyhow::Result<()> {
             );
         }
     }
-    cloud::write_cloud_as(&a.output, &cloud, format)
-        .with_context(|| format!("writing {}", a.output.display()))?;
+    match format {
+        Output::Cloud(f) => cloud::write_cloud_as(&a.output, &cloud, f)
+            .with_context(|| format!("writing {}", a.output.display()))?,
+        Output::Interop { .. } => interop::write_cloud(&a.output, &cloud)
+            .with_context(|| format!("writing {}", a.output.display()))?,
+    }
     println!(
         "{} -> {}: {} points",
         a.input.display(),
@@ -63,9 +84,25 @@ pub fn run(a: ConvertArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn output_format(a: &ConvertArgs) -> anyhow::Result<CloudFormat> {
+fn output_format(a: &ConvertArgs) -> anyhow::Result<Output> {
+    let ext = a
+        .output
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    if matches!(ext.as_str(), "e57" | "las" | "laz") {
+        if a.encoding.is_some() {
+            return Err(crate::exit::bad_input(format!(
+                "{}: --encoding applies only to .pcd and .ply",
+                a.output.display()
+            )));
+        }
+        return Ok(Output::Interop {
+            keeps_shape: ext == "e57",
+        });
+    }
     let format = CloudFormat::from_path(&a.output)?;
-    Ok(match (format, a.encoding) {
+    Ok(Output::Cloud(match (format, a.encoding) {
         (f, None) => f,
         (CloudFormat::Pcd(_), Some(Encoding::Ascii)) => CloudFormat::Pcd(PcdEncoding::Ascii),
         (CloudFormat::Pcd(_), Some(Encoding::Binary)) => CloudFormat::Pcd(PcdEncoding::Binary),
@@ -79,5 +116,5 @@ fn output_format(a: &ConvertArgs) -> anyhow::Result<CloudFormat> {
                 a.output.display()
             )))
         }
-    })
+    }))
 }

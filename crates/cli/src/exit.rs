@@ -53,7 +53,8 @@ fn as_bad_input(cause: &(dyn std::error::Error + 'static)) -> Option<bool> {
         gpu::GpuError,
         semantic::SemanticError,
         evaluate::EvalError,
-        sim::SimError
+        sim::SimError,
+        interop::InteropError
     );
     None
 }

@@ -7,6 +7,7 @@ mod building_cmd;
 mod convert;
 mod demo;
 mod exit;
+mod export;
 mod info;
 mod interrupt;
 mod map;
@@ -15,6 +16,7 @@ mod progress;
 mod register;
 mod run;
 mod scan;
+mod scan_input;
 mod simulate;
 
 use clap::{Parser, Subcommand};
@@ -36,7 +38,8 @@ struct Cli {
 enum Command {
     /// Run the whole chain on the built-in default building and write everything to a folder.
     Demo(demo::DemoArgs),
-    /// Convert a point cloud between formats (picked by extension: .pcd .ply .xyz .txt .3d).
+    /// Convert a point cloud between formats (picked by extension: .pcd .ply .xyz .txt .3d
+    /// .e57 .las .laz; .mcap ROS 2 bags are read).
     Convert(convert::ConvertArgs),
     /// Print what a point cloud file holds.
     Info(info::InfoArgs),
@@ -45,6 +48,9 @@ enum Command {
     /// Build the semantic map of a registered cloud (or of scans placed with --poses):
     /// semantic_map.json, labels.pcd and a picture of every stage.
     Map(map::MapArgs),
+    /// Export a semantic map's world (or a building's) and optionally a robot for MuJoCo
+    /// (mjcf), Gazebo (sdf) or a glTF viewer (gltf).
+    Export(export::ExportArgs),
     /// Evaluate results against ground truth.
     #[command(subcommand)]
     Eval(map::EvalCommand),
@@ -82,6 +88,7 @@ fn main() -> ExitCode {
             Command::Demo(a) => demo::run(a, &cfg),
             Command::Convert(a) => convert::run(a),
             Command::Info(a) => info::run(a),
+            Command::Export(a) => export::run(a),
             Command::Register(a) => register::run(a, &cfg, default_config),
             Command::Scan(a) => scan::run(a, &cfg),
             Command::Map(a) => map::run(a, &cfg),

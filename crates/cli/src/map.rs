@@ -2,6 +2,7 @@
 //! of every stage; and `semsim eval map`: a semantic map against a building's ground truth.
 
 use crate::exit::bad_input;
+use crate::scan_input::ScanReadArgs;
 use anyhow::Context;
 use clap::{Args, Subcommand};
 use pipeline::{build_map, merge_scan_files, write_map, Config};
@@ -29,6 +30,8 @@ pub struct MapArgs {
     /// Output folder.
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
+    #[command(flatten)]
+    read: ScanReadArgs,
 }
 
 /// `semsim eval ...`.
@@ -73,7 +76,12 @@ pub fn run(a: MapArgs, cfg: &Config) -> anyhow::Result<()> {
     }
     pipeline::check_output_dir(&a.out)?;
     let t0 = Instant::now();
-    let mut cloud = merge_scan_files(&a.clouds, a.poses.as_deref(), a.max_range_m)?;
+    let mut cloud = merge_scan_files(
+        &a.clouds,
+        a.poses.as_deref(),
+        a.max_range_m,
+        &a.read.options(),
+    )?;
     if let Some(v) = a.voxel_m {
         cloud = cloud::voxel_downsample(&cloud, v)?;
     }

@@ -1,6 +1,7 @@
 //! `semsim register`: ICP for a pair of scans, or a whole sequence against a growing map.
 
 use crate::exit::bad_input;
+use crate::scan_input::ScanReadArgs;
 use clap::Args;
 use glam::{DAffine3, DMat4};
 use pipeline::Config;
@@ -42,6 +43,8 @@ pub struct RegisterArgs {
     /// Sequence mode: output folder for poses.txt, map.pcd, registration.json and config.toml.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    #[command(flatten)]
+    read: ScanReadArgs,
 }
 
 /// Runs `semsim register`.
@@ -71,8 +74,8 @@ pub fn run(a: RegisterArgs, cfg: &Config, cfg_is_default: bool) -> anyhow::Resul
         Some(g) => pipeline::parse_guess(g)?,
         None => DAffine3::IDENTITY,
     };
-    let source = cloud::read_cloud(source_path)?;
-    let target = cloud::read_cloud(target_path)?;
+    let source = read_one(source_path, &a.read)?;
+    let target = read_one(target_path, &a.read)?;
     let mut registrar = open_device(&cfg.registration.icp)?;
     let result = registrar.register(&source, &target, guess, &cfg.registration.icp);
     let result = match result {
@@ -140,14 +143,15 @@ fn run_sequence(a: &RegisterArgs, cfg: &Config) -> anyhow::Result<()> {
         .clone()
         .ok_or_else(|| bad_input("--sequence needs --out DIR"))?;
     pipeline::check_output_dir(&out)?;
-    let input = pipeline::read_sequence(&a.inputs, a.odometry.as_deref(), a.truth.as_deref())?;
+    let input = pipeline::read_sequence(
+        &a.inputs,
+        a.odometry.as_deref(),
+        a.truth.as_deref(),
+        &a.read.options(),
+    )?;
     let outputs = ["poses.txt", "map.pcd", "registration.json", "config.toml"].map(|f| out.join(f));
     pipeline::refuse_overwriting_inputs(&outputs, &input.read)?;
-    let scans = input
-        .files
-        .iter()
-        .map(|f| cloud::read_cloud(f))
-        .collect::<Result<Vec<_>, _>>()?;
+    let scans = pipeline::read_scans(&input.scans, None)?;
     std::fs::create_dir_all(&out).map_err(|e| cloud::CloudError::io(&out, e))?;
     let mut registrar = open_device(&cfg.registration.icp)?;
     let bar = crate::progress::scan_bar(scans.len(), "registering");
@@ -173,4 +177,11 @@ fn run_sequence(a: &RegisterArgs, cfg: &Config) -> anyhow::Result<()> {
     }
     cfg.write_beside(&out)?;
     Ok(())
+}
+
+/// One cloud of a pair (a multi-scan file merged by its scans' poses).
+fn read_one(path: &std::path::Path, read: &ScanReadArgs) -> anyhow::Result<cloud::PointCloud> {
+    let (cloud, notes) = interop::read_cloud(path, &read.options())?;
+    cloud::io::print_notes(&notes);
+    Ok(cloud)
 }

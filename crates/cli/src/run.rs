@@ -1,6 +1,7 @@
 //! `semsim run`: one command from scans to a verdict: registration, the semantic map, and a
 //! judged simulation in the map's world.
 
+use crate::scan_input::ScanReadArgs;
 use clap::Args;
 use pipeline::{read_scans, read_sequence, scans_to_verdict, Config, ScenarioSource};
 use std::path::PathBuf;
@@ -9,7 +10,7 @@ use std::time::Instant;
 /// Arguments of `semsim run`.
 #[derive(Args)]
 pub struct RunArgs {
-    /// The scans, in order (files, or a folder of them).
+    /// The scans, in order (files, or a folder of them; one .e57 or .mcap holding several).
     #[arg(required = true, value_name = "SCANS")]
     inputs: Vec<PathBuf>,
     /// Odometry pose file (default: odometry.txt in the folder, or 3DTK .pose files).
@@ -25,6 +26,8 @@ pub struct RunArgs {
     /// Output folder: registration/, map/, simulation/.
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
+    #[command(flatten)]
+    read: ScanReadArgs,
 }
 
 /// Runs `semsim run`; exit 0 on a passed verdict, 1 on a failed one.
@@ -33,8 +36,8 @@ pub fn run(a: RunArgs, cfg: &Config) -> anyhow::Result<()> {
     // The scenario and the output folder first: they should fail before minutes of work.
     pipeline::check_output_dir(&a.out)?;
     let scenario = ScenarioSource::load(a.scenario.as_deref())?;
-    let input = read_sequence(&a.inputs, a.odometry.as_deref(), None)?;
-    let scans = read_scans(&input.files, a.max_range_m)?;
+    let input = read_sequence(&a.inputs, a.odometry.as_deref(), None, &a.read.options())?;
+    let scans = read_scans(&input.scans, a.max_range_m)?;
     crate::interrupt::install();
     let mut printer = crate::print::Printer::default();
     let outcome = scans_to_verdict(&input, scans, &scenario, cfg, &a.out, &mut printer)?;

@@ -53,6 +53,9 @@ pub struct PointCloud {
     pub intensity: Option<Vec<f32>>,
     /// Optional label per point.
     pub labels: Option<Vec<Label>>,
+    /// Optional ASPRS classification code per point (LAS `classification`: 2 ground, 6
+    /// building...), kept from the files that carry it and written to the formats that can.
+    pub classification: Option<Vec<u8>>,
     /// Organised shape, if the cloud is a grid.
     pub organized: Option<Organized>,
     /// Sensor origin in the cloud's frame (PCD `VIEWPOINT` translation).
@@ -97,6 +100,14 @@ impl PointCloud {
                 return Err(CloudError::Inconsistent(format!(
                     "{} labels for {n} points",
                     l.len()
+                )));
+            }
+        }
+        if let Some(c) = &self.classification {
+            if c.len() != n {
+                return Err(CloudError::Inconsistent(format!(
+                    "{} classifications for {n} points",
+                    c.len()
                 )));
             }
         }
@@ -149,6 +160,10 @@ impl PointCloud {
                 .map(|v| indices.iter().map(|&i| v[i]).collect()),
             labels: self
                 .labels
+                .as_ref()
+                .map(|v| indices.iter().map(|&i| v[i]).collect()),
+            classification: self
+                .classification
                 .as_ref()
                 .map(|v| indices.iter().map(|&i| v[i]).collect()),
             organized: None,

@@ -46,6 +46,7 @@ fn sample() -> PointCloud {
         points,
         intensity: Some((0..rows * cols).map(|i| i as f32 * 0.37 - 2.0).collect()),
         labels: Some(labels),
+        classification: None,
         organized: Some(Organized { rows, cols }),
         sensor_origin: Vec3::new(1.0, 2.0, 0.5),
         sensor_orientation: Quat::from_rotation_z(0.3),

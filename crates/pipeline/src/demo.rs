@@ -60,8 +60,8 @@ pub fn prepare_demo(
         progress,
     )?;
     // 3. The scan folder read back as any user's sequence would be.
-    let input = read_sequence(&[out.to_path_buf()], None, None)?;
-    let scans = read_scans(&input.files, None)?;
+    let input = read_sequence(&[out.to_path_buf()], None, None, &Default::default())?;
+    let scans = read_scans(&input.scans, None)?;
     Ok(DemoScans {
         building,
         building_file,

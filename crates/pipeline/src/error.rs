@@ -19,6 +19,9 @@ pub enum PipelineError {
     /// The semantic map.
     #[error(transparent)]
     Semantic(#[from] semantic::SemanticError),
+    /// Scans read from E57, LAS/LAZ or a ROS 2 bag, or a world exported.
+    #[error(transparent)]
+    Interop(#[from] interop::InteropError),
     /// The simulation, its scenario or its world.
     #[error(transparent)]
     Sim(#[from] sim::SimError),
@@ -70,6 +73,7 @@ impl cloud::BadInput for PipelineError {
             PipelineError::Gpu(e) => e.is_bad_input(),
             PipelineError::Semantic(e) => e.is_bad_input(),
             PipelineError::Sim(e) => e.is_bad_input(),
+            PipelineError::Interop(e) => e.is_bad_input(),
             PipelineError::Eval(e) => e.is_bad_input(),
             PipelineError::BadInput(_) | PipelineError::Config { .. } => true,
             PipelineError::Serialise { .. } | PipelineError::Plot { .. } => false,

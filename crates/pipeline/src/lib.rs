@@ -2,7 +2,8 @@
 //!
 //! - [`scan_folder`]: the one owner of the scan-folder format (scans + `poses.txt` +
 //!   `odometry.txt` + `entities.json`), written by [`write_scan_folder`] and read as a
-//!   sequence by [`read_sequence`] (real sequences too: 3DTK `.pose` files, `--odometry`).
+//!   sequence by [`read_sequence`] (real sequences too: 3DTK `.pose` files, `--odometry`, a
+//!   multi-scan E57 or a ROS 2 bag, read by the `interop` crate with [`ReadOptions`]).
 //! - [`read_scans`], [`place_and_merge`]: scans read with a range limit, placed by their poses
 //!   and merged.
 //! - The stages: [`register_scans`], [`build_map`], [`simulate`], each with a writer of its
@@ -11,6 +12,8 @@
 //! - Ground truth: [`relative_pose_errors`], [`worst_pose_error`]; the demo
 //!   ([`prepare_demo`], [`score_demo`]); the ICP benchmark ([`bench_icp_case`]); charts
 //!   ([`plot_rmse`], drawn with an embedded DejaVu Sans, `assets/LICENSE.DejaVu`).
+//! - [`export_world_file`]: a map's or building's world (and a robot) for MuJoCo, Gazebo or a
+//!   glTF viewer.
 //! - [`Config`]: one section per stage, as `--config` files hold it.
 //!
 //! ```no_run
@@ -18,8 +21,8 @@
 //! use std::path::{Path, PathBuf};
 //!
 //! # fn main() -> pipeline::Result<()> {
-//! let input = read_sequence(&[PathBuf::from("semsim-demo")], None, None)?;
-//! let scans = read_scans(&input.files, Some(30.0))?;
+//! let input = read_sequence(&[PathBuf::from("semsim-demo")], None, None, &Default::default())?;
+//! let scans = read_scans(&input.scans, Some(30.0))?;
 //! let scenario = ScenarioSource::load(None)?;
 //! let outcome = scans_to_verdict(&input, scans, &scenario, &Config::default(), Path::new("out"), &mut Quiet)?;
 //! println!("{} walls, verdict {}", outcome.map.map.of_class(cloud::EntityClass::Wall).count(), outcome.passed());
@@ -42,6 +45,7 @@ mod chain;
 mod config;
 mod demo;
 mod error;
+mod export;
 mod guard;
 mod guess;
 mod map;
@@ -58,14 +62,19 @@ pub use chain::{scans_to_verdict, write_chain, ChainDirs, ChainOutcome, Observer
 pub use config::Config;
 pub use demo::{prepare_demo, score_demo, DemoScans, DemoScore};
 pub use error::{PipelineError, Result};
+pub use export::{export_world_file, ExportSummary, WorldSource};
 pub use guard::{check_output_dir, refuse_overwriting_inputs};
 pub use guess::parse_guess;
+pub use interop::ExportFormat;
+pub use interop::ReadOptions;
 pub use map::{build_map, map_summary, write_map, MAP_PICTURES};
 pub use plot::{line_chart, plot_rmse, Series};
 pub use register::{
     open_registrar, register_scans, write_registration, PairReport, Registration, ScanRow,
 };
-pub use scan_folder::{read_sequence, write_scan_folder, ScanFolderSummary, SequenceInput};
+pub use scan_folder::{
+    read_sequence, write_scan_folder, ScanFolderSummary, ScanSource, SequenceInput,
+};
 pub use scans::{merge_scan_files, place_and_merge, read_scans};
 pub use score::score_map_file;
 pub use simulate::{simulate, write_simulation, ScenarioSource};

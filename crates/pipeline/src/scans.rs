@@ -2,13 +2,16 @@
 //! and all merged into one cloud in the world frame.
 
 use crate::error::{PipelineError, Result};
-use crate::scan_folder::names_scan;
+use crate::scan_folder::{expand_files, ScanSource};
 use cloud::{NamedPose, PointCloud};
+use glam::{DAffine3, DVec3};
 use std::path::{Path, PathBuf};
 
 /// Reads scans, dropping missing returns and points farther than `max_range_m` from their
-/// scan's sensor.
-pub fn read_scans(files: &[PathBuf], max_range_m: Option<f64>) -> Result<Vec<PointCloud>> {
+/// scan's sensor. Files read in a local frame (georeferenced LAS/LAZ: see
+/// [`interop::ScanSet::local_origin_m`]) are moved into the first such file's frame, which is
+/// reported on standard error.
+pub fn read_scans(sources: &[ScanSource], max_range_m: Option<f64>) -> Result<Vec<PointCloud>> {
     if let Some(r) = max_range_m {
         if !(r.is_finite() && r > 0.0) {
             return Err(PipelineError::bad_input(format!(
@@ -16,16 +19,61 @@ pub fn read_scans(files: &[PathBuf], max_range_m: Option<f64>) -> Result<Vec<Poi
             )));
         }
     }
-    files
+    let mut origin: Option<DVec3> = None;
+    sources
         .iter()
-        .map(|f| {
-            let scan = cloud::read_cloud(f)?.without_invalid();
+        .map(|source| {
+            let scan = match &source.loaded {
+                Some(cloud) => cloud.clone(),
+                None => read_one(&source.file, &mut origin)?,
+            }
+            .without_invalid();
             Ok(match max_range_m {
                 Some(r) => within_range(&scan, r as f32),
                 None => scan,
             })
         })
         .collect()
+}
+
+/// Reads a one-scan file, moving it from its local frame into the sequence's (the first local
+/// origin met).
+fn read_one(file: &Path, origin: &mut Option<DVec3>) -> Result<PointCloud> {
+    let set = interop::read_scans(file, &interop::ReadOptions::default())?;
+    cloud::io::print_notes(&set.notes);
+    let local_origin_m = set.local_origin_m;
+    let mut cloud = match <[_; 1]>::try_from(set.scans) {
+        Ok([one]) => one.cloud,
+        Err(scans) => {
+            // Not expected (multi-scan files are read when expanded): placed and merged.
+            let poses: Vec<Option<DAffine3>> = scans.iter().map(|s| s.world_from_scan).collect();
+            let sources: Vec<ScanSource> = scans
+                .iter()
+                .map(|s| ScanSource::file(Path::new(&s.name)))
+                .collect();
+            let clouds = scans.into_iter().map(|s| s.cloud).collect();
+            place_and_merge(
+                &sources,
+                clouds,
+                recorded_poses(&sources, &poses).as_deref(),
+            )?
+        }
+    };
+    if local_origin_m != DVec3::ZERO {
+        let first = *origin.get_or_insert(local_origin_m);
+        if first == local_origin_m {
+            eprintln!(
+                "note: {}: coordinates are relative to the local origin ({:.3}, {:.3}, {:.3}) m",
+                file.display(),
+                first.x,
+                first.y,
+                first.z
+            );
+        } else {
+            cloud.transform(&DAffine3::from_translation(local_origin_m - first));
+        }
+    }
+    Ok(cloud)
 }
 
 /// The points of `scan` at most `max_range_m` from its sensor.
@@ -36,36 +84,36 @@ fn within_range(scan: &PointCloud, max_range_m: f32) -> PointCloud {
     scan.select(&keep)
 }
 
-/// Places each scan with its pose (the pose named by the file's stem, else the pose at the
+/// Places each scan with its pose (the pose named by the scan's name, else the pose at the
 /// same position) and merges them; labels are kept if every scan has them.
 pub fn place_and_merge(
-    files: &[PathBuf],
+    sources: &[ScanSource],
     scans: Vec<PointCloud>,
     poses: Option<&[NamedPose]>,
 ) -> Result<PointCloud> {
     if let Some(p) = poses {
-        let by_name = files
+        let by_name = sources
             .iter()
-            .all(|f| p.iter().any(|q| names_scan(&q.name, f)));
-        if !by_name && p.len() != files.len() {
+            .all(|f| p.iter().any(|q| f.is_named(&q.name)));
+        if !by_name && p.len() != sources.len() {
             return Err(PipelineError::bad_input(format!(
-                "{} poses for {} clouds, and not every cloud's file stem names a pose",
+                "{} poses for {} clouds, and not every cloud's name names a pose",
                 p.len(),
-                files.len()
+                sources.len()
             )));
         }
     }
     let mut merged = PointCloud::default();
     let mut labels = Vec::new();
     let mut all_labelled = true;
-    for (k, (f, mut scan)) in files.iter().zip(scans).enumerate() {
+    for (k, (f, mut scan)) in sources.iter().zip(scans).enumerate() {
         if let Some(p) = poses {
             let pose = p
                 .iter()
-                .find(|q| names_scan(&q.name, f))
+                .find(|q| f.is_named(&q.name))
                 .or_else(|| p.get(k))
                 .map(|q| q.world_from_scan)
-                .ok_or_else(|| PipelineError::bad_input(format!("no pose for {}", f.display())))?;
+                .ok_or_else(|| PipelineError::bad_input(format!("no pose for {}", f.name)))?;
             scan.transform(&pose);
         }
         all_labelled &= scan.labels.is_some();
@@ -76,15 +124,21 @@ pub fn place_and_merge(
     Ok(merged)
 }
 
-/// Reads the scans, places each by the pose file `poses` (if given) and merges them.
+/// Reads the scans, places each by the pose file `poses` (if given; else by the poses the
+/// files record, as E57 scans do) and merges them.
 pub fn merge_scan_files(
     files: &[PathBuf],
     poses: Option<&Path>,
     max_range_m: Option<f64>,
+    options: &interop::ReadOptions,
 ) -> Result<PointCloud> {
-    let named = poses.map(cloud::read_poses).transpose()?;
-    let scans = read_scans(files, max_range_m)?;
-    place_and_merge(files, scans, named.as_deref()).map_err(|e| match (e, poses) {
+    let expanded = expand_files(files, options)?;
+    let named = match poses {
+        Some(p) => Some(cloud::read_poses(p)?),
+        None => recorded_poses(&expanded.scans, &expanded.own_poses),
+    };
+    let scans = read_scans(&expanded.scans, max_range_m)?;
+    place_and_merge(&expanded.scans, scans, named.as_deref()).map_err(|e| match (e, poses) {
         (PipelineError::BadInput(msg), Some(p)) => {
             PipelineError::BadInput(format!("{}: {msg}", p.display()))
         }
@@ -92,10 +146,28 @@ pub fn merge_scan_files(
     })
 }
 
+/// The poses the files record for their scans, named after the scans (identity for a scan
+/// without one), if any scan has one.
+fn recorded_poses(
+    sources: &[ScanSource],
+    own_poses: &[Option<DAffine3>],
+) -> Option<Vec<NamedPose>> {
+    own_poses.iter().any(Option::is_some).then(|| {
+        sources
+            .iter()
+            .zip(own_poses)
+            .map(|(s, p)| NamedPose {
+                name: s.name.clone(),
+                world_from_scan: p.unwrap_or(DAffine3::IDENTITY),
+            })
+            .collect()
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::{DAffine3, DVec3, Vec3};
+    use glam::Vec3;
 
     #[test]
     fn far_points_are_dropped_and_scans_are_placed_by_name_before_order() {
@@ -104,7 +176,10 @@ mod tests {
         let a = within_range(&a, 30.0);
         assert_eq!(a.points, vec![Vec3::X]);
         let b = PointCloud::from_points(vec![Vec3::Y]);
-        let files = vec![PathBuf::from("a.pcd"), PathBuf::from("b.pcd")];
+        let files = vec![
+            ScanSource::file(Path::new("a.pcd")),
+            ScanSource::file(Path::new("b.pcd")),
+        ];
         let poses = vec![
             NamedPose {
                 name: "b".into(),

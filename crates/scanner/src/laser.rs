@@ -216,6 +216,7 @@ impl VirtualLaser {
             points,
             intensity: None,
             labels: Some(labels),
+            classification: None,
             organized: Some(Organized {
                 rows: c.rotation_steps,
                 cols: c.beams,

@@ -110,6 +110,15 @@ pub enum SimError {
         /// The most accepted.
         limit: usize,
     },
+    /// A URDF robot description that is not well-formed XML, not valid URDF, or describes a
+    /// robot semsim cannot model (a prismatic joint, a wheel without a cylinder, no wheels...).
+    #[error("{}: {msg}", path.display())]
+    Urdf {
+        /// The URDF file.
+        path: PathBuf,
+        /// What is wrong, with the line and the element where known.
+        msg: String,
+    },
     /// An unknown built-in robot model name (and not an existing file).
     #[error("unknown robot model {name:?}: not a built-in ({builtins}) and no such file")]
     UnknownRobotModel {

@@ -191,7 +191,8 @@ impl RobotModel {
         RobotModel::from_toml_str(text, &format!("<built-in robot model {n}>"))
     }
 
-    /// A built-in name, or else a TOML file (relative paths from `base_dir`).
+    /// A built-in name, or else a model file (relative paths from `base_dir`): TOML, or URDF
+    /// when the name ends in `.urdf` (see [`RobotModel::load`]).
     pub fn resolve(name_or_path: &str, base_dir: &Path) -> Result<RobotModel> {
         if BUILTINS.iter().any(|b| b.0 == name_or_path) {
             return RobotModel::builtin(name_or_path);
@@ -206,8 +207,15 @@ impl RobotModel {
         })
     }
 
-    /// Loads and validates a model file.
+    /// Loads and validates a model file: a URDF robot description when its name ends in
+    /// `.urdf` (any case; see [`RobotModel::load_urdf`]), else semsim's TOML.
     pub fn load(path: &Path) -> Result<RobotModel> {
+        let urdf = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("urdf"));
+        if urdf {
+            return RobotModel::load_urdf(path);
+        }
         RobotModel::from_toml_str(&read_text(path)?, &path.display().to_string())
     }
 

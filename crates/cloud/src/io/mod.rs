@@ -13,7 +13,8 @@ pub mod xyz;
 use crate::cloud::PointCloud;
 use crate::error::{CloudError, Result};
 use std::path::Path;
-use text::{print_notes, read_file};
+pub use text::print_notes;
+use text::read_file;
 
 pub use pcd::PcdEncoding;
 pub use ply::PlyEncoding;

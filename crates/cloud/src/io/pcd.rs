@@ -92,6 +92,7 @@ pub(crate) fn parse_pcd(path: &Path, bytes: &[u8]) -> Result<(PointCloud, Vec<St
         points: ch.points,
         intensity: ch.intensity,
         labels,
+        classification: None,
         organized: (h.height > 1).then_some(Organized {
             rows: h.height,
             cols: h.width,

@@ -84,7 +84,7 @@ impl<'a> Notes<'a> {
 }
 
 /// Prints each note to standard error as `note: ...`.
-pub(crate) fn print_notes(notes: &[String]) {
+pub fn print_notes(notes: &[String]) {
     for n in notes {
         eprintln!("note: {n}");
     }

@@ -1,23 +1,28 @@
 //! Reading a sequence: folders expanded into their scan files, odometry and ground truth found.
 
-use super::{scan_name, SequenceInput, ODOMETRY_FILE, TRUTH_FILE};
+use super::{
+    expand_files, scan_name, ExpandedScans, ScanSource, SequenceInput, ODOMETRY_FILE, TRUTH_FILE,
+};
 use crate::error::{PipelineError, Result};
 use cloud::NamedPose;
 use glam::DAffine3;
 use std::path::{Path, PathBuf};
 
 /// Scan file extensions a sequence folder is read for.
-const SCAN_EXTENSIONS: [&str; 4] = ["pcd", "ply", "3d", "xyz"];
+const SCAN_EXTENSIONS: [&str; 8] = ["pcd", "ply", "3d", "xyz", "las", "laz", "e57", "mcap"];
 /// Stems of files in a folder that are outputs, not scans (a registered map, a labelled map).
 const NOT_SCANS: [&str; 2] = ["map", "labels"];
 
 /// Expands folders into their scan files (in name order), and finds odometry (`odometry`, else
 /// the folder's `odometry.txt`, else 3DTK `.pose` files beside every scan) and ground truth
-/// (`truth`, else the folder's `poses.txt`). A sequence needs at least two scans.
+/// (`truth`, else the folder's `poses.txt`). A multi-scan file (E57, a ROS 2 bag) is read now,
+/// its scans' recorded poses (E57) or odometry topic (bag) its odometry where no odometry file
+/// is given. A sequence needs at least two scans.
 pub fn read_sequence(
     inputs: &[PathBuf],
     odometry: Option<&Path>,
     truth: Option<&Path>,
+    options: &interop::ReadOptions,
 ) -> Result<SequenceInput> {
     let mut files = Vec::new();
     let mut folder = None;
@@ -41,13 +46,16 @@ pub fn read_sequence(
             .into());
         }
     }
-    if files.len() < 2 {
+    let mut read = files.clone();
+    let expanded = expand_files(&files, options)?;
+    if expanded.scans.len() < 2 {
         return Err(PipelineError::bad_input(format!(
-            "a sequence needs at least two scans, found {}",
-            files.len()
+            "{}: a sequence needs at least two scans, found {}",
+            shown_inputs(inputs),
+            expanded.scans.len()
         )));
     }
-    let mut read = files.clone();
+    let scans = &expanded.scans;
     let in_folder = |name: &str| {
         folder
             .as_ref()
@@ -60,7 +68,10 @@ pub fn read_sequence(
     let odometry = match odometry_file {
         Some(p) => {
             read.push(p.clone());
-            poses_for(&files, &cloud::read_poses(&p)?, &p)?
+            poses_for(scans, &cloud::read_poses(&p)?, &p)?
+        }
+        None if recorded_odometry(&expanded).is_some() => {
+            recorded_odometry(&expanded).unwrap_or_default()
         }
         None if files.iter().any(|f| f.with_extension("pose").is_file()) => {
             if let Some(missing) = files.iter().find(|f| !f.with_extension("pose").is_file()) {
@@ -85,12 +96,12 @@ pub fn read_sequence(
     let truth = match truth_file {
         Some(p) => {
             read.push(p.clone());
-            poses_for(&files, &cloud::read_poses(&p)?, &p)?
+            poses_for(scans, &cloud::read_poses(&p)?, &p)?
         }
         None => Vec::new(),
     };
     Ok(SequenceInput {
-        files,
+        scans: expanded.scans,
         odometry,
         truth,
         read,
@@ -108,20 +119,35 @@ pub fn is_scan_file(p: &Path) -> bool {
     SCAN_EXTENSIONS.contains(&ext.as_str()) && !NOT_SCANS.contains(&stem.as_str())
 }
 
-/// Picks the pose of each scan by name from a pose file.
-fn poses_for(files: &[PathBuf], poses: &[NamedPose], path: &Path) -> Result<Vec<DAffine3>> {
-    files
+/// The odometry the scans' own files record: a bag's odometry topic, else E57 scan poses
+/// (where every scan has one).
+fn recorded_odometry(expanded: &ExpandedScans) -> Option<Vec<DAffine3>> {
+    ExpandedScans::all(&expanded.odometry).or_else(|| ExpandedScans::all(&expanded.own_poses))
+}
+
+/// The inputs as a message names them.
+fn shown_inputs(inputs: &[PathBuf]) -> String {
+    inputs
         .iter()
-        .map(|f| {
-            let stem = scan_name(f);
+        .map(|p| p.display().to_string())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Picks the pose of each scan by name from a pose file.
+fn poses_for(scans: &[ScanSource], poses: &[NamedPose], path: &Path) -> Result<Vec<DAffine3>> {
+    scans
+        .iter()
+        .map(|scan| {
             poses
                 .iter()
-                .find(|p| super::names_scan(&p.name, f))
+                .find(|p| scan.is_named(&p.name))
                 .map(|p| p.world_from_scan)
                 .ok_or_else(|| {
                     PipelineError::bad_input(format!(
-                        "{}: no pose for scan '{stem}'",
-                        path.display()
+                        "{}: no pose for scan '{}'",
+                        path.display(),
+                        scan.name
                     ))
                 })
         })

@@ -1,10 +1,12 @@
 //! Worlds from elsewhere: [`building`] makes a [`WorldSpec`](crate::WorldSpec) from a
 //! ground-truth building, `semantic_map` (feature `semantic`) from a semantic map built from
-//! scans; [`ImportConfig`] says how both make doors and free spaces.
+//! scans; [`ImportConfig`] says how both make doors and free spaces. `urdf` reads robot
+//! models from URDF files ([`RobotModel::load_urdf`](crate::RobotModel::load_urdf)).
 
 mod building;
 #[cfg(feature = "semantic")]
 mod semantic_map;
+mod urdf;
 
 use crate::error::{check_range, Result};
 use serde::{Deserialize, Serialize};

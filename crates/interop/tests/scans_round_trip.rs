@@ -1,0 +1,205 @@
+//! Round trips through `write_cloud` / `read_cloud` between every pair of formats (PCD, PLY,
+//! XYZ, 3DTK, E57, LAS, LAZ), and what each format keeps.
+//!
+//! Per format, what comes back of a cloud written and read again:
+//! - PCD, PLY, E57 (f32, or f64 of the f32) and XYZ (shortest decimal of the f32): exact.
+//! - 3DTK: centimetres with 4 decimals, converted to metres: within 1e-6 m (plus f32 rounding).
+//! - LAS/LAZ: 0.1 mm integers: within 5e-5 m; intensity rounded to u16 (the test uses whole
+//!   numbers, so exact), classification kept (written 0 where the cloud had none).
+//! Intensity survives every format; classification only LAS/LAZ.
+
+mod scans_support;
+
+use cloud::{Organized, PointCloud};
+use glam::Vec3;
+use interop::{is_sequence_file, read_cloud, read_scans, write_cloud, InteropError, ReadOptions};
+use std::path::Path;
+
+const FORMATS: [&str; 7] = ["pcd", "ply", "xyz", "3d", "e57", "las", "laz"];
+
+/// The position error a format may add (metres) for coordinates within ±8 m.
+fn tolerance(ext: &str) -> f32 {
+    match ext {
+        "3d" => 1e-6 + 1e-6,
+        "las" | "laz" => 5e-5 + 1e-6,
+        _ => 0.0,
+    }
+}
+
+fn keeps_class(ext: &str) -> bool {
+    matches!(ext, "las" | "laz")
+}
+
+fn sample() -> PointCloud {
+    let mut c = PointCloud::from_points(
+        (0..60)
+            .map(|i| {
+                let t = i as f32 * 0.37;
+                Vec3::new(
+                    t.cos() * 7.5,
+                    t.sin() * 6.25 - 1.0,
+                    (i % 7) as f32 * 0.3125 - 0.9,
+                )
+            })
+            .collect(),
+    );
+    c.intensity = Some((0..60).map(|i| (i * 17 % 1000) as f32).collect());
+    c.classification = Some((0..60).map(|i| [1u8, 2, 6, 9][i % 4]).collect());
+    c
+}
+
+fn read(path: &Path) -> PointCloud {
+    let (c, _) = read_cloud(path, &ReadOptions::default()).unwrap_or_else(|e| panic!("{e}"));
+    c
+}
+
+#[test]
+fn every_pair_of_formats_round_trips() {
+    let dir = tempfile::tempdir().unwrap();
+    let original = sample();
+    for a in FORMATS {
+        let first = dir.path().join(format!("first.{a}"));
+        write_cloud(&first, &original).unwrap_or_else(|e| panic!("{a}: {e}"));
+        let via_a = read(&first);
+        for b in FORMATS {
+            let second = dir.path().join(format!("second_{a}.{b}"));
+            write_cloud(&second, &via_a).unwrap_or_else(|e| panic!("{a} -> {b}: {e}"));
+            let back = read(&second);
+            let what = format!("{a} -> {b}");
+            assert_eq!(back.len(), original.len(), "{what}");
+            let tol = tolerance(a) + tolerance(b);
+            for (p, q) in back.points.iter().zip(&original.points) {
+                let d = (*p - *q).abs().max_element();
+                assert!(d <= tol, "{what}: {p:?} vs {q:?} ({d} > {tol})");
+            }
+            assert_eq!(back.intensity, original.intensity, "{what}: intensity");
+            let class = match (keeps_class(a), keeps_class(b)) {
+                (true, true) => original.classification.clone(),
+                (false, true) => Some(vec![0; original.len()]),
+                _ => None,
+            };
+            assert_eq!(back.classification, class, "{what}: classification");
+            assert!(back.organized.is_none(), "{what}");
+        }
+    }
+}
+
+fn organised() -> PointCloud {
+    let mut c = PointCloud::from_points(
+        (0..20)
+            .map(|i| Vec3::new(i as f32 * 0.25, 1.0, -(i as f32) * 0.125))
+            .collect(),
+    );
+    for i in [2, 9, 15] {
+        c.points[i] = Vec3::NAN;
+    }
+    c.intensity = Some((0..20).map(|i| i as f32).collect());
+    c.organized = Some(Organized { rows: 4, cols: 5 });
+    c
+}
+
+#[test]
+fn organised_clouds_keep_their_grid_in_pcd_and_e57_and_lose_it_in_las() {
+    let dir = tempfile::tempdir().unwrap();
+    let cloud = organised();
+    for ext in ["pcd", "e57"] {
+        let path = dir.path().join(format!("grid.{ext}"));
+        write_cloud(&path, &cloud).unwrap();
+        let back = read(&path);
+        assert_eq!(back.organized, cloud.organized, "{ext}");
+        assert_eq!(back.intensity, cloud.intensity, "{ext}");
+        for (a, b) in back.points.iter().zip(&cloud.points) {
+            assert!(
+                a == b || (a.is_nan() && b.is_nan()),
+                "{ext}: {a:?} vs {b:?}"
+            );
+        }
+    }
+    for ext in ["las", "laz"] {
+        let path = dir.path().join(format!("grid.{ext}"));
+        write_cloud(&path, &cloud).unwrap();
+        let back = read(&path);
+        assert_eq!(back.organized, None, "{ext}");
+        assert_eq!(back.len(), 17, "{ext}: the missing returns are not written");
+    }
+}
+
+#[test]
+fn native_formats_read_as_one_unposed_scan() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("room.pcd");
+    write_cloud(&path, &sample()).unwrap();
+    let set = read_scans(&path, &ReadOptions::default()).unwrap();
+    assert_eq!(set.scans.len(), 1);
+    assert_eq!(set.scans[0].name, "room");
+    assert!(set.scans[0].world_from_scan.is_none() && set.odometry.is_none());
+    assert_eq!(set.local_origin_m, glam::DVec3::ZERO);
+
+    let e57 = dir.path().join("one.e57");
+    write_cloud(&e57, &sample()).unwrap();
+    let set = read_scans(&e57, &ReadOptions::default()).unwrap();
+    assert_eq!(set.scans[0].name, "one");
+    assert_eq!(set.scans[0].world_from_scan, Some(glam::DAffine3::IDENTITY));
+
+    let unknown = dir.path().join("cloud.abc");
+    for e in [
+        read_scans(&unknown, &ReadOptions::default()).unwrap_err(),
+        write_cloud(&unknown, &sample()).unwrap_err(),
+    ] {
+        assert!(
+            matches!(
+                e,
+                InteropError::Cloud(cloud::CloudError::UnknownFormat { .. })
+            ),
+            "{e}"
+        );
+    }
+    let e = write_cloud(&dir.path().join("out.mcap"), &sample()).unwrap_err();
+    assert!(
+        matches!(e, InteropError::Unsupported { .. }) && e.to_string().contains("out.mcap"),
+        "{e}"
+    );
+    assert!(is_sequence_file(Path::new("a/b.E57")) && is_sequence_file(Path::new("bag.mcap")));
+    assert!(!is_sequence_file(Path::new("a.las")) && !is_sequence_file(Path::new("a.pcd")));
+}
+
+#[test]
+fn georeferenced_clouds_keep_their_place_in_las() {
+    // A cloud far from zero (as read_cloud gives a georeferenced file, minus its origin, or a
+    // user's own large frame): written at 0.1 mm about its centre, read back relative to a
+    // local origin that the note names.
+    let dir = tempfile::tempdir().unwrap();
+    let far = PointCloud::from_points(vec![
+        Vec3::new(2500.0, -1200.5, 30.0),
+        Vec3::new(2510.25, -1190.0, 31.5),
+    ]);
+    let path = dir.path().join("far.laz");
+    write_cloud(&path, &far).unwrap();
+    let set = read_scans(&path, &ReadOptions::default()).unwrap();
+    assert_eq!(set.local_origin_m, glam::DVec3::new(2505.0, -1195.0, 31.0));
+    for (p, q) in set.scans[0].cloud.points.iter().zip(&far.points) {
+        let world = p.as_dvec3() + set.local_origin_m;
+        assert!(
+            (world - q.as_dvec3()).abs().max_element() < 1e-4,
+            "{world:?} vs {q:?}"
+        );
+    }
+    assert!(
+        set.notes
+            .iter()
+            .any(|n| n.contains("local origin (2505, -1195, 31)")),
+        "{:?}",
+        set.notes
+    );
+}
+
+#[test]
+fn writing_to_a_missing_folder_names_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    for ext in ["e57", "las", "laz"] {
+        let path = dir.path().join("missing").join(format!("out.{ext}"));
+        let e = write_cloud(&path, &sample()).unwrap_err();
+        assert!(matches!(e, InteropError::Cloud(_)), "{e}");
+        assert!(scans_support::names_file(&e.to_string(), &path), "{e}");
+    }
+}

@@ -42,15 +42,28 @@ def main():
     data = mujoco.MjData(model)
     while data.time < a.seconds:
         mujoco.mj_step(model, data)
-    # A free camera looking down at the whole world from one corner, ceilings hidden (geom
-    # group 1 if the exporter put them there).
+    # Ceilings hidden (made transparent), so the picture looks into the rooms.
+    for g in range(model.ngeom):
+        name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or ""
+        if name.startswith("ceiling"):
+            model.geom_rgba[g, 3] = 0.0
+    # A free camera looking down at the whole world from one corner.
     camera = mujoco.MjvCamera()
     mujoco.mjv_defaultFreeCamera(model, camera)
-    camera.elevation = -55.0
-    camera.azimuth = 120.0
-    camera.distance *= 0.75
+    camera.elevation = -50.0
+    camera.azimuth = 235.0
+    camera.distance *= 0.55
+    # With a robot: a closer view from behind it, looking down the way it faces.
+    chassis = [b for b in range(model.nbody)
+               if (mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, b) or "").endswith("_chassis")]
+    if chassis:
+        camera.lookat[:] = data.xpos[chassis[0]] + np.array([3.0, 0.0, 0.0])
+        camera.distance = 9.0
+        camera.azimuth = 25.0
+        camera.elevation = -42.0
+    model.vis.headlight.ambient[:] = [0.45, 0.45, 0.45]
+    model.vis.headlight.diffuse[:] = [0.6, 0.6, 0.6]
     option = mujoco.MjvOption()
-    option.geomgroup[1] = 0
     renderer = mujoco.Renderer(model, a.height, a.width)
     renderer.update_scene(data, camera=camera, scene_option=option)
     image = renderer.render()

@@ -95,3 +95,87 @@ pub fn cloud_target(
         Err(e) => check_error(&e, name),
     }
 }
+
+/// Runs a scan reader of the interop crate (E57, LAS/LAZ, MCAP) and checks what it returns:
+/// every scan's cloud as [`check_cloud`] does, poses finite and rigid, one odometry pose per
+/// scan, a finite local origin, notes naming the file; an error names the file, is bad input
+/// (out-of-memory is not: a small input must never need that much) and holds no control
+/// character.
+pub fn scans_target(
+    name: &str,
+    read: impl FnOnce(&std::path::Path) -> interop::Result<interop::ScanSet>,
+) {
+    match read(path(name)) {
+        Ok(set) => {
+            for scan in &set.scans {
+                check_cloud(&scan.cloud);
+                check_message(&scan.name, "");
+                if let Some(pose) = &scan.world_from_scan {
+                    check_pose(pose);
+                }
+                if let Some(frame) = &scan.frame_id {
+                    check_message(frame, "");
+                }
+            }
+            if let Some(odometry) = &set.odometry {
+                assert_eq!(
+                    odometry.len(),
+                    set.scans.len(),
+                    "one odometry pose per scan"
+                );
+                odometry.iter().for_each(check_pose);
+            }
+            assert!(set.local_origin_m.is_finite());
+            check_notes(&set.notes, name);
+        }
+        Err(e) => {
+            check_message(&e, name);
+            assert!(
+                e.is_bad_input(),
+                "an error reading bytes must be the input's fault (exit 2): {e}"
+            );
+        }
+    }
+}
+
+/// E57 pages: 1,020 bytes of data and their CRC-32C, big endian.
+const E57_PAGE: usize = 1024;
+
+/// CRC-32C (Castagnoli, reflected polynomial 0x82F63B78), bit by bit.
+fn crc32c(data: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &byte in data {
+        crc ^= u32::from(byte);
+        for _ in 0..8 {
+            crc = if crc & 1 == 1 {
+                (crc >> 1) ^ 0x82F6_3B78
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+/// `data` with the CRC of every whole E57 page recomputed, so that a mutation reaches the
+/// parser behind the page checks (which would refuse almost every mutated input); `None` where
+/// `data` holds no whole page.
+pub fn e57_with_page_crcs(data: &[u8]) -> Option<Vec<u8>> {
+    if data.len() < E57_PAGE {
+        return None;
+    }
+    let mut fixed = data.to_vec();
+    for page in fixed.chunks_exact_mut(E57_PAGE) {
+        let crc = crc32c(&page[..E57_PAGE - 4]);
+        page[E57_PAGE - 4..].copy_from_slice(&crc.to_be_bytes());
+    }
+    Some(fixed)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn crc32c_check_value() {
+        assert_eq!(super::crc32c(b"123456789"), 0xE306_9283);
+    }
+}

@@ -9,7 +9,7 @@ use interop::{export_world, ExportFormat, ExportOptions};
 use serde_json::Value;
 
 /// The door report of `door_<id>`.
-fn door<'a>(report: &'a Value, id: u32) -> &'a Value {
+fn door(report: &Value, id: u32) -> &Value {
     let name = format!("door_{id}");
     report["doors"]
         .as_array()

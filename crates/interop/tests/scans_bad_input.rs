@@ -83,10 +83,10 @@ fn truncations(dir: &Path, ext: &str, bytes: &[u8], must_fail_below: usize) {
 }
 
 /// Flips bytes (xor 0xff, and xor 0x01) at every position of the first 400 bytes and every
-/// 7th after; none may panic. Returns how many variants failed.
+/// 13th after; none may panic. Returns how many variants failed.
 fn corruptions(dir: &Path, ext: &str, bytes: &[u8]) -> usize {
     let mut failed = 0;
-    let positions = (0..bytes.len().min(400)).chain((400..bytes.len()).step_by(7));
+    let positions = (0..bytes.len().min(400)).chain((400..bytes.len()).step_by(13));
     for at in positions {
         for mask in [0xffu8, 0x01] {
             let mut damaged = bytes.to_vec();
@@ -170,6 +170,21 @@ fn damaged_laz_files_are_errors_naming_the_file() {
     )
     .unwrap_err();
     assert!(e.to_string().contains("more than 256 a byte"), "{e}");
+    // A layer size of the first chunk (after the chunk table offset, the 30-byte first point
+    // and the point count) claiming 4 GiB is refused before the laz crate allocates it.
+    let points_at = u32::from_le_bytes(bytes[96..100].try_into().unwrap()) as usize;
+    let mut greedy = bytes.clone();
+    let at = points_at + 8 + 30 + 4;
+    greedy[at..at + 4].copy_from_slice(&0xffff_fff0u32.to_le_bytes());
+    let e = read_scans(
+        &write(dir.path(), "greedy.laz", &greedy),
+        &ReadOptions::default(),
+    )
+    .unwrap_err();
+    assert!(
+        e.to_string().contains("its layers claim 4294967") && e.to_string().contains("greedy.laz"),
+        "{e}"
+    );
 }
 
 fn write(dir: &Path, name: &str, bytes: &[u8]) -> std::path::PathBuf {
@@ -214,8 +229,16 @@ fn pointcloud2(points: &[[f32; 3]], x_datatype: u8, data_len_extra: u32) -> Vec<
     m
 }
 
+fn cut(mut bytes: Vec<u8>, by: usize) -> Vec<u8> {
+    bytes.truncate(bytes.len() - by);
+    bytes
+}
+
+/// A channel: topic, schema name, messages.
+type Channel<'a> = (&'a str, &'a str, Vec<Vec<u8>>);
+
 /// A bag with one channel per (topic, schema name, messages).
-fn bag(compression: Option<mcap::Compression>, channels: &[(&str, &str, Vec<Vec<u8>>)]) -> Vec<u8> {
+fn bag(compression: Option<mcap::Compression>, channels: &[Channel]) -> Vec<u8> {
     let options = mcap::WriteOptions::new()
         .compression(compression)
         .profile("ros2");
@@ -265,7 +288,7 @@ fn damaged_mcap_files_are_errors_naming_the_file() {
     }
 
     // Bad messages inside a sound container name the file, the topic and the message.
-    let cases: [(&str, Vec<(&str, &str, Vec<Vec<u8>>)>, &str); 5] = [
+    let cases: [(&str, Vec<Channel>, &str); 6] = [
         (
             "long_data.mcap",
             vec![(
@@ -285,11 +308,20 @@ fn damaged_mcap_files_are_errors_naming_the_file() {
             "field x has datatype 1",
         ),
         (
-            "cut_message.mcap",
+            "cut_fields.mcap",
             vec![(
                 "/points",
                 "sensor_msgs/msg/PointCloud2",
                 vec![pointcloud2(&points, 7, 0)[..40].to_vec()],
+            )],
+            "3 fields need at least",
+        ),
+        (
+            "cut_data.mcap",
+            vec![(
+                "/points",
+                "sensor_msgs/msg/PointCloud2",
+                vec![cut(pointcloud2(&points, 7, 0), 20)],
             )],
             "truncated at byte",
         ),

@@ -6,6 +6,7 @@
 //! - 3DTK: centimetres with 4 decimals, converted to metres: within 1e-6 m (plus f32 rounding).
 //! - LAS/LAZ: 0.1 mm integers: within 5e-5 m; intensity rounded to u16 (the test uses whole
 //!   numbers, so exact), classification kept (written 0 where the cloud had none).
+//!
 //! Intensity survives every format; classification only LAS/LAZ.
 
 mod scans_support;

@@ -126,6 +126,14 @@ pub(super) fn check_las_header(path: &Path, bytes: &[u8]) -> Result<LasLayout> {
             )));
         }
         check_chunk_table(path, bytes, offset_to_points)?;
+        super::laz_check::check_laz_chunks(
+            path,
+            bytes,
+            header_size as usize,
+            u32_at(bytes, 100),
+            offset_to_points as usize,
+            points,
+        )?;
     } else {
         match points.checked_mul(record_len) {
             Some(need) if need <= data_bytes => {}

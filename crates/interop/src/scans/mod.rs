@@ -10,6 +10,7 @@ mod e57_write;
 mod las_check;
 mod las_read;
 mod las_write;
+mod laz_check;
 mod mcap;
 mod merge;
 mod util;

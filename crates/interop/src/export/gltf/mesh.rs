@@ -163,9 +163,7 @@ const UNSIGNED_INT: u32 = 5125;
 
 impl Buffer {
     fn view(&mut self, data: &[u8], target: u32) -> usize {
-        while self.bytes.len() % 4 != 0 {
-            self.bytes.push(0);
-        }
+        self.bytes.resize(self.bytes.len().next_multiple_of(4), 0);
         let offset = self.bytes.len();
         self.bytes.extend_from_slice(data);
         self.views.push(json!({

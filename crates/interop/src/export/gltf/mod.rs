@@ -198,7 +198,9 @@ pub(crate) fn write(spec: &WorldSpec, robot: Option<&RobotLayout>, given: &[Rela
     if let Some(r) = robot {
         children.push(robot_nodes(&mut doc, r));
     }
-    doc.nodes[root]["children"] = json!(children);
+    if !children.is_empty() {
+        doc.nodes[root]["children"] = json!(children);
+    }
     let mut gltf = json!({
         "asset": { "version": "2.0", "generator": "semsim interop (world export)" },
         "scene": 0,

@@ -14,6 +14,7 @@
 //! them (tf, not read) and `world_from_scan` stays `None`, with a note.
 
 mod cdr;
+mod container;
 mod odometry;
 mod pointcloud2;
 
@@ -137,6 +138,8 @@ pub(super) fn parse_mcap(path: &Path, bytes: &[u8], options: &ReadOptions) -> Re
     let mut clouds = TopicsOfKind::default();
     let mut odometry = TopicsOfKind::default();
     let mut others: BTreeMap<String, String> = BTreeMap::new();
+    container::check_chunks(bytes)
+        .map_err(|e| InteropError::format(path, format!("not a readable MCAP file: {e}")))?;
     let options_io = mcap::sans_io::LinearReaderOptions::default()
         .with_record_length_limit(record_length_limit(bytes.len()));
     let reader = mcap::io::MessageReader::new_with_options(std::io::Cursor::new(bytes), options_io);

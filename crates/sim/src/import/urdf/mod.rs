@@ -31,7 +31,9 @@
 //!   arm that branches, any other moving joint that is neither a wheel nor on the arm, links or
 //!   joints that do not form one tree, and (when checked as a model) fewer than two wheels.
 
+mod arm;
 mod map;
+mod tree;
 
 use crate::error::{read_text, Result, SimError};
 use crate::model::RobotModel;

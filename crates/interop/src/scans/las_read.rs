@@ -31,23 +31,25 @@ pub(super) const LOCAL_EXTENT_M: f64 = 1000.0;
 pub(super) fn parse_las(path: &Path, bytes: Vec<u8>) -> Result<ScanSet> {
     let layout = check_las_header(path, &bytes)?;
     let data_bytes = bytes.len();
-    let mut reader = las::Reader::new(Cursor::new(bytes)).map_err(|e| las_error(path, "", &e))?;
-    let header = reader.header();
-    let count = header.number_of_points();
-    if count > layout.points {
-        return Err(InteropError::format(
+    let decoded = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        decode(path, bytes, layout, data_bytes)
+    }));
+    let (xyz, intensity, classification) = decoded.map_err(|panic| {
+        let what = panic
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| panic.downcast_ref::<String>().cloned())
+            .unwrap_or_default();
+        InteropError::format(
             path,
             format!(
-                "the header's point count {count} disagrees with {}",
-                layout.points
+                "not a readable LAS/LAZ file: the decoder's consistency check failed on corrupt data ({})",
+                clean(&what)
             ),
-        ));
-    }
-    let legacy_format = !header.point_format().is_extended;
-    let (xyz, intensity, classification) =
-        read_points(path, &mut reader, layout, data_bytes, legacy_format)?;
+        )
+    })??;
     let mut notes = Vec::new();
-    let keep: Vec<usize> = (0..xyz.len()).filter(|&i| xyz[i].is_finite()).collect();
+    let mut keep: Vec<usize> = (0..xyz.len()).filter(|&i| xyz[i].is_finite()).collect();
     if keep.len() < xyz.len() {
         notes.push(note(
             path,
@@ -64,6 +66,18 @@ pub(super) fn parse_las(path: &Path, bytes: Vec<u8>) -> Result<ScanSet> {
             format!(
                 "georeferenced coordinates: points are relative to the local origin ({}, {}, {}) m",
                 origin.x, origin.y, origin.z
+            ),
+        ));
+    }
+    // Points too far from the origin for f32 (a corrupt scale) are skipped too.
+    let far = keep.len();
+    keep.retain(|&i| (xyz[i] - origin).as_vec3().is_finite());
+    if keep.len() < far {
+        notes.push(note(
+            path,
+            format!(
+                "{} points beyond f32 range of the local origin skipped",
+                far - keep.len()
             ),
         ));
     }
@@ -87,6 +101,31 @@ pub(super) fn parse_las(path: &Path, bytes: Vec<u8>) -> Result<ScanSet> {
 }
 
 type Columns = (Vec<DVec3>, Vec<f32>, Vec<u8>);
+
+/// The `las` crate's part: the header again, then every point.
+///
+/// Run under `catch_unwind` by [`parse_las`]: the `laz` crate's arithmetic decoder checks its
+/// state with `debug_assert!`s that corrupt compressed data trips (in debug builds and under
+/// the fuzzer; release builds do not check and the decoder reads on or fails at the end of
+/// the data). Nothing can tell such data apart before decoding it, so a panic there becomes a
+/// format error. Everything the crates trust beyond that is checked before (`las_check`,
+/// `laz_check`).
+fn decode(path: &Path, bytes: Vec<u8>, layout: LasLayout, data_bytes: usize) -> Result<Columns> {
+    let mut reader = las::Reader::new(Cursor::new(bytes)).map_err(|e| las_error(path, "", &e))?;
+    let header = reader.header();
+    let count = header.number_of_points();
+    if count > layout.points {
+        return Err(InteropError::format(
+            path,
+            format!(
+                "the header's point count {count} disagrees with {}",
+                layout.points
+            ),
+        ));
+    }
+    let legacy_format = !header.point_format().is_extended;
+    read_points(path, &mut reader, layout, data_bytes, legacy_format)
+}
 
 /// Every point's position (f64), intensity and class byte.
 fn read_points(
@@ -150,10 +189,11 @@ pub(super) fn local_origin(points: impl Iterator<Item = DVec3>) -> DVec3 {
     let Some((lo, hi)) = bounds else {
         return DVec3::ZERO;
     };
-    if lo.abs().max(hi.abs()).max_element() <= LOCAL_EXTENT_M {
+    let centre = (lo * 0.5 + hi * 0.5).round();
+    if lo.abs().max(hi.abs()).max_element() <= LOCAL_EXTENT_M || !centre.is_finite() {
         return DVec3::ZERO;
     }
-    ((lo + hi) * 0.5).round()
+    centre
 }
 
 /// The `las` crate's error as a format error, its text quoted with control characters escaped.

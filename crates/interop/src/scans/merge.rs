@@ -27,6 +27,16 @@ pub(super) fn merge_scans(path: &Path, set: ScanSet) -> Result<(PointCloud, Vec<
         if let Some(pose) = scan.world_from_scan {
             place(&mut cloud, &pose);
         }
+        if cloud.organized.is_none() && cloud.valid_count() < cloud.len() {
+            notes.push(note(
+                path,
+                format!(
+                    "{} points placed beyond f32 range by the scan's pose dropped",
+                    cloud.len() - cloud.valid_count()
+                ),
+            ));
+            cloud = cloud.without_invalid();
+        }
         return Ok((cloud, notes));
     }
     let unposed: Vec<&str> = scans
@@ -109,11 +119,13 @@ pub(super) fn place(cloud: &mut PointCloud, world_from_scan: &DAffine3) {
         return;
     }
     for p in &mut cloud.points {
-        if p.is_finite() {
-            *p = world_from_scan.transform_point3(p.as_dvec3()).as_vec3();
+        let placed = world_from_scan.transform_point3(p.as_dvec3()).as_vec3();
+        // Missing returns stay missing; a point the pose moves beyond f32 becomes one.
+        *p = if placed.is_finite() {
+            placed
         } else {
-            *p = Vec3::NAN;
-        }
+            Vec3::NAN
+        };
     }
     cloud.sensor_origin = world_from_scan
         .transform_point3(cloud.sensor_origin.as_dvec3())

@@ -2,7 +2,10 @@
 //! JSON dumps, the real samples' folder and f32 tolerances.
 #![allow(dead_code)]
 
+pub mod bags;
+
 use fixtures::oracles;
+use glam::{DAffine3, DQuat, DVec3, Vec3};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -74,4 +77,31 @@ pub fn f32_rounding(max_abs: f64) -> f64 {
 pub fn names_file(message: &str, path: &Path) -> bool {
     let name = path.file_name().expect("a file name").to_string_lossy();
     message.contains(name.as_ref())
+}
+
+/// A pose from a JSON rotation (w x y z) and translation.
+pub fn pose_from(rotation_wxyz: &Value, translation: &Value) -> DAffine3 {
+    let q = f64s(rotation_wxyz);
+    let t = f64s(translation);
+    DAffine3::from_rotation_translation(
+        DQuat::from_xyzw(q[1], q[2], q[3], q[0]).normalize(),
+        DVec3::new(t[0], t[1], t[2]),
+    )
+}
+
+/// Asserts two poses agree to 1e-12 in every matrix element.
+pub fn assert_pose_eq(a: &DAffine3, b: &DAffine3, what: &str) {
+    let d = (a.to_cols_array().iter().zip(b.to_cols_array()))
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    assert!(d < 1e-12, "{what}: poses differ by {d}: {a:?} vs {b:?}");
+}
+
+/// Asserts a point lies within `tol` metres (on every axis) of (x, y, z).
+pub fn close(p: Vec3, x: f64, y: f64, z: f64, tol: f64, what: &str) {
+    let d = (p.as_dvec3() - DVec3::new(x, y, z)).abs().max_element();
+    assert!(
+        d <= tol,
+        "{what}: {p:?} vs ({x}, {y}, {z}): {d} m > {tol} m"
+    );
 }

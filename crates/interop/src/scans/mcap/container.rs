@@ -27,54 +27,65 @@ fn u32_at(b: &[u8], at: usize) -> Option<u32> {
     Some(u32::from_le_bytes(bytes))
 }
 
-/// The records of an uncompressed chunk's record bytes overrun it: where, as text.
-fn check_chunk_records(records: &[u8], chunk_at: usize) -> Result<(), String> {
-    let mut at = 0;
-    while at < records.len() {
-        let left = records.len() - at;
-        let len = u64_at(records, at + 1).filter(|_| left >= RECORD_HEADER);
-        let fits = len.is_some_and(|len| len <= (left - RECORD_HEADER) as u64);
-        let Some(len) = len.filter(|_| fits) else {
+/// Fails where an inner record of an uncompressed chunk would run past the chunk's declared
+/// record bytes (`declared`); `available` is what the file holds of them. Stops quietly where
+/// the file ends first (the `mcap` crate then reports the end of the file).
+fn check_chunk_records(available: &[u8], declared: u64, chunk_at: usize) -> Result<(), String> {
+    let mut at = 0u64;
+    while at < declared {
+        let Some(len) = usize::try_from(at)
+            .ok()
+            .and_then(|a| u64_at(available, a + 1))
+        else {
+            return Ok(());
+        };
+        let left = declared - at;
+        if left < RECORD_HEADER as u64 || len > left - RECORD_HEADER as u64 {
             return Err(format!(
                 "the record at byte {at} of the uncompressed chunk at byte {chunk_at} runs past the chunk's end"
             ));
-        };
-        at += RECORD_HEADER + len as usize;
+        }
+        at += RECORD_HEADER as u64 + len;
     }
     Ok(())
 }
 
 /// Walks the top-level records; stops quietly where the structure breaks (the `mcap` crate
-/// reports that), fails where an uncompressed chunk's records overrun it.
+/// reports that), fails where an uncompressed chunk's records overrun it. A chunk that runs
+/// past the end of the file is checked as far as the file goes: the crate starts on its
+/// records before it reaches the end.
 pub(super) fn check_chunks(bytes: &[u8]) -> Result<(), String> {
     let mut at = MAGIC_BYTES;
     while let (Some(&opcode), Some(len)) = (bytes.get(at), u64_at(bytes, at + 1)) {
         let body_at = at + RECORD_HEADER;
-        let Some(body) = usize::try_from(len)
-            .ok()
-            .and_then(|len| bytes.get(body_at..body_at.checked_add(len)?))
-        else {
-            return Ok(());
-        };
+        let body = bytes.get(body_at..).unwrap_or(&[]);
         if opcode == CHUNK {
-            // start, end, uncompressed size (24), CRC (4), compression string.
-            let Some(name_len) = u32_at(body, 28) else {
+            // start, end, uncompressed size (24), CRC (4), compression string, records.
+            let (Some(name_len), Some(records_len)) = (
+                u32_at(body, 28),
+                u32_at(body, 28).and_then(|n| u64_at(body, 32usize.checked_add(n as usize)?)),
+            ) else {
                 return Ok(());
             };
-            let name_at = 32usize;
-            let records_len_at = name_at.saturating_add(name_len as usize);
-            let Some(records_len) = u64_at(body, records_len_at) else {
+            let records_at = 40 + name_len as usize;
+            // The crate refuses a chunk whose records do not fit in the chunk record.
+            let fits = (records_at as u64)
+                .checked_add(records_len)
+                .is_some_and(|end| end <= len);
+            if !fits {
                 return Ok(());
-            };
-            let records_at = records_len_at + 8;
-            let records = usize::try_from(records_len)
-                .ok()
-                .and_then(|n| body.get(records_at..records_at.checked_add(n)?));
-            if let (0, Some(records)) = (name_len, records) {
-                check_chunk_records(records, at)?;
+            }
+            if name_len == 0 {
+                check_chunk_records(body.get(records_at..).unwrap_or(&[]), records_len, at)?;
             }
         }
-        at = body_at + body.len();
+        let next = usize::try_from(len)
+            .ok()
+            .and_then(|l| body_at.checked_add(l));
+        match next {
+            Some(next) if next <= bytes.len() => at = next,
+            _ => return Ok(()),
+        }
     }
     Ok(())
 }
@@ -106,7 +117,15 @@ mod tests {
         assert!(check_chunks(&chunk(&bad))
             .expect_err("overrun")
             .contains("runs past"));
-        assert!(check_chunks(&chunk(&good[..5])).is_err());
+        // Records of 5 bytes cannot hold a record header: the crate would read past them.
+        let mut short = chunk(&good[..5]);
+        short.extend([0u8; 16]);
+        assert!(check_chunks(&short).is_err());
         assert_eq!(check_chunks(b"\x89MCAP0\r\n\x06\xff"), Ok(()));
+        // A chunk record longer than the file: its records are still checked.
+        let mut cut = chunk(&bad);
+        let n = cut.len() as u64 + 1000;
+        cut[9..17].copy_from_slice(&n.to_le_bytes());
+        assert!(check_chunks(&cut).is_err());
     }
 }

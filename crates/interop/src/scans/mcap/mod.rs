@@ -1,8 +1,9 @@
 //! ROS 2 bags in MCAP (`.mcap`): the messages of one `sensor_msgs/msg/PointCloud2` topic as
 //! scans, with poses from a `nav_msgs/msg/Odometry` topic where the bag has one.
 //!
-//! The `mcap` crate reads the container (chunks compressed with zstd or lz4 included); this
-//! module decodes the CDR messages itself ([`cdr`]). A topic is taken where its channel's
+//! The `mcap` crate walks the container (chunks compressed with zstd or lz4 included); this
+//! module parses the schema, channel and message records ([`records`], [`stream`]) and decodes
+//! the CDR messages ([`cdr`]) itself. A topic is taken where its channel's
 //! schema is named `sensor_msgs/msg/PointCloud2` (or `nav_msgs/msg/Odometry`) and its message
 //! encoding is `cdr`. Messages are read in log-time order (file order for equal times); each
 //! becomes a scan named `<topic>#<index>` with its header's stamp and frame id.
@@ -17,6 +18,8 @@ mod cdr;
 mod container;
 mod odometry;
 mod pointcloud2;
+mod records;
+mod stream;
 
 use super::util::{clean, note, try_push};
 use super::{ImportedScan, ReadOptions, ScanSet};
@@ -30,16 +33,6 @@ use std::path::Path;
 const POINTCLOUD2: &str = "sensor_msgs/msg/PointCloud2";
 /// The schema name of the odometry read.
 const ODOMETRY: &str = "nav_msgs/msg/Odometry";
-
-/// The longest record the `mcap` crate may buffer (a message inside a compressed chunk
-/// included): 64 times the file, at least 64 MiB. The crate sizes its buffer by the record's
-/// length field before decompressing, and its `MessageStream` sets no limit for records inside
-/// chunks, so a corrupt length there made it allocate without bound (a byte flipped inside a
-/// zstd chunk, in `tests/scans_bad_input.rs`). Point data does not compress 64-fold, and
-/// single messages beyond 64 MiB in small bags are rarer still.
-fn record_length_limit(file_bytes: usize) -> usize {
-    file_bytes.saturating_mul(64).max(64 << 20)
-}
 
 /// A message kept for decoding.
 struct RawMessage {
@@ -129,36 +122,25 @@ impl TopicsOfKind {
 
 /// Reads the scans of the MCAP bag in `bytes`.
 pub(super) fn parse_mcap(path: &Path, bytes: &[u8], options: &ReadOptions) -> Result<ScanSet> {
-    let bad_container = |e: mcap::McapError| {
-        InteropError::format(
-            path,
-            format!("not a readable MCAP file: {}", clean(&e.to_string())),
-        )
-    };
     let mut clouds = TopicsOfKind::default();
     let mut odometry = TopicsOfKind::default();
     let mut others: BTreeMap<String, String> = BTreeMap::new();
-    container::check_chunks(bytes)
-        .map_err(|e| InteropError::format(path, format!("not a readable MCAP file: {e}")))?;
-    let options_io = mcap::sans_io::LinearReaderOptions::default()
-        .with_record_length_limit(record_length_limit(bytes.len()));
-    let reader = mcap::io::MessageReader::new_with_options(std::io::Cursor::new(bytes), options_io);
-    for message in reader {
-        let message = message.map_err(bad_container)?;
-        let channel = &message.channel;
-        let schema = channel.schema.as_ref().map_or("", |s| s.name.as_str());
-        let cdr = channel.message_encoding == "cdr";
-        let raw = RawMessage {
-            log_time: message.log_time,
-            data: message.data.into_owned(),
+    stream::for_each_message(path, bytes, |channel, log_time, data| {
+        let raw = || RawMessage {
+            log_time,
+            data: data.to_vec(),
         };
-        match (schema, cdr) {
+        let schema = channel.schema_name.as_str();
+        match (schema, channel.message_encoding == "cdr") {
             (POINTCLOUD2, true) => {
-                clouds.add(path, &channel.topic, options.topic.as_deref(), raw)?
+                clouds.add(path, &channel.topic, options.topic.as_deref(), raw())?
             }
-            (ODOMETRY, true) => {
-                odometry.add(path, &channel.topic, options.odometry_topic.as_deref(), raw)?
-            }
+            (ODOMETRY, true) => odometry.add(
+                path,
+                &channel.topic,
+                options.odometry_topic.as_deref(),
+                raw(),
+            )?,
             _ => {
                 others.entry(channel.topic.clone()).or_insert_with(|| {
                     format!(
@@ -170,7 +152,8 @@ pub(super) fn parse_mcap(path: &Path, bytes: &[u8], options: &ReadOptions) -> Re
                 });
             }
         }
-    }
+        Ok(())
+    })?;
     let Some((topic, mut messages)) = clouds.choose(
         path,
         options.topic.as_deref(),

@@ -80,10 +80,9 @@ pub(super) fn pose_at(sorted: &[Odometry], stamp_ns: i64) -> Option<(DAffine3, b
     let rb = DQuat::from_mat3(&b.pose.matrix3);
     let rotation = ra.slerp(rb, t).normalize();
     let translation = a.pose.translation.lerp(b.pose.translation, t);
-    Some((
-        DAffine3::from_rotation_translation(rotation, translation),
-        false,
-    ))
+    let pose = DAffine3::from_rotation_translation(rotation, translation);
+    // Translations near f64's range can overflow in between: take the earlier pose then.
+    Some((if pose.is_finite() { pose } else { a.pose }, false))
 }
 
 #[cfg(test)]

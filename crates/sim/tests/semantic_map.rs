@@ -6,47 +6,12 @@ use common::{has, timeline};
 use sim::EventKind::*;
 use sim::{SimError, WorldSpec};
 
-fn entity(id: u32, class: &str, c: [f64; 3], s: [f64; 3], yaw: f64, extra: &str) -> String {
-    format!(
-        r#"{{"id":{id},"class":"{class}","geometry":{{"center_m":{c:?},"size_m":{s:?},"yaw_deg":{yaw:?}}},"support_points":1000,"confidence":0.9,"rules":["test"]{extra}}}"#
-    )
-}
-
 /// An east wall at x = 6 with a closed 0.9 m door (y -0.5 .. 0.4) opening away from x < 6.
 fn map_json(relations: &str) -> String {
-    let wall = r#","wall":{"segment_m":[[6.0,-2.0],[6.0,2.0]],"thickness_m":0.2,"thickness_measured":true,"z_range_m":[0.0,2.5],"solid_boxes":[{"center_m":[6.0,-1.25,1.25],"size_m":[1.5,0.2,2.5],"yaw_deg":90.0},{"center_m":[6.0,1.2,1.25],"size_m":[1.6,0.2,2.5],"yaw_deg":90.0}]}"#;
-    let door = r#","door":{"hinge_m":[6.0,-0.5,0.0],"hinge_axis":[0.0,0.0,1.0],"hinge_edge":"start","swing":"right","observed_open_deg":0.0}"#;
-    let opening = r#","opening":{"offset_m":1.5,"width_m":0.9,"height_m":2.0}"#;
-    let entities = [
-        entity(1, "floor", [4.5, 0.0, -0.1], [9.4, 4.4, 0.2], 0.0, ""),
-        entity(2, "ceiling", [4.5, 0.0, 2.6], [9.4, 4.4, 0.2], 0.0, ""),
-        entity(3, "wall", [6.0, 0.0, 1.25], [4.0, 0.2, 2.5], 90.0, wall),
-        entity(
-            4,
-            "wall_above_door",
-            [6.0, -0.05, 2.25],
-            [0.9, 0.2, 0.5],
-            90.0,
-            "",
-        ),
-        entity(5, "door", [6.0, -0.05, 1.0], [0.9, 0.04, 2.0], 90.0, door),
-        entity(
-            6,
-            "free_space_for_door",
-            [6.0, -0.05, 1.0],
-            [0.9, 1.0, 2.0],
-            90.0,
-            opening,
-        ),
-    ];
-    let identity = "[1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0]";
-    format!(
-        r#"{{"format":"semsim.semantic_map","version":1,"input_from_map":{identity},"entities":[{}],"relations":[{relations}]}}"#,
-        entities.join(",")
-    )
+    fixtures::door_wall_map_json("right", 0.0, relations)
 }
 
-const RELATIONS: &str = r#"{"type":"connected_via_joint","a":5,"b":3},{"type":"available_inside","a":6,"b":3},{"type":"available_inside","a":5,"b":6}"#;
+const RELATIONS: &str = fixtures::DOOR_RELATIONS;
 
 #[test]
 fn a_semantic_map_world_with_a_door_to_push() {

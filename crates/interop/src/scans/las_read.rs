@@ -15,8 +15,8 @@
 //! * Points with non-finite coordinates (a scale of NaN) are skipped, with a note.
 
 use super::las_check::{check_las_header, LasLayout};
-use super::util::{clean, file_stem, note, try_push, try_vec};
-use super::{ImportedScan, ScanSet};
+use super::util::{clean, note, try_push, try_vec};
+use super::ScanSet;
 use crate::error::{InteropError, Result};
 use cloud::PointCloud;
 use glam::DVec3;
@@ -86,18 +86,7 @@ pub(super) fn parse_las(path: &Path, bytes: Vec<u8>) -> Result<ScanSet> {
     let mut cloud = PointCloud::from_points(points);
     cloud.intensity = Some(keep.iter().map(|&i| intensity[i]).collect());
     cloud.classification = Some(keep.iter().map(|&i| classification[i]).collect());
-    Ok(ScanSet {
-        scans: vec![ImportedScan {
-            name: file_stem(path),
-            cloud,
-            world_from_scan: None,
-            stamp_ns: None,
-            frame_id: None,
-        }],
-        local_origin_m: origin,
-        odometry: None,
-        notes,
-    })
+    Ok(super::single_scan(path, cloud, origin, notes))
 }
 
 type Columns = (Vec<DVec3>, Vec<f32>, Vec<u8>);

@@ -151,7 +151,12 @@ pub fn write_cloud(path: &Path, cloud: &PointCloud) -> Result<()> {
 }
 
 /// A set of one scan named after the file stem, without pose.
-fn single_scan(path: &Path, cloud: PointCloud, origin: DVec3, notes: Vec<String>) -> ScanSet {
+pub(super) fn single_scan(
+    path: &Path,
+    cloud: PointCloud,
+    origin: DVec3,
+    notes: Vec<String>,
+) -> ScanSet {
     ScanSet {
         scans: vec![ImportedScan {
             name: util::file_stem(path),

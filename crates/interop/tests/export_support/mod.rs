@@ -13,46 +13,14 @@ pub fn default_world() -> WorldSpec {
     WorldSpec::from_building(&scanner::Building::default_building().unwrap()).unwrap()
 }
 
-fn entity(id: u32, class: &str, c: [f64; 3], s: [f64; 3], yaw: f64, extra: &str) -> String {
-    format!(
-        r#"{{"id":{id},"class":"{class}","geometry":{{"center_m":{c:?},"size_m":{s:?},"yaw_deg":{yaw:?}}},"support_points":500,"confidence":0.8,"rules":["export test"]{extra}}}"#
-    )
-}
-
 /// A semantic map (as built from scans) of a room with an east wall at x = 6 holding a door
 /// 30 degrees open (hinge at y = -0.5, opening counter-clockwise), and its relations.
 pub fn map_world() -> (WorldSpec, Vec<Relation>) {
-    let wall = r#","wall":{"segment_m":[[6.0,-2.0],[6.0,2.0]],"thickness_m":0.2,"thickness_measured":true,"z_range_m":[0.0,2.5],"solid_boxes":[{"center_m":[6.0,-1.25,1.25],"size_m":[1.5,0.2,2.5],"yaw_deg":90.0},{"center_m":[6.0,1.2,1.25],"size_m":[1.6,0.2,2.5],"yaw_deg":90.0}]}"#;
-    let door = r#","door":{"hinge_m":[6.0,-0.5,0.0],"hinge_axis":[0.0,0.0,1.0],"hinge_edge":"start","swing":"left","observed_open_deg":30.0}"#;
-    let opening = r#","opening":{"offset_m":1.5,"width_m":0.9,"height_m":2.0}"#;
-    let entities = [
-        entity(1, "floor", [4.5, 0.0, -0.1], [9.4, 4.4, 0.2], 0.0, ""),
-        entity(2, "ceiling", [4.5, 0.0, 2.6], [9.4, 4.4, 0.2], 0.0, ""),
-        entity(3, "wall", [6.0, 0.0, 1.25], [4.0, 0.2, 2.5], 90.0, wall),
-        entity(
-            4,
-            "wall_above_door",
-            [6.0, -0.05, 2.25],
-            [0.9, 0.2, 0.5],
-            90.0,
-            "",
-        ),
-        entity(5, "door", [6.0, -0.05, 1.0], [0.9, 0.04, 2.0], 90.0, door),
-        entity(
-            6,
-            "free_space_for_door",
-            [6.0, -0.05, 1.0],
-            [0.9, 1.0, 2.0],
-            90.0,
-            opening,
-        ),
-    ];
-    let relations = r#"{"type":"connected_via_joint","a":5,"b":3},{"type":"available_inside","a":6,"b":3},{"type":"available_inside","a":5,"b":6},{"type":"above","a":2,"b":1},{"type":"under","a":1,"b":2}"#;
-    let identity = "[1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0]";
-    let json = format!(
-        r#"{{"format":"semsim.semantic_map","version":1,"input_from_map":{identity},"entities":[{}],"relations":[{relations}]}}"#,
-        entities.join(",")
+    let relations = format!(
+        r#"{},{{"type":"above","a":2,"b":1}},{{"type":"under","a":1,"b":2}}"#,
+        fixtures::DOOR_RELATIONS
     );
+    let json = fixtures::door_wall_map_json("left", 30.0, &relations);
     let map = SemanticMap::from_json_str(&json, Path::new("map.json")).unwrap();
     let spec = WorldSpec::from_semantic_map(&map).unwrap();
     (spec, map.relations.clone())

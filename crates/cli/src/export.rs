@@ -4,7 +4,7 @@
 use crate::exit::bad_input;
 use clap::{ArgGroup, Args};
 use pipeline::{export_world_file, ExportFormat, WorldSource};
-use sim::{RobotModel, Scenario, StartPose};
+use sim::RobotModel;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `semsim export`.
@@ -44,7 +44,7 @@ pub fn run(a: ExportArgs) -> anyhow::Result<()> {
     let robot = match &a.robot {
         Some(name) => Some((
             RobotModel::resolve(name, Path::new("."))?,
-            start_pose(a.start.as_deref())?,
+            pipeline::parse_start(a.start.as_deref())?,
         )),
         None => None,
     };
@@ -68,34 +68,4 @@ pub fn run(a: ExportArgs) -> anyhow::Result<()> {
             .unwrap_or_default()
     );
     Ok(())
-}
-
-/// `x,y,yaw_deg`, or the default scenario's start.
-fn start_pose(text: Option<&str>) -> anyhow::Result<StartPose> {
-    let Some(text) = text else {
-        return Ok(Scenario::default_scenario()?.start);
-    };
-    let numbers: Vec<f64> = text
-        .split(',')
-        .map(|s| s.trim().parse::<f64>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| {
-            bad_input(format!(
-                "--start {text}: expected x,y,yaw_deg (three numbers)"
-            ))
-        })?;
-    let [x_m, y_m, yaw_deg] = numbers[..] else {
-        return Err(bad_input(format!(
-            "--start {text}: expected x,y,yaw_deg (three numbers)"
-        )));
-    };
-    let pose = StartPose {
-        x_m,
-        y_m,
-        yaw_deg,
-        z_m: 0.0,
-    };
-    pose.validate()
-        .map_err(|e| bad_input(format!("--start {text}: {e}")))?;
-    Ok(pose)
 }

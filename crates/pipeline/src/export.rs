@@ -2,11 +2,11 @@
 //! for another simulator or viewer (MuJoCo MJCF, Gazebo SDF, glTF binary) by the `interop`
 //! crate.
 
-use crate::error::Result;
+use crate::error::{PipelineError, Result};
 use interop::{ExportFormat, ExportOptions};
 use scanner::Building;
 use semantic::SemanticMap;
-use sim::{RobotModel, StartPose, WorldSpec};
+use sim::{RobotModel, Scenario, StartPose, WorldSpec};
 use std::path::{Path, PathBuf};
 
 /// Where the exported world comes from.
@@ -75,4 +75,33 @@ pub fn export_world_file(
         robot: robot.map(|(m, _)| m.name.clone()),
         bytes: bytes.len(),
     })
+}
+
+/// The robot's start for an export (`--start x,y,yaw_deg`, metres and degrees), or the default
+/// scenario's start for `None`.
+pub fn parse_start(text: Option<&str>) -> Result<StartPose> {
+    let Some(text) = text else {
+        return Ok(Scenario::default_scenario()?.start);
+    };
+    let bad = || {
+        PipelineError::bad_input(format!(
+            "--start {text}: expected x,y,yaw_deg (three finite numbers)"
+        ))
+    };
+    let numbers: Vec<f64> = text
+        .split(',')
+        .map(|s| s.trim().parse::<f64>())
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|_| bad())?;
+    let [x_m, y_m, yaw_deg] = numbers[..] else {
+        return Err(bad());
+    };
+    let pose = StartPose {
+        x_m,
+        y_m,
+        yaw_deg,
+        z_m: 0.0,
+    };
+    pose.validate().map_err(|_| bad())?;
+    Ok(pose)
 }

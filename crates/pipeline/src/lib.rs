@@ -62,7 +62,7 @@ pub use chain::{scans_to_verdict, write_chain, ChainDirs, ChainOutcome, Observer
 pub use config::Config;
 pub use demo::{prepare_demo, score_demo, DemoScans, DemoScore};
 pub use error::{PipelineError, Result};
-pub use export::{export_world_file, ExportSummary, WorldSource};
+pub use export::{export_world_file, parse_start, ExportSummary, WorldSource};
 pub use guard::{check_output_dir, refuse_overwriting_inputs};
 pub use guess::parse_guess;
 pub use interop::ExportFormat;

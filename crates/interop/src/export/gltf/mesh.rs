@@ -280,19 +280,25 @@ mod tests {
         m.add_box(&at, [0.5, 0.25, 1.0]);
         assert_eq!((m.positions.len(), m.indices.len()), (24, 36));
         for t in m.indices.chunks(3) {
-            let p = |i: u32| m.positions[i as usize].map(f64::from);
-            let (a, b, c) = (p(t[0]), p(t[1]), p(t[2]));
-            let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-            let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-            let cross = [
-                u[1] * v[2] - u[2] * v[1],
-                u[2] * v[0] - u[0] * v[2],
-                u[0] * v[1] - u[1] * v[0],
-            ];
+            let (_, cross) = corners_and_normal(&m, t);
             let n = m.normals[t[0] as usize].map(f64::from);
             let dot: f64 = (0..3).map(|k| cross[k] * n[k]).sum();
             assert!(dot > 0.0, "triangle {t:?} faces inwards");
         }
+    }
+
+    /// A triangle's corners and its (unnormalised) normal by the right-hand rule.
+    fn corners_and_normal(m: &Mesh, t: &[u32]) -> ([[f64; 3]; 3], [f64; 3]) {
+        let p = |i: u32| m.positions[i as usize].map(f64::from);
+        let (a, b, c) = (p(t[0]), p(t[1]), p(t[2]));
+        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+        let cross = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        ([a, b, c], cross)
     }
 
     #[test]
@@ -300,15 +306,7 @@ mod tests {
         let mut m = Mesh::default();
         m.add_wheel(0.1, 0.05, 16);
         for t in m.indices.chunks(3) {
-            let p = |i: u32| m.positions[i as usize].map(f64::from);
-            let (a, b, c) = (p(t[0]), p(t[1]), p(t[2]));
-            let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-            let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-            let cross = [
-                u[1] * v[2] - u[2] * v[1],
-                u[2] * v[0] - u[0] * v[2],
-                u[0] * v[1] - u[1] * v[0],
-            ];
+            let ([a, b, c], cross) = corners_and_normal(&m, t);
             let centroid: Vec<f64> = (0..3).map(|k| (a[k] + b[k] + c[k]) / 3.0).collect();
             let dot: f64 = (0..3).map(|k| cross[k] * centroid[k]).sum();
             assert!(dot > 0.0, "triangle {t:?} faces inwards");

@@ -204,3 +204,65 @@ fn writing_to_a_missing_folder_names_the_file() {
         assert!(scans_support::names_file(&e.to_string(), &path), "{e}");
     }
 }
+
+/// Enough points for the LAZ reader's two-thread path (fixed 50,000-point chunks, split at
+/// the middle chunk): every point, intensity and class comes back in order.
+#[test]
+fn large_laz_files_decoded_on_two_threads_keep_every_point_in_order() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = 260_123;
+    let mut big = PointCloud::from_points(
+        (0..n)
+            .map(|i| {
+                let t = i as f32 * 1e-3;
+                Vec3::new(t.sin() * 9.0, t.cos() * 7.0, (i % 97) as f32 * 0.01)
+            })
+            .collect(),
+    );
+    big.intensity = Some((0..n).map(|i| (i % 65_000) as f32).collect());
+    big.classification = Some((0..n).map(|i| (i % 31) as u8).collect());
+    for ext in ["laz", "las"] {
+        let path = dir.path().join(format!("big.{ext}"));
+        write_cloud(&path, &big).unwrap();
+        let back = read(&path);
+        assert_eq!(back.len(), n, "{ext}");
+        for (i, (p, q)) in back.points.iter().zip(&big.points).enumerate() {
+            assert!(
+                (*p - *q).abs().max_element() <= 5e-5 + 1e-6,
+                "{ext} point {i}: {p} vs {q}"
+            );
+        }
+        assert_eq!(back.intensity, big.intensity, "{ext}");
+        assert_eq!(back.classification, big.classification, "{ext}");
+    }
+}
+
+/// The local origin comes from the points, not from the header's bounds: a georeferenced file
+/// whose header bounds are zero reads to the same origin and points as the correct file.
+#[test]
+fn wrong_header_bounds_do_not_move_the_local_origin() {
+    let dir = tempfile::tempdir().unwrap();
+    let far = PointCloud::from_points(vec![
+        Vec3::new(2500.0, -1200.5, 30.0),
+        Vec3::new(2510.25, -1190.0, 31.5),
+        Vec3::new(2503.125, -1195.75, 30.5),
+    ]);
+    for ext in ["las", "laz"] {
+        let good = dir.path().join(format!("good.{ext}"));
+        write_cloud(&good, &far).unwrap();
+        let mut bytes = std::fs::read(&good).unwrap();
+        // Max x, min x, max y, min y, max z, min z (f64 each) from byte 179: all zero.
+        bytes[179..227].fill(0);
+        let bad = dir.path().join(format!("zero_bounds.{ext}"));
+        std::fs::write(&bad, &bytes).unwrap();
+        let a = read_scans(&good, &ReadOptions::default()).unwrap();
+        let b = read_scans(&bad, &ReadOptions::default()).unwrap();
+        assert_eq!(
+            a.local_origin_m,
+            glam::DVec3::new(2505.0, -1195.0, 31.0),
+            "{ext}"
+        );
+        assert_eq!(b.local_origin_m, a.local_origin_m, "{ext}");
+        assert_eq!(b.scans[0].cloud.points, a.scans[0].cloud.points, "{ext}");
+    }
+}

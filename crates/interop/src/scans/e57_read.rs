@@ -16,12 +16,12 @@
 //!   the scan's intensity limits; 0 where a point's intensity is marked invalid (with a note).
 //! * Colour, time stamps and return indices are not kept (a note says so for colour).
 
+use super::source::ByteSource;
 use super::util::{clean, note, rigid_pose, try_filled, try_push};
 use super::{ImportedScan, ScanSet};
 use crate::error::{InteropError, Result};
 use cloud::{Organized, PointCloud};
 use glam::{DAffine3, DVec3, Vec3};
-use std::io::Cursor;
 use std::path::Path;
 
 /// Grid cells allowed per point (plus [`GRID_SLACK`]) before an organised scan is read
@@ -30,9 +30,12 @@ const GRID_CELLS_PER_POINT: u64 = 16;
 /// Cells allowed beyond [`GRID_CELLS_PER_POINT`] (small scans with sparse grids).
 const GRID_SLACK: u64 = 65_536;
 
-/// Reads every scan of an E57 file held in `bytes`.
-pub(super) fn parse_e57(path: &Path, bytes: &[u8]) -> Result<ScanSet> {
-    let mut reader = e57::E57Reader::new(Cursor::new(bytes)).map_err(|e| e57_error(path, "", e))?;
+/// Reads every scan of the E57 file in `src`, streaming its pages (the file is never held whole).
+pub(super) fn read_e57(path: &Path, src: &impl ByteSource) -> Result<ScanSet> {
+    let file_bytes = src.len();
+    let io = |e: std::io::Error| InteropError::from(cloud::CloudError::io(path, e));
+    let mut reader =
+        e57::E57Reader::new(src.reader().map_err(io)?).map_err(|e| e57_error(path, "", e))?;
     let descriptors = reader.pointclouds();
     let mut scans = Vec::new();
     let mut notes = Vec::new();
@@ -54,14 +57,13 @@ pub(super) fn parse_e57(path: &Path, bytes: &[u8]) -> Result<ScanSet> {
             ));
             continue;
         }
-        let max_records = (bytes.len() as u64).saturating_mul(8);
+        let max_records = file_bytes.saturating_mul(8);
         if descriptor.records > max_records {
             return Err(InteropError::format(
                 path,
                 format!(
                     "{label} claims {} points, more than its {} bytes can hold (at least a bit a point)",
-                    descriptor.records,
-                    bytes.len()
+                    descriptor.records, file_bytes
                 ),
             ));
         }
@@ -110,9 +112,9 @@ struct RawScan {
     invalid_intensity: usize,
 }
 
-fn read_points(
+fn read_points<R: std::io::Read + std::io::Seek>(
     path: &Path,
-    reader: &mut e57::E57Reader<Cursor<&[u8]>>,
+    reader: &mut e57::E57Reader<R>,
     descriptor: &e57::PointCloud,
     label: &str,
 ) -> Result<RawScan> {
@@ -188,22 +190,35 @@ fn build_cloud(
             Err(why) => notes.push(note(path, format!("{label}: {why}; read unorganised"))),
         }
     }
-    let mut cloud = PointCloud::from_points(Vec::new());
-    let keep: Vec<usize> = (0..raw.points.len())
-        .filter(|&i| raw.points[i].is_finite())
-        .collect();
-    let skipped = raw.points.len() - keep.len();
+    // Unorganised: the points without valid coordinates dropped in place.
+    let RawScan {
+        mut points,
+        mut intensity,
+        ..
+    } = raw;
+    let mut kept = 0;
+    for i in 0..points.len() {
+        if points[i].is_finite() {
+            points[kept] = points[i];
+            if let Some(values) = &mut intensity {
+                values[kept] = values[i];
+            }
+            kept += 1;
+        }
+    }
+    let skipped = points.len() - kept;
     if skipped > 0 {
         notes.push(note(
             path,
             format!("{label}: {skipped} points without valid coordinates skipped"),
         ));
     }
-    cloud.points = keep.iter().map(|&i| raw.points[i]).collect();
-    cloud.intensity = raw
-        .intensity
-        .as_ref()
-        .map(|v| keep.iter().map(|&i| v[i]).collect());
+    points.truncate(kept);
+    if let Some(values) = &mut intensity {
+        values.truncate(kept);
+    }
+    let mut cloud = PointCloud::from_points(points);
+    cloud.intensity = intensity;
     Ok(cloud)
 }
 

@@ -11,12 +11,15 @@
 //! the first extended VLR's offset (u64) at 235, the extended VLR count (u32) at 243 and the
 //! 64-bit point count at 247.
 
+use super::source::ByteSource;
 use super::util::clean;
 use crate::error::{InteropError, Result};
 use std::path::Path;
 
 /// The smallest public header block (LAS 1.0-1.2).
 const MIN_HEADER_BYTES: usize = 227;
+/// The LAS 1.4 public header block.
+const LAS14_HEADER_BYTES: usize = 375;
 /// An extended VLR's header: reserved, user id, record id, length (u64), description.
 const EVLR_HEADER_BYTES: u64 = 60;
 /// The shortest point record (format 0); every LAZ chunk starts with one uncompressed.
@@ -26,13 +29,30 @@ const MIN_RECORD_BYTES: u64 = 20;
 pub(super) const LAZ_MAX_POINTS_PER_BYTE: u64 = 256;
 
 /// What the header promises, as far as the reader needs it.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub(super) struct LasLayout {
-    /// The point count the `las` crate will read (the legacy count where non-zero).
+    /// The point count to read (the legacy count where non-zero).
     pub points: u64,
     /// LAZ-compressed point data.
     pub compressed: bool,
+    /// The byte where the point data starts.
+    pub points_at: u64,
+    /// The bytes of one point record.
+    pub record_len: usize,
+    /// The point data record format (0-10), compression bits cleared.
+    pub format: u8,
+    /// Scale and offset of the integer coordinates: `x = X * scale + offset`.
+    pub scale: [f64; 3],
+    /// See `scale`.
+    pub offset: [f64; 3],
+    /// The header's bounding box (minimum, maximum), which writers do not always keep.
+    pub bounds: ([f64; 3], [f64; 3]),
+    /// The LASzip VLR's data (compressed files).
+    pub laz_vlr: Option<Vec<u8>>,
 }
+
+/// The shortest record of each point format 0-10 (LAS 1.4, table 7 onwards).
+const FORMAT_RECORD_BYTES: [usize; 11] = [20, 28, 26, 34, 57, 63, 30, 36, 38, 59, 67];
 
 fn u16_at(b: &[u8], at: usize) -> u16 {
     u16::from_le_bytes([b[at], b[at + 1]])
@@ -47,16 +67,23 @@ fn u64_at(b: &[u8], at: usize) -> Option<u64> {
     Some(u64::from_le_bytes(bytes))
 }
 
-/// Checks the header of the LAS/LAZ file in `bytes`, returning what it promises.
-pub(super) fn check_las_header(path: &Path, bytes: &[u8]) -> Result<LasLayout> {
+fn f64_at(b: &[u8], at: usize) -> f64 {
+    u64_at(b, at).map_or(f64::NAN, f64::from_bits)
+}
+
+/// Checks the header of the LAS/LAZ file in `src`, returning what it promises.
+pub(super) fn check_las_header(path: &Path, src: &impl ByteSource) -> Result<LasLayout> {
     let bad = |msg: String| InteropError::format(path, msg);
-    let len = bytes.len() as u64;
-    if bytes.len() < MIN_HEADER_BYTES {
+    let len = src.len();
+    if len < MIN_HEADER_BYTES as u64 {
         return Err(bad(format!(
-            "truncated: {} bytes, a LAS header takes at least {MIN_HEADER_BYTES}",
-            bytes.len()
+            "truncated: {len} bytes, a LAS header takes at least {MIN_HEADER_BYTES}"
         )));
     }
+    let head_len = len.min(LAS14_HEADER_BYTES as u64) as usize;
+    let bytes = &src
+        .bytes_at(0, head_len)
+        .ok_or_else(|| bad("the header could not be read".to_string()))?;
     if &bytes[..4] != b"LASF" {
         return Err(bad(format!(
             "not a LAS/LAZ file: it starts with {:?}, not \"LASF\"",
@@ -104,7 +131,7 @@ pub(super) fn check_las_header(path: &Path, bytes: &[u8]) -> Result<LasLayout> {
         }
         let evlr_count = u64::from(u32_at(bytes, 243));
         if evlr_start > 0 && evlr_count > 0 {
-            check_first_evlr(path, bytes, evlr_start)?;
+            check_first_evlr(path, src, evlr_start)?;
         }
     }
     if record_len < MIN_RECORD_BYTES {
@@ -119,19 +146,32 @@ pub(super) fn check_las_header(path: &Path, bytes: &[u8]) -> Result<LasLayout> {
     let total = points
         .checked_mul(record_len)
         .and_then(|b| b.checked_add(offset_to_points));
+    let format = format_id & 0x3f;
+    let Some(&min_record) = FORMAT_RECORD_BYTES.get(usize::from(format)) else {
+        return Err(InteropError::unsupported(
+            path,
+            format!("point data record format {format} (LAS 1.4 defines 0 to 10)"),
+        ));
+    };
+    if (record_len as usize) < min_record {
+        return Err(bad(format!(
+            "point record length {record_len} is shorter than point format {format}'s {min_record} bytes"
+        )));
+    }
+    let mut laz_vlr = None;
     if compressed {
         if total.is_none() || points > data_bytes.saturating_mul(LAZ_MAX_POINTS_PER_BYTE) {
             return Err(bad(format!(
                 "the header claims {points} points, more than {LAZ_MAX_POINTS_PER_BYTE} a byte of the {data_bytes} bytes of compressed point data"
             )));
         }
-        check_chunk_table(path, bytes, offset_to_points)?;
-        super::laz_check::check_laz_chunks(
+        check_chunk_table(path, src, offset_to_points)?;
+        laz_vlr = super::laz_check::check_laz_chunks(
             path,
-            bytes,
-            header_size as usize,
+            src,
+            header_size,
             u32_at(bytes, 100),
-            offset_to_points as usize,
+            offset_to_points,
             points,
         )?;
     } else {
@@ -144,14 +184,34 @@ pub(super) fn check_las_header(path: &Path, bytes: &[u8]) -> Result<LasLayout> {
             }
         }
     }
-    Ok(LasLayout { points, compressed })
+    let triple = |at: usize| {
+        [
+            f64_at(bytes, at),
+            f64_at(bytes, at + 8),
+            f64_at(bytes, at + 16),
+        ]
+    };
+    let (max, min) = (
+        [f64_at(bytes, 179), f64_at(bytes, 195), f64_at(bytes, 211)],
+        [f64_at(bytes, 187), f64_at(bytes, 203), f64_at(bytes, 219)],
+    );
+    Ok(LasLayout {
+        points,
+        compressed,
+        points_at: offset_to_points,
+        record_len: record_len as usize,
+        format,
+        scale: triple(131),
+        offset: triple(155),
+        bounds: (min, max),
+        laz_vlr,
+    })
 }
 
 /// The `las` crate reads the first extended VLR whole: its length must fit in the file.
-fn check_first_evlr(path: &Path, bytes: &[u8], start: u64) -> Result<()> {
-    let len = bytes.len() as u64;
-    let length_at = start.checked_add(20).and_then(|a| usize::try_from(a).ok());
-    let record = length_at.and_then(|a| u64_at(bytes, a));
+fn check_first_evlr(path: &Path, src: &impl ByteSource, start: u64) -> Result<()> {
+    let len = src.len();
+    let record = start.checked_add(20).and_then(|a| src.u64_at(a));
     let fits = record.is_some_and(|r| {
         start
             .checked_add(EVLR_HEADER_BYTES)
@@ -172,25 +232,21 @@ fn check_first_evlr(path: &Path, bytes: &[u8], start: u64) -> Result<()> {
 /// The `laz` crate allocates the chunk table by the count it finds at the table's offset (the
 /// first 8 bytes of the point data, else the last 8 of the file): every chunk starts with an
 /// uncompressed point, so no more chunks than that fit in the point data.
-fn check_chunk_table(path: &Path, bytes: &[u8], points_at: u64) -> Result<()> {
-    let len = bytes.len() as u64;
-    let Ok(at) = usize::try_from(points_at) else {
-        return Ok(());
-    };
-    let Some(mut table) = u64_at(bytes, at) else {
+fn check_chunk_table(path: &Path, src: &impl ByteSource, points_at: u64) -> Result<()> {
+    let len = src.len();
+    let Some(mut table) = src.u64_at(points_at) else {
         return Ok(()); // The laz crate fails to read the offset.
     };
     if table as i64 <= points_at as i64 {
-        match u64_at(bytes, bytes.len().saturating_sub(8)) {
+        match src.u64_at(len.saturating_sub(8)) {
             Some(t) if t as i64 > points_at as i64 => table = t,
             _ => return Ok(()), // No chunk table: the laz crate reads without one.
         }
     }
-    let count_at = table.checked_add(4).and_then(|a| usize::try_from(a).ok());
-    let Some(chunks) = count_at.and_then(|a| bytes.get(a..a.checked_add(4)?)) else {
+    let Some(chunks) = table.checked_add(4).and_then(|a| src.u32_at(a)) else {
         return Ok(()); // Beyond the file: the laz crate fails to read it.
     };
-    let chunks = u64::from(u32_at(chunks, 0));
+    let chunks = u64::from(chunks);
     let most = (len - points_at) / MIN_RECORD_BYTES + 1;
     if chunks > most {
         return Err(InteropError::format(

@@ -1,40 +1,144 @@
-//! Reading LAS 1.0-1.4 and LAZ files with the `las` crate (LAZ through its `laz` feature).
+//! Reading LAS 1.0-1.4 and LAZ files: the header checked by our own code (`las_check`,
+//! `laz_check`), the point records parsed by our own code, LAZ decompressed by the `laz` crate
+//! (the `las` crate's decoder). Points stream from the file in batches: only the points' own
+//! columns are kept (no copy of the file, no f64 copy of the points).
 //!
-//! * Positions come as f64 with the header's scale and offset applied. Georeferenced
-//!   coordinates (UTM: hundreds of kilometres) do not fit in f32 to the millimetre, so where any
-//!   point lies farther than [`LOCAL_EXTENT_M`] from zero on some axis, the reader moves the
-//!   points to a local origin, the centre of their bounding box rounded to whole metres
-//!   (computed in f64 from the points themselves, not the header's bounds, which writers do not
-//!   always keep), subtracts it in f64 and only then converts to f32. The origin is
+//! * Positions: the integer coordinates with the header's scale and offset applied in f64.
+//!   Georeferenced coordinates (UTM: hundreds of kilometres) do not fit in f32 to the
+//!   millimetre, so where any point lies farther than [`LOCAL_EXTENT_M`] from zero on some axis,
+//!   the points are moved to a local origin, the centre of their bounding box rounded to whole
+//!   metres, subtracted in f64 before the conversion to f32. The origin is first taken from
+//!   the header's bounds; the points' own bounds decide, and in a file whose header bounds are
+//!   wrong the points are decoded a second time around the right origin. The origin is
 //!   [`ScanSet::local_origin_m`], and a note names it. Within ±10 m of the origin f32 keeps
 //!   better than 1 µm; at ±1 km about 0.06 mm.
 //! * Intensity (u16) as f32, and the ASPRS classification (`cloud.classification`): every LAS
-//!   file has both, so the cloud always does. Class 12 (overlap) of the legacy formats 0-5 reads
-//!   as 12; in the LAS 1.4 formats 6-10 the `las` crate reads class 12 as 1 with the overlap
-//!   flag, so it reads as 1 there.
+//!   file has both, so the cloud always does. Formats 0-5 keep the class in the low five bits
+//!   of byte 15 (class 12, overlap, included); formats 6-10 in the whole byte 16.
 //! * Points with non-finite coordinates (a scale of NaN) are skipped, with a note.
+//! * LAZ with fixed-size chunks (what LASzip and laz-perf write) is decompressed in two halves
+//!   on two threads, each starting at a chunk boundary.
 
 use super::las_check::{check_las_header, LasLayout};
-use super::util::{clean, note, try_push, try_vec};
+use super::las_stream::{stream, RangeStats, RecordParser, Slices};
+use super::source::ByteSource;
+use super::util::{clean, note};
 use super::ScanSet;
 use crate::error::{InteropError, Result};
 use cloud::PointCloud;
-use glam::DVec3;
-use std::io::Cursor;
+use glam::{DVec3, Vec3};
 use std::path::Path;
 
 /// How far from zero (metres, on every axis) a file's points may lie and still be read without
 /// a local origin: f32 keeps them to 2^-14 m (0.06 mm) there.
 pub(super) const LOCAL_EXTENT_M: f64 = 1000.0;
 
-/// Reads the LAS or LAZ file in `bytes` (the header says which).
-pub(super) fn parse_las(path: &Path, bytes: Vec<u8>) -> Result<ScanSet> {
-    let layout = check_las_header(path, &bytes)?;
-    let data_bytes = bytes.len();
+/// Below this many points a LAZ file is decompressed on one thread.
+const PARALLEL_MIN_POINTS: u64 = 200_000;
+
+/// Reads the LAS or LAZ file in `src` (the header says which).
+pub(super) fn read_las(path: &Path, src: &impl ByteSource) -> Result<ScanSet> {
+    // 1. The header, checked before any decoder trusts it.
+    let layout = check_las_header(path, src)?;
+    // 2. The points around the origin the header's bounds suggest ...
+    let guess = local_origin(header_bounds(&layout).into_iter());
+    let mut columns = decode_guarded(path, src, &layout, guess)?;
+    // 3. ... and again around the points' own origin where the header's bounds were wrong.
+    let origin = local_origin(columns.bounds.into_iter().flatten());
+    if origin != guess {
+        columns = decode_guarded(path, src, &layout, origin)?;
+    }
+    // 4. Points that are no points (non-finite, or beyond f32 of the origin) dropped.
+    let mut notes = Vec::new();
+    let skipped = columns.compact();
+    if columns.non_finite > 0 {
+        notes.push(note(
+            path,
+            format!(
+                "{} points with non-finite coordinates skipped",
+                columns.non_finite
+            ),
+        ));
+    }
+    if skipped > columns.non_finite {
+        notes.push(note(
+            path,
+            format!(
+                "{} points beyond f32 range of the local origin skipped",
+                skipped - columns.non_finite
+            ),
+        ));
+    }
+    if origin != DVec3::ZERO {
+        notes.push(note(
+            path,
+            format!(
+                "georeferenced coordinates: points are relative to the local origin ({}, {}, {}) m",
+                origin.x, origin.y, origin.z
+            ),
+        ));
+    }
+    let mut cloud = PointCloud::from_points(columns.xyz);
+    cloud.intensity = Some(columns.intensity);
+    cloud.classification = Some(columns.classification);
+    Ok(super::single_scan(path, cloud, origin, notes))
+}
+
+/// The corners of the header's bounding box, where they are finite.
+fn header_bounds(layout: &LasLayout) -> Vec<DVec3> {
+    let (min, max) = layout.bounds;
+    [DVec3::from_array(min), DVec3::from_array(max)]
+        .into_iter()
+        .filter(|p| p.is_finite())
+        .collect()
+}
+
+/// The decoded points: f32 relative to the origin (NaN where not a point), intensity, class.
+struct Columns {
+    xyz: Vec<Vec3>,
+    intensity: Vec<f32>,
+    classification: Vec<u8>,
+    /// The bounding box of the finite points in the file's frame (f64).
+    bounds: Option<[DVec3; 2]>,
+    /// Points whose f64 coordinates are not finite.
+    non_finite: usize,
+}
+
+impl Columns {
+    /// Drops the NaN points in place; returns how many.
+    fn compact(&mut self) -> usize {
+        let mut kept = 0;
+        for i in 0..self.xyz.len() {
+            if self.xyz[i].is_finite() {
+                self.xyz[kept] = self.xyz[i];
+                self.intensity[kept] = self.intensity[i];
+                self.classification[kept] = self.classification[i];
+                kept += 1;
+            }
+        }
+        let skipped = self.xyz.len() - kept;
+        self.xyz.truncate(kept);
+        self.intensity.truncate(kept);
+        self.classification.truncate(kept);
+        skipped
+    }
+}
+
+/// [`decode`] under `catch_unwind`: the `laz` crate's arithmetic decoder checks its state with
+/// `debug_assert!`s that corrupt compressed data trips (in debug builds and under the fuzzer;
+/// release builds do not check and the decoder reads on or fails at the end of the data).
+/// Nothing can tell such data apart before decoding it, so a panic there becomes a format
+/// error. Everything the crate trusts beyond that is checked before (`las_check`, `laz_check`).
+fn decode_guarded(
+    path: &Path,
+    src: &impl ByteSource,
+    layout: &LasLayout,
+    origin: DVec3,
+) -> Result<Columns> {
     let decoded = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        decode(path, bytes, layout, data_bytes)
+        decode(path, src, layout, origin)
     }));
-    let (xyz, intensity, classification) = decoded.map_err(|panic| {
+    decoded.map_err(|panic| {
         let what = panic
             .downcast_ref::<&str>()
             .map(|s| s.to_string())
@@ -47,122 +151,125 @@ pub(super) fn parse_las(path: &Path, bytes: Vec<u8>) -> Result<ScanSet> {
                 clean(&what)
             ),
         )
-    })??;
-    let mut notes = Vec::new();
-    let mut keep: Vec<usize> = (0..xyz.len()).filter(|&i| xyz[i].is_finite()).collect();
-    if keep.len() < xyz.len() {
-        notes.push(note(
-            path,
-            format!(
-                "{} points with non-finite coordinates skipped",
-                xyz.len() - keep.len()
-            ),
-        ));
-    }
-    let origin = local_origin(keep.iter().map(|&i| xyz[i]));
-    if origin != DVec3::ZERO {
-        notes.push(note(
-            path,
-            format!(
-                "georeferenced coordinates: points are relative to the local origin ({}, {}, {}) m",
-                origin.x, origin.y, origin.z
-            ),
-        ));
-    }
-    // Points too far from the origin for f32 (a corrupt scale) are skipped too.
-    let far = keep.len();
-    keep.retain(|&i| (xyz[i] - origin).as_vec3().is_finite());
-    if keep.len() < far {
-        notes.push(note(
-            path,
-            format!(
-                "{} points beyond f32 range of the local origin skipped",
-                far - keep.len()
-            ),
-        ));
-    }
-    let mut points = try_vec(path, keep.len(), "the LAS points")?;
-    points.extend(keep.iter().map(|&i| (xyz[i] - origin).as_vec3()));
-    let mut cloud = PointCloud::from_points(points);
-    cloud.intensity = Some(keep.iter().map(|&i| intensity[i]).collect());
-    cloud.classification = Some(keep.iter().map(|&i| classification[i]).collect());
-    Ok(super::single_scan(path, cloud, origin, notes))
+    })?
 }
 
-type Columns = (Vec<DVec3>, Vec<f32>, Vec<u8>);
-
-/// The `las` crate's part: the header again, then every point.
-///
-/// Run under `catch_unwind` by [`parse_las`]: the `laz` crate's arithmetic decoder checks its
-/// state with `debug_assert!`s that corrupt compressed data trips (in debug builds and under
-/// the fuzzer; release builds do not check and the decoder reads on or fails at the end of
-/// the data). Nothing can tell such data apart before decoding it, so a panic there becomes a
-/// format error. Everything the crates trust beyond that is checked before (`las_check`,
-/// `laz_check`).
-fn decode(path: &Path, bytes: Vec<u8>, layout: LasLayout, data_bytes: usize) -> Result<Columns> {
-    let mut reader = las::Reader::new(Cursor::new(bytes)).map_err(|e| las_error(path, "", &e))?;
-    let header = reader.header();
-    let count = header.number_of_points();
-    if count > layout.points {
-        return Err(InteropError::format(
-            path,
-            format!(
-                "the header's point count {count} disagrees with {}",
-                layout.points
-            ),
-        ));
-    }
-    let legacy_format = !header.point_format().is_extended;
-    read_points(path, &mut reader, layout, data_bytes, legacy_format)
-}
-
-/// Every point's position (f64), intensity and class byte.
-fn read_points(
+/// Every point of the file: on two threads where [`parallel_split`] says so.
+fn decode(
     path: &Path,
-    reader: &mut las::Reader,
-    layout: LasLayout,
-    file_bytes: usize,
-    legacy_format: bool,
+    src: &impl ByteSource,
+    layout: &LasLayout,
+    origin: DVec3,
 ) -> Result<Columns> {
-    // Uncompressed: the count is checked against the file. LAZ: grow as points decode.
-    let initial = if layout.compressed {
-        (layout.points as usize).min(file_bytes)
-    } else {
-        layout.points as usize
+    let parser = RecordParser::new(layout, origin);
+    let mut columns = Columns {
+        xyz: Vec::new(),
+        intensity: Vec::new(),
+        classification: Vec::new(),
+        bounds: None,
+        non_finite: 0,
     };
-    let mut xyz = try_vec(path, initial, "the LAS points")?;
-    let mut intensity = try_vec(path, initial, "the LAS intensities")?;
-    let mut classification = try_vec(path, initial, "the LAS classes")?;
-    for i in 0..layout.points {
-        let point = match reader.read_point() {
-            Ok(Some(p)) => p,
-            Ok(None) => {
-                return Err(InteropError::format(
-                    path,
-                    format!("truncated: {i} of {} points", layout.points),
-                ))
-            }
-            Err(e) => return Err(las_error(path, &format!("point {i}: "), &e)),
-        };
-        let mut class = u8::from(point.classification);
-        if legacy_format && point.is_overlap && class == 1 {
-            class = 12; // The las crate reads the legacy overlap class 12 as 1 + overlap.
+    let mut stats = RangeStats::default();
+    // The count sizes the columns only where it is checked against the file's size (uncompressed)
+    // or is no larger than the file's bytes (compressed: real LAZ takes more than a byte a point).
+    let trusted = !layout.compressed || layout.points <= src.len();
+    match parallel_split(layout).filter(|_| trusted) {
+        Some(split) => {
+            grow(path, &mut columns, layout.points as usize)?;
+            let at = split as usize;
+            let (xyz_a, xyz_b) = columns.xyz.split_at_mut(at);
+            let (int_a, int_b) = columns.intensity.split_at_mut(at);
+            let (cls_a, cls_b) = columns.classification.split_at_mut(at);
+            let halves = std::thread::scope(|scope| {
+                let second = scope.spawn(|| {
+                    let n = xyz_b.len() as u64;
+                    let mut out = Slices::new(xyz_b, int_b, cls_b);
+                    stream(path, src, layout, split, n, &mut |records| {
+                        out.push(&parser, records, layout.record_len);
+                        Ok(())
+                    })
+                    .map(|()| out.stats)
+                });
+                let mut out = Slices::new(xyz_a, int_a, cls_a);
+                let first = stream(path, src, layout, 0, split, &mut |records| {
+                    out.push(&parser, records, layout.record_len);
+                    Ok(())
+                })
+                .map(|()| out.stats);
+                let second = second
+                    .join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+                Ok::<_, InteropError>(first?.merge(second?))
+            })?;
+            stats = halves;
         }
-        try_push(
-            path,
-            &mut xyz,
-            DVec3::new(point.x, point.y, point.z),
-            "the LAS points",
-        )?;
-        try_push(
-            path,
-            &mut intensity,
-            f32::from(point.intensity),
-            "the LAS intensities",
-        )?;
-        try_push(path, &mut classification, class, "the LAS classes")?;
+        None => {
+            let initial = if trusted { layout.points as usize } else { 0 };
+            columns
+                .xyz
+                .try_reserve_exact(initial)
+                .map_err(|_| oom(path))?;
+            columns
+                .intensity
+                .try_reserve_exact(initial)
+                .map_err(|_| oom(path))?;
+            columns
+                .classification
+                .try_reserve_exact(initial)
+                .map_err(|_| oom(path))?;
+            stream(path, src, layout, 0, layout.points, &mut |records| {
+                let n = records.len() / layout.record_len;
+                let start = columns.xyz.len();
+                grow(path, &mut columns, n)?;
+                let mut out = Slices::new(
+                    &mut columns.xyz[start..],
+                    &mut columns.intensity[start..],
+                    &mut columns.classification[start..],
+                );
+                out.push(&parser, records, layout.record_len);
+                stats = std::mem::take(&mut stats).merge(out.stats);
+                Ok(())
+            })?;
+        }
     }
-    Ok((xyz, intensity, classification))
+    columns.bounds = stats.bounds;
+    columns.non_finite = stats.non_finite;
+    Ok(columns)
+}
+
+fn oom(path: &Path) -> InteropError {
+    super::util::out_of_memory(path, "the LAS points")
+}
+
+/// Grows every column by `n` points (zeroed; amortised) or fails with an out-of-memory error.
+fn grow(path: &Path, columns: &mut Columns, n: usize) -> Result<()> {
+    columns.xyz.try_reserve(n).map_err(|_| oom(path))?;
+    columns.intensity.try_reserve(n).map_err(|_| oom(path))?;
+    columns
+        .classification
+        .try_reserve(n)
+        .map_err(|_| oom(path))?;
+    let len = columns.xyz.len() + n;
+    columns.xyz.resize(len, Vec3::ZERO);
+    columns.intensity.resize(len, 0.0);
+    columns.classification.resize(len, 0);
+    Ok(())
+}
+
+/// Where a LAZ file is split for two threads: the first point of the middle chunk, for files
+/// with fixed-size chunks large enough to be worth it.
+fn parallel_split(layout: &LasLayout) -> Option<u64> {
+    let vlr = laz::LazVlr::from_buffer(layout.laz_vlr.as_deref()?).ok()?;
+    let chunk = u64::from(vlr.chunk_size());
+    if !layout.compressed
+        || vlr.uses_variable_size_chunks()
+        || chunk == 0
+        || layout.points < PARALLEL_MIN_POINTS.max(2 * chunk)
+    {
+        return None;
+    }
+    let chunks = layout.points.div_ceil(chunk);
+    Some(chunks / 2 * chunk)
 }
 
 /// Zero where every point lies within [`LOCAL_EXTENT_M`] of zero on every axis, else the centre
@@ -183,17 +290,6 @@ pub(super) fn local_origin(points: impl Iterator<Item = DVec3>) -> DVec3 {
         return DVec3::ZERO;
     }
     centre
-}
-
-/// The `las` crate's error as a format error, its text quoted with control characters escaped.
-fn las_error(path: &Path, context: &str, error: &las::Error) -> InteropError {
-    InteropError::format(
-        path,
-        format!(
-            "not a readable LAS/LAZ file: {context}{}",
-            clean(&error.to_string())
-        ),
-    )
 }
 
 #[cfg(test)]

@@ -16,8 +16,9 @@
 //! `u32::MAX` for variable), two i64, the item count (u16) and per item its type, size and
 //! version (u16 each).
 
+use super::source::ByteSource;
 use crate::error::{InteropError, Result};
-use std::io::Cursor;
+use std::io::{Seek, SeekFrom};
 use std::path::Path;
 
 /// A VLR's header: reserved, user id, record id, length, description.
@@ -54,40 +55,47 @@ fn laszip_vlr(bytes: &[u8], mut at: usize, count: u32) -> Option<&[u8]> {
     None
 }
 
-/// Checks the chunks of the LAZ file in `bytes` (see the module docs). Where the file's
-/// structure is too broken to follow, returns `Ok` and leaves the error to the `las` crate.
+/// Checks the chunks of the LAZ file in `src` (see the module docs) and returns the LASzip
+/// VLR's data. Where the file's structure is too broken to follow, returns what it found and
+/// leaves the error to the `laz` crate.
 pub(super) fn check_laz_chunks(
     path: &Path,
-    bytes: &[u8],
-    header_size: usize,
+    src: &impl ByteSource,
+    header_size: u64,
     vlr_count: u32,
-    points_at: usize,
+    points_at: u64,
     points: u64,
-) -> Result<()> {
-    let Some(vlr) = laszip_vlr(bytes, header_size, vlr_count) else {
-        return Ok(());
+) -> Result<Option<Vec<u8>>> {
+    // The VLRs lie between the header and the point data (within the file: checked).
+    let Some(vlrs) = src.bytes_at(header_size, points_at.saturating_sub(header_size) as usize)
+    else {
+        return Ok(None);
     };
+    let Some(vlr) = laszip_vlr(&vlrs, 0, vlr_count) else {
+        return Ok(None);
+    };
+    let found = Ok(Some(vlr.to_vec()));
     let (Some(compressor), Some(chunk_size), Some(item_count)) =
         (u16_at(vlr, 0), u32_at(vlr, 12), u16_at(vlr, 32))
     else {
-        return Ok(());
+        return found;
     };
     let items: Option<Vec<(u16, u16)>> = (0..usize::from(item_count))
         .map(|i| Some((u16_at(vlr, 34 + 6 * i)?, u16_at(vlr, 36 + 6 * i)?)))
         .collect();
     let Some(items) = items else {
-        return Ok(());
+        return found;
     };
     let bad = |msg: String| Err(InteropError::format(path, msg));
     let variable = chunk_size == VARIABLE_CHUNK_SIZE;
     let mut table = None;
     if compressor == POINTWISE_CHUNKED || compressor == LAYERED_CHUNKED {
-        if let Ok(laz_vlr) = laz::LazVlr::from_buffer(vlr) {
-            let mut source = Cursor::new(bytes);
-            source.set_position(points_at as u64);
-            table = laz::laszip::ChunkTable::read_from(source, &laz_vlr)
-                .ok()
-                .map(|t| t.as_ref().to_vec());
+        if let (Ok(laz_vlr), Ok(mut source)) = (laz::LazVlr::from_buffer(vlr), src.reader()) {
+            if source.seek(SeekFrom::Start(points_at)).is_ok() {
+                table = laz::laszip::ChunkTable::read_from(source, &laz_vlr)
+                    .ok()
+                    .map(|t| t.as_ref().to_vec());
+            }
         }
     }
     if let (true, Some(entries)) = (variable, &table) {
@@ -101,7 +109,7 @@ pub(super) fn check_laz_chunks(
         }
     }
     if compressor != LAYERED_CHUNKED {
-        return Ok(());
+        return found;
     }
     let mut layers = 0usize;
     for &(item_type, size) in &items {
@@ -110,24 +118,28 @@ pub(super) fn check_laz_chunks(
             11 | 13 => 1,            // RGB14, WavePacket14
             12 => 2,                 // RGBNIR14
             14 => usize::from(size), // Byte14
-            _ => return Ok(()),      // not layered: the laz crate refuses it
+            _ => return found,       // not layered: the laz crate refuses it
         };
     }
-    let first_point: usize = items.iter().map(|&(_, size)| usize::from(size)).sum();
+    let first_point: u64 = items.iter().map(|&(_, size)| u64::from(size)).sum();
+    let len = src.len();
     let mut at = points_at + 8;
     let mut left = points;
     let mut chunk = 0usize;
     while left > 0 {
         let sizes_at = at + first_point + 4;
-        let layers_at = sizes_at + 4 * layers;
-        let (Some(count), true) = (u32_at(bytes, at + first_point), layers_at <= bytes.len())
-        else {
+        let layers_at = sizes_at + 4 * layers as u64;
+        let (Some(count), Some(sizes)) = (
+            src.u32_at(at + first_point),
+            src.bytes_at(sizes_at, 4 * layers),
+        ) else {
             break; // The decoder stops at the end of the file.
         };
-        let total = (0..layers)
-            .filter_map(|i| u32_at(bytes, sizes_at + 4 * i))
-            .fold(0u64, |sum, s| sum + u64::from(s));
-        let remain = (bytes.len() - layers_at) as u64;
+        let total = sizes
+            .chunks_exact(4)
+            .map(|s| u64::from(u32::from_le_bytes([s[0], s[1], s[2], s[3]])))
+            .sum::<u64>();
+        let remain = len - layers_at;
         if total > remain {
             return bad(format!(
                 "LAZ chunk {chunk} at byte {at}: its layers claim {total} bytes, {remain} remain"
@@ -142,8 +154,8 @@ pub(super) fn check_laz_chunks(
             break;
         }
         left = left.saturating_sub(chunk_points);
-        at = layers_at + total as usize;
+        at = layers_at + total;
         chunk += 1;
     }
-    Ok(())
+    found
 }

@@ -9,10 +9,12 @@ mod e57_read;
 mod e57_write;
 mod las_check;
 mod las_read;
+mod las_stream;
 mod las_write;
 mod laz_check;
 mod mcap;
 mod merge;
+mod source;
 mod util;
 
 use crate::error::{InteropError, Result};
@@ -105,11 +107,12 @@ pub fn read_scans(path: &Path, options: &ReadOptions) -> Result<ScanSet> {
         let (cloud, notes) = cloud::read_cloud_with_notes(path)?;
         return Ok(single_scan(path, cloud, DVec3::ZERO, notes));
     };
-    let bytes = util::read_file(path)?;
     match format {
-        ScanFormat::E57 => e57_read::parse_e57(path, &bytes),
-        ScanFormat::Las | ScanFormat::Laz => las_read::parse_las(path, bytes),
-        ScanFormat::Mcap => mcap::parse_mcap(path, &bytes, options),
+        ScanFormat::E57 => e57_read::read_e57(path, &source::FileSource::open(path)?),
+        ScanFormat::Las | ScanFormat::Laz => {
+            las_read::read_las(path, &source::FileSource::open(path)?)
+        }
+        ScanFormat::Mcap => mcap::parse_mcap(path, &util::read_file(path)?, options),
     }
 }
 
@@ -180,12 +183,12 @@ pub mod fuzzing {
 
     /// An E57 file.
     pub fn read_e57_bytes(path: &Path, bytes: &[u8]) -> Result<ScanSet> {
-        e57_read::parse_e57(path, bytes)
+        e57_read::read_e57(path, &super::source::MemorySource(bytes))
     }
 
     /// A LAS or LAZ file (the header says which).
     pub fn read_las_bytes(path: &Path, bytes: &[u8]) -> Result<ScanSet> {
-        las_read::parse_las(path, bytes.to_vec())
+        las_read::read_las(path, &super::source::MemorySource(bytes))
     }
 
     /// A ROS 2 bag in MCAP, with the default [`ReadOptions`].

@@ -40,6 +40,7 @@ int main(int argc, char **argv) {
     std::cerr << "usage: sdf_check FILE.sdf\n";
     return 2;
   }
+  std::cout.precision(17);  // every digit of a double: the tests compare within 1e-6
   sdf::Root root;
   const sdf::Errors errors = root.Load(argv[1]);
   for (const auto &e : errors) std::cout << "error: " << e.Message() << "\n";

@@ -27,10 +27,8 @@ pub struct ConvertArgs {
 /// Where the output goes: a format of the cloud crate, or one of interop's.
 enum Output {
     Cloud(CloudFormat),
-    /// E57, LAS or LAZ; `keeps_shape` where the format stores an organised grid.
-    Interop {
-        keeps_shape: bool,
-    },
+    /// E57, LAS or LAZ.
+    Interop,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -54,11 +52,7 @@ pub fn run(a: ConvertArgs) -> anyhow::Result<()> {
     if let Some(v) = a.voxel {
         cloud = cloud::voxel_downsample(&cloud, v)?;
     }
-    let keeps_shape = match format {
-        Output::Cloud(f) => matches!(f, CloudFormat::Pcd(_)),
-        Output::Interop { keeps_shape } => keeps_shape,
-    };
-    if !keeps_shape && cloud.organized.is_some() {
+    if !interop::keeps_organized_shape(&a.output) && cloud.organized.is_some() {
         let before = cloud.len();
         cloud = cloud.without_invalid();
         if cloud.len() < before {
@@ -72,7 +66,7 @@ pub fn run(a: ConvertArgs) -> anyhow::Result<()> {
     match format {
         Output::Cloud(f) => cloud::write_cloud_as(&a.output, &cloud, f)
             .with_context(|| format!("writing {}", a.output.display()))?,
-        Output::Interop { .. } => interop::write_cloud(&a.output, &cloud)
+        Output::Interop => interop::write_cloud(&a.output, &cloud)
             .with_context(|| format!("writing {}", a.output.display()))?,
     }
     println!(
@@ -97,9 +91,7 @@ fn output_format(a: &ConvertArgs) -> anyhow::Result<Output> {
                 a.output.display()
             )));
         }
-        return Ok(Output::Interop {
-            keeps_shape: ext == "e57",
-        });
+        return Ok(Output::Interop);
     }
     let format = CloudFormat::from_path(&a.output)?;
     Ok(Output::Cloud(match (format, a.encoding) {

@@ -28,7 +28,8 @@ mod scans;
 pub use error::{InteropError, Result};
 pub use export::{export_world, write_export, ExportFormat, ExportOptions};
 pub use scans::{
-    is_sequence_file, read_cloud, read_scans, write_cloud, ImportedScan, ReadOptions, ScanSet,
+    is_sequence_file, keeps_organized_shape, read_cloud, read_scans, write_cloud, ImportedScan,
+    ReadOptions, ScanSet,
 };
 
 /// Byte-slice entry points of the readers, for the fuzz targets in `fuzz/` (not a stable API).

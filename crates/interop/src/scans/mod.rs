@@ -154,6 +154,17 @@ pub fn write_cloud(path: &Path, cloud: &PointCloud) -> Result<()> {
 }
 
 /// A set of one scan named after the file stem, without pose.
+/// Whether writing `path` (by its extension) keeps an organised cloud's row/column grid:
+/// PCD (width x height) and E57 (row and column indices) do; PLY, XYZ, 3DTK, LAS and LAZ store
+/// a list of points, so an organised cloud's missing returns are dropped before writing.
+pub fn keeps_organized_shape(path: &Path) -> bool {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    matches!(ext.as_str(), "pcd" | "e57")
+}
+
 pub(super) fn single_scan(
     path: &Path,
     cloud: PointCloud,

@@ -21,9 +21,15 @@ def timed(cmd):
     return float(wall_s), int(kib) * 1024
 
 
-def best(cmd, runs):
-    results = [timed(cmd) for _ in range(runs)]
-    return min(r[0] for r in results), max(r[1] for r in results)
+def best_interleaved(a, b, runs):
+    """Best wall time and largest peak of two commands run alternately (a, b, a, b, ...), so
+    that a change in the machine's load during the run affects both alike."""
+    ra, rb = [], []
+    for _ in range(runs):
+        ra.append(timed(a))
+        rb.append(timed(b))
+    pick = lambda rs: (min(r[0] for r in rs), max(r[1] for r in rs))
+    return pick(ra), pick(rb)
 
 
 def make_points(n, seed=7):
@@ -97,8 +103,8 @@ def main():
             writer(path + ".tmp." + fmt, a.points)
             os.replace(path + ".tmp." + fmt, path)
             print(f"wrote {path} in {time.time() - t0:.1f} s", flush=True)
-        ref_s, ref_rss = best([py, "-c", reader, path], a.runs)
-        ours_s, ours_rss = best([a.semsim, "info", path], a.runs)
+        (ref_s, ref_rss), (ours_s, ours_rss) = best_interleaved(
+            [py, "-c", reader, path], [a.semsim, "info", path], a.runs)
         own = a.points * per_point
         row = {
             "format": fmt, "points": a.points, "file_bytes": os.path.getsize(path),
@@ -115,7 +121,7 @@ def main():
         json.dump(rows, f, indent=2)
     with open("bench/results/read_formats.md", "w") as f:
         f.write("# Reading speed and peak memory (`bash bench/read_formats.sh`)\n\n")
-        f.write(f"{a.points:,} points, best of {a.runs} runs, each reader in its own process.\n\n")
+        f.write(f"{a.points:,} points, best of {a.runs} runs each, the two readers alternating, each in its own process.\n\n")
         f.write("| format | reference | reference s | semsim s | ratio (ref/semsim) | semsim peak MB | peak / points' size |\n|---|---|---|---|---|---|---|\n")
         for r in rows:
             f.write(f"| {r['format']} | {r['reference']} | {r['reference_s']:.2f} | {r['semsim_s']:.2f} | {r['speed_ratio_reference_over_semsim']:.2f} | {r['semsim_peak_bytes']/1e6:.0f} | {r['semsim_peak_over_points']:.2f} |\n")

@@ -17,7 +17,7 @@
 //! * Colour, time stamps and return indices are not kept (a note says so for colour).
 
 use super::source::ByteSource;
-use super::util::{clean, note, rigid_pose, try_filled, try_push};
+use super::util::{clean, note, rigid_pose, try_filled, try_push, try_vec};
 use super::{ImportedScan, ScanSet};
 use crate::error::{InteropError, Result};
 use cloud::{Organized, PointCloud};
@@ -86,7 +86,10 @@ pub(super) fn read_e57(path: &Path, src: &impl ByteSource) -> Result<ScanSet> {
         if descriptor.has_color() {
             notes.push(note(path, format!("{label}: colour not kept")));
         }
-        let raw = read_points(path, &mut reader, descriptor, &label)?;
+        // Room for the points up front where the count is plausible for the file's size (no
+        // real E57 point takes less than two bytes), so the columns never move as they grow.
+        let reserve = descriptor.records.min(file_bytes / 2) as usize;
+        let raw = read_points(path, &mut reader, descriptor, &label, reserve)?;
         let cloud = build_cloud(path, raw, &label, &mut notes)?;
         scans.push(ImportedScan {
             name,
@@ -117,6 +120,7 @@ fn read_points<R: std::io::Read + std::io::Seek>(
     reader: &mut e57::E57Reader<R>,
     descriptor: &e57::PointCloud,
     label: &str,
+    reserve: usize,
 ) -> Result<RawScan> {
     let mut iter = reader
         .pointcloud_simple(descriptor)
@@ -126,9 +130,15 @@ fn read_points<R: std::io::Read + std::io::Seek>(
     iter.normalize_intensity(false);
     iter.intensity_to_color(false);
     let mut raw = RawScan {
-        points: Vec::new(),
-        intensity: descriptor.has_intensity().then(Vec::new),
-        cells: descriptor.has_row_column().then(Vec::new),
+        points: try_vec(path, reserve, "the E57 points")?,
+        intensity: match descriptor.has_intensity() {
+            true => Some(try_vec(path, reserve, "the E57 intensities")?),
+            false => None,
+        },
+        cells: match descriptor.has_row_column() {
+            true => Some(try_vec(path, reserve, "the E57 row/column indices")?),
+            false => None,
+        },
         invalid_intensity: 0,
     };
     for (i, point) in iter.enumerate() {

@@ -1,5 +1,5 @@
 //! Round trips through `write_cloud` / `read_cloud` between every pair of formats (PCD, PLY,
-//! XYZ, 3DTK, E57, LAS, LAZ), and what each format keeps.
+//! XYZ, 3DTK, E57, LAS, LAZ), each pair followed by LAS again, and what each format keeps.
 //!
 //! Per format, what comes back of a cloud written and read again:
 //! - PCD, PLY, E57 (f32, or f64 of the f32) and XYZ (shortest decimal of the f32): exact.
@@ -7,7 +7,10 @@
 //! - LAS/LAZ: 0.1 mm integers: within 5e-5 m; intensity rounded to u16 (the test uses whole
 //!   numbers, so exact), classification kept (written 0 where the cloud had none).
 //!
-//! Intensity survives every format; classification only LAS/LAZ.
+//! Intensity survives every format; the ASPRS classification survives LAS/LAZ, PCD (field
+//! `classification`, `U 1`) and PLY (vertex property `uchar classification`; these two write
+//! it only where the cloud has one), so LAS -> PCD -> LAS and LAS -> PLY -> LAS keep every
+//! point's class; XYZ, 3DTK and E57 drop it.
 
 mod scans_support;
 
@@ -28,7 +31,18 @@ fn tolerance(ext: &str) -> f32 {
 }
 
 fn keeps_class(ext: &str) -> bool {
-    matches!(ext, "las" | "laz")
+    matches!(ext, "las" | "laz" | "pcd" | "ply")
+}
+
+/// The classification a cloud with `class` has after a trip through format `ext`: kept where
+/// the format keeps it, dropped where not; LAS/LAZ always have one (0 where the cloud had none),
+/// PCD and PLY only where the cloud had one.
+fn through(ext: &str, class: Option<Vec<u8>>, n: usize) -> Option<Vec<u8>> {
+    match ext {
+        "las" | "laz" => Some(class.unwrap_or_else(|| vec![0; n])),
+        _ if keeps_class(ext) => class,
+        _ => None,
+    }
 }
 
 fn sample() -> PointCloud {
@@ -74,13 +88,74 @@ fn every_pair_of_formats_round_trips() {
                 assert!(d <= tol, "{what}: {p:?} vs {q:?} ({d} > {tol})");
             }
             assert_eq!(back.intensity, original.intensity, "{what}: intensity");
-            let class = match (keeps_class(a), keeps_class(b)) {
-                (true, true) => original.classification.clone(),
-                (false, true) => Some(vec![0; original.len()]),
-                _ => None,
-            };
+            let n = original.len();
+            let class = through(b, through(a, original.classification.clone(), n), n);
+            if keeps_class(a) && keeps_class(b) {
+                assert_eq!(class, original.classification, "{what}");
+            }
             assert_eq!(back.classification, class, "{what}: classification");
             assert!(back.organized.is_none(), "{what}");
+            // And on to LAS: e.g. LAS -> PCD -> LAS and LAS -> PLY -> LAS keep the classes.
+            let third = dir.path().join(format!("third_{a}_{b}.las"));
+            write_cloud(&third, &back).unwrap_or_else(|e| panic!("{what} -> las: {e}"));
+            let las = read(&third);
+            assert_eq!(
+                las.classification,
+                through("las", class, n),
+                "{what} -> las: classification"
+            );
+        }
+    }
+}
+
+/// LAS -> PCD -> LAS and LAS -> PLY -> LAS in every PCD and PLY encoding: the classes (and the
+/// intensities) of every point come back.
+#[test]
+fn las_classes_survive_pcd_and_ply_in_every_encoding() {
+    use cloud::{CloudFormat, PcdEncoding, PlyEncoding};
+    let dir = tempfile::tempdir().unwrap();
+    let las = dir.path().join("in.las");
+    write_cloud(&las, &sample()).unwrap();
+    let from_las = read(&las);
+    assert_eq!(from_las.classification, sample().classification);
+    let formats = [
+        CloudFormat::Pcd(PcdEncoding::Ascii),
+        CloudFormat::Pcd(PcdEncoding::Binary),
+        CloudFormat::Pcd(PcdEncoding::BinaryCompressed),
+        CloudFormat::Ply(PlyEncoding::Ascii),
+        CloudFormat::Ply(PlyEncoding::BinaryLittleEndian),
+        CloudFormat::Ply(PlyEncoding::BinaryBigEndian),
+    ];
+    for (k, format) in formats.into_iter().enumerate() {
+        let ext = if matches!(format, CloudFormat::Pcd(_)) {
+            "pcd"
+        } else {
+            "ply"
+        };
+        let mid = dir.path().join(format!("mid{k}.{ext}"));
+        cloud::write_cloud_as(&mid, &from_las, format).unwrap();
+        let via = read(&mid);
+        assert_eq!(via.classification, from_las.classification, "{format:?}");
+        let out = dir.path().join(format!("out{k}.las"));
+        write_cloud(&out, &via).unwrap();
+        let back = read(&out);
+        assert_eq!(
+            back.classification,
+            sample().classification,
+            "las -> {format:?} -> las"
+        );
+        assert_eq!(
+            back.intensity,
+            sample().intensity,
+            "las -> {format:?} -> las"
+        );
+        assert_eq!(back.len(), from_las.len(), "las -> {format:?} -> las");
+        for (p, q) in back.points.iter().zip(&sample().points) {
+            let tol = 2.0 * tolerance("las");
+            assert!(
+                (*p - *q).abs().max_element() <= tol,
+                "{format:?}: {p} vs {q}"
+            );
         }
     }
 }

@@ -49,6 +49,7 @@ mod export;
 mod guard;
 mod guess;
 mod map;
+mod no_echo;
 mod plot;
 mod register;
 pub mod scan_folder;
@@ -68,6 +69,9 @@ pub use guess::parse_guess;
 pub use interop::ExportFormat;
 pub use interop::ReadOptions;
 pub use map::{build_map, map_summary, write_map, MAP_PICTURES};
+pub use no_echo::{
+    drop_no_echo, find_no_echo, NoEcho, NO_ECHO_BAND_M, NO_ECHO_MIN_POINTS, NO_ECHO_MIN_SHARE,
+};
 pub use plot::{line_chart, plot_rmse, Series};
 pub use register::{
     open_registrar, register_scans, write_registration, PairReport, Registration, ScanRow,

@@ -7,8 +7,9 @@ use cloud::{NamedPose, PointCloud};
 use glam::{DAffine3, DVec3};
 use std::path::{Path, PathBuf};
 
-/// Reads scans, dropping missing returns and points farther than `max_range_m` from their
-/// scan's sensor. Files read in a local frame (georeferenced LAS/LAZ: see
+/// Reads scans, dropping missing returns, no-echo readings (a sensor's fixed range for "no
+/// echo", found by [`crate::find_no_echo`]; reported on standard error with their count) and
+/// points farther than `max_range_m` from their scan's sensor. Files read in a local frame (georeferenced LAS/LAZ: see
 /// [`interop::ScanSet::local_origin_m`]) are moved into the first such file's frame, which is
 /// reported on standard error.
 pub fn read_scans(sources: &[ScanSource], max_range_m: Option<f64>) -> Result<Vec<PointCloud>> {
@@ -28,6 +29,17 @@ pub fn read_scans(sources: &[ScanSource], max_range_m: Option<f64>) -> Result<Ve
                 None => read_one(&source.file, &mut origin)?,
             }
             .without_invalid();
+            let (scan, no_echo) = crate::no_echo::drop_no_echo(&scan);
+            if let Some(found) = no_echo {
+                eprintln!(
+                    "note: {} ({}): {} no-echo readings at {:.3} m (the farthest range, shared by {:.1} % of the points) dropped",
+                    source.file.display(),
+                    source.name,
+                    found.count,
+                    found.range_m,
+                    100.0 * found.count as f64 / (scan.len() + found.count).max(1) as f64
+                );
+            }
             Ok(match max_range_m {
                 Some(r) => within_range(&scan, r as f32),
                 None => scan,

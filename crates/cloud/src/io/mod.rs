@@ -1,6 +1,7 @@
 //! Point cloud files, picked by extension: PCD (`.pcd`), PLY (`.ply`), XYZ (`.xyz`, `.txt`)
 //! and 3DTK (`.3d`). All writers are atomic (temporary file + rename).
 
+mod asprs;
 mod labels;
 pub(crate) mod lzf;
 pub mod pcd;

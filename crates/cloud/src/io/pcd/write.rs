@@ -1,4 +1,6 @@
-//! Writing PCD: the header text and the data in each encoding.
+//! Writing PCD: the header text and the data in each encoding. The fields, in order: `x y z`
+//! (F4), `intensity` (F4), `label` (U4) + `class` (U1), `classification` (U1), each written
+//! only where the cloud has that channel (`x y z` always).
 
 use super::{lzf, PcdEncoding};
 use crate::cloud::PointCloud;
@@ -41,6 +43,9 @@ pub(super) fn out_columns(cloud: &PointCloud) -> Vec<OutColumn> {
     if let Some(l) = &cloud.labels {
         out.push(col("label", 'U', l, |l| l.entity.to_le_bytes()));
         out.push(col("class", 'U', l, |l| [l.class.code()]));
+    }
+    if let Some(c) = &cloud.classification {
+        out.push(col("classification", 'U', c, |c| [c]));
     }
     out
 }
@@ -104,6 +109,9 @@ pub(super) fn write_ascii_body(w: &mut impl Write, cloud: &PointCloud) -> std::i
         }
         if let Some(l) = cloud.labels.as_ref().and_then(|v| v.get(i)) {
             write!(w, " {} {}", l.entity, l.class.code())?;
+        }
+        if let Some(c) = cloud.classification.as_ref().and_then(|v| v.get(i)) {
+            write!(w, " {c}")?;
         }
         writeln!(w)?;
     }

@@ -190,6 +190,9 @@ pub(super) fn text(cloud: &PointCloud, encoding: PlyEncoding) -> String {
     if cloud.labels.is_some() {
         s.push_str("property uint label\nproperty uchar class\n");
     }
+    if cloud.classification.is_some() {
+        s.push_str("property uchar classification\n");
+    }
     s.push_str("end_header\n");
     s
 }

@@ -73,5 +73,11 @@ pub fn run(a: DemoArgs, cfg: &Config) -> anyhow::Result<()> {
         a.out.join("simulation/scenario.toml").display()
     );
     println!("done in {:.1} s", t0.elapsed().as_secs_f64());
+    println!(
+        "see it in 3D and drive the robot yourself: semsim console --map {} --scenario {} --out {}",
+        a.out.join("map/semantic_map.json").display(),
+        a.out.join("simulation/scenario.toml").display(),
+        a.out.join("console").display()
+    );
     Ok(())
 }

@@ -54,7 +54,8 @@ fn as_bad_input(cause: &(dyn std::error::Error + 'static)) -> Option<bool> {
         semantic::SemanticError,
         evaluate::EvalError,
         sim::SimError,
-        interop::InteropError
+        interop::InteropError,
+        console::ConsoleError
     );
     None
 }

@@ -4,6 +4,7 @@
 
 mod bench;
 mod building_cmd;
+mod console_cmd;
 mod convert;
 mod demo;
 mod exit;
@@ -61,6 +62,9 @@ enum Command {
     Scan(scan::ScanArgs),
     /// Run a scenario in a physics world of the building and judge it (exit 0 pass, 1 fail).
     Simulate(simulate::SimulateArgs),
+    /// The operator console: a local web page showing the world in 3D, where you drive the
+    /// robot live; each session is saved as a run folder.
+    Console(console_cmd::ConsoleArgs),
     /// Benchmarks that print and save figures (ICP on CPU and GPU).
     #[command(subcommand)]
     Bench(bench::BenchCommand),
@@ -97,6 +101,7 @@ fn main() -> ExitCode {
             Command::Building(c) => building_cmd::run(c, &cfg),
             Command::Bench(c) => bench::run(c),
             Command::Simulate(a) => simulate::run(a),
+            Command::Console(a) => console_cmd::run(a),
         });
     match result {
         Ok(()) => ExitCode::SUCCESS,

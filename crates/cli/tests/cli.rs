@@ -17,6 +17,7 @@ fn help_works_on_every_command() {
         vec!["building", "--help"],
         vec!["building", "generate", "--help"],
         vec!["building", "check", "--help"],
+        vec!["console", "--help"],
     ] {
         let out = d.run(&args).ok();
         assert!(out.contains("Usage"), "{args:?}: {out}");
@@ -38,6 +39,10 @@ fn demo_writes_scans_ground_truth_odometry_and_config() {
         ])
         .ok();
     assert!(out.contains("9 scans"), "{out}");
+    assert!(
+        out.contains("semsim console --map "),
+        "the console command: {out}"
+    );
     let files = d.listing("demo");
     for f in [
         "building.toml",

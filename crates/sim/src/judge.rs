@@ -353,6 +353,11 @@ impl Judge {
         }
     }
 
+    /// Whether each rule (in the verdict's order) has been decided yet.
+    pub(crate) fn decided(&self) -> Vec<bool> {
+        self.rules.iter().map(|r| r.result.is_some()).collect()
+    }
+
     /// Whether every goal rule has passed (false when there are none).
     pub(crate) fn goals_met(&self) -> bool {
         let mut goals = self.rules.iter().filter(|r| r.is_goal()).peekable();

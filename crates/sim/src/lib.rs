@@ -22,6 +22,8 @@
 //! * Errors name their file: [`Scenario::load`], [`RobotModel::load`],
 //!   [`WorldSpec::from_building_file`], `WorldSpec::from_semantic_map_file` (see
 //!   [`SimError::in_source`]).
+//! * A person can drive instead of the scenario ([`Simulation::set_operator_drive`]), and
+//!   viewers read the live state ([`Simulation::live_state`], [`Simulation::live_rules`]).
 //! * [`write_outputs`] writes `events.jsonl`, `trajectory.csv` and `report.md`.
 //!
 //! ```
@@ -65,7 +67,9 @@ mod error;
 mod events;
 mod import;
 mod judge;
+mod live;
 mod model;
+mod operator;
 mod report;
 mod scenario;
 mod simulation;
@@ -79,6 +83,7 @@ pub use error::{Result, SimError};
 pub use events::{events_to_jsonl, EntityRef, Event, EventConfig, EventKind};
 pub use import::ImportConfig;
 pub use judge::{RuleResult, Verdict};
+pub use live::{LiveDoor, LiveRobot, LiveRule, LiveState, RuleState};
 pub use model::{
     ArmAxis, ArmModel, ChassisModel, DriveModel, LinkModel, RobotModel, StartPose, WheelModel,
 };

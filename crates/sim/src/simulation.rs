@@ -62,6 +62,10 @@ pub struct Simulation {
     /// Set when [`Simulation::run_with`] was stopped before the end; cleared by the next step.
     #[serde(default)]
     pub(crate) interrupted_at_s: Option<f64>,
+    /// The operator's (linear m/s, angular rad/s) command, overriding the scenario's
+    /// commands while set (see operator.rs).
+    #[serde(default)]
+    pub(crate) operator: Option<(f64, f64)>,
 }
 
 impl Simulation {
@@ -91,6 +95,7 @@ impl Simulation {
             next_sample_s: 0.0,
             step_limit,
             interrupted_at_s: None,
+            operator: None,
         };
         sim.sample();
         Ok(sim)
@@ -102,9 +107,12 @@ impl Simulation {
         let t = self.world.time_s();
         let pose = self.robot_pose();
         let s = &self.scenario;
-        let (v, w) = self
-            .controller
-            .command(t, &pose, &s.velocity, &s.waypoints, &s.controller);
+        let (v, w) = match self.operator {
+            Some(command) => command,
+            None => self
+                .controller
+                .command(t, &pose, &s.velocity, &s.waypoints, &s.controller),
+        };
         let world = &mut self.world;
         if let Some(robot) = world.robots.first_mut() {
             robot.drive(&mut world.physics, v, w);

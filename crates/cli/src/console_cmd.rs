@@ -1,0 +1,130 @@
+//! `semsim console`: the operator console, a local web server showing the world in 3D where a
+//! person drives the robot live; each session is saved as a run folder. The CLI only parses
+//! the arguments, prints the URL and the folders saved (the console crate does the rest).
+
+use crate::exit::bad_input;
+use clap::Args;
+use console::{ConsoleConfig, ConsoleWorld, SessionSetup};
+use pipeline::ScenarioSource;
+use scanner::Building;
+use sim::RobotModel;
+use std::io::Write as _;
+use std::net::{IpAddr, Ipv4Addr, SocketAddr};
+use std::path::{Path, PathBuf};
+
+/// Arguments of `semsim console`.
+#[derive(Args)]
+pub struct ConsoleArgs {
+    /// A semantic map (semantic_map.json): the world is built from its entities.
+    #[arg(long, value_name = "FILE", conflicts_with = "building")]
+    map: Option<PathBuf>,
+    /// A building description (TOML/JSON), or "default" for the built-in building; default:
+    /// the scenario's building.
+    #[arg(long, value_name = "FILE")]
+    building: Option<PathBuf>,
+    /// The scenario (TOML): robot, start, time limit and the rules the session is judged by;
+    /// default: the built-in default scenario. Its scripted commands drive until the operator
+    /// does.
+    #[arg(long, value_name = "FILE")]
+    scenario: Option<PathBuf>,
+    /// The robot instead of the scenario's: a built-in name (pioneer3at, inspection), a robot
+    /// TOML or a URDF file.
+    #[arg(long, value_name = "NAME|FILE")]
+    robot: Option<String>,
+    /// The port (0: any free port).
+    #[arg(long, default_value_t = 8080)]
+    port: u16,
+    /// The address to listen on; anything but loopback lets others on the network reach the
+    /// console (a warning says so).
+    #[arg(long, value_name = "ADDR", default_value_t = IpAddr::V4(Ipv4Addr::LOCALHOST))]
+    listen: IpAddr,
+    /// Another page origin allowed to open the WebSocket (http://HOST:PORT), e.g. the
+    /// machine's address when listening on 0.0.0.0; may be repeated.
+    #[arg(long, value_name = "URL")]
+    allow_origin: Vec<String>,
+    /// The folder the sessions are saved in (session-001/, session-002/, ...).
+    #[arg(long, value_name = "DIR", default_value = "semsim-console")]
+    out: PathBuf,
+}
+
+/// Runs `semsim console` until Ctrl-C (which saves the session and exits 0).
+pub fn run(a: ConsoleArgs) -> anyhow::Result<()> {
+    pipeline::check_output_dir(&a.out)?;
+    let mut source = ScenarioSource::load(a.scenario.as_deref())?;
+    if let Some(robot) = &a.robot {
+        use_robot(&mut source, robot)?;
+    }
+    let world = match (&a.map, &a.building) {
+        (Some(m), _) => ConsoleWorld::from_semantic_map_file(m)?,
+        (None, Some(b)) if b.as_os_str() == "default" => {
+            ConsoleWorld::from_building(&Building::default_building()?)?
+        }
+        (None, b) => ConsoleWorld::from_building(&source.building(b.as_deref())?)?,
+    };
+    let config = ConsoleConfig {
+        listen: SocketAddr::new(a.listen, a.port),
+        allowed_origins: a.allow_origin.clone(),
+        ..ConsoleConfig::default()
+    };
+    config.validate().map_err(|e| bad_input(e.to_string()))?;
+    if !config.is_loopback() {
+        eprintln!(
+            "warning: listening on {}: anyone who can reach this address can watch and drive \
+             (the console has no login); use the default 127.0.0.1 to keep it to this machine",
+            a.listen
+        );
+    }
+    let setup = SessionSetup {
+        world,
+        scenario: source.scenario,
+        scenario_toml: source.text,
+        robot: source.robot,
+        out_dir: a.out.clone(),
+    };
+    crate::interrupt::install();
+    let saved = console::serve_blocking(
+        config,
+        setup,
+        |c| {
+            println!("console: {}", c.url());
+            eprintln!(
+                "drive with WASD or the arrow keys (space stops); sessions are saved in {}; \
+                 Ctrl-C saves the session and quits",
+                a.out.display()
+            );
+            let _ = std::io::stdout().flush();
+        },
+        crate::interrupt::requested,
+    )?;
+    for dir in &saved {
+        println!("saved {}", dir.display());
+    }
+    if saved.is_empty() {
+        println!("no session to save (the simulation took no step)");
+    }
+    Ok(())
+}
+
+/// Makes the scenario drive `robot` (a built-in name or a file), and its saved `scenario.toml`
+/// name it (a file by its absolute path), so a replay uses the same robot.
+fn use_robot(source: &mut ScenarioSource, robot: &str) -> anyhow::Result<()> {
+    let model = RobotModel::resolve(robot, Path::new("."))?;
+    let name = if Path::new(robot).is_file() {
+        std::fs::canonicalize(robot)
+            .map_err(|e| cloud::CloudError::io(robot, e))?
+            .display()
+            .to_string()
+    } else {
+        robot.to_string()
+    };
+    let mut table: toml::Table =
+        toml::from_str(&source.text).map_err(|e| bad_input(format!("the scenario: {e}")))?;
+    table.insert("robot".into(), toml::Value::String(name.clone()));
+    source.text = format!(
+        "# semsim console --robot {robot}: the scenario with this robot\n{}",
+        toml::to_string(&table).map_err(|e| bad_input(format!("the scenario: {e}")))?
+    );
+    source.scenario.robot = name;
+    source.robot = model;
+    Ok(())
+}

@@ -1,0 +1,67 @@
+//! semsim's operator console: a local web server that shows the semantic world in 3D in a
+//! browser, lets a person drive the robot live while the scenario's rules judge it, and saves
+//! every session as a run (`semsim console`).
+//!
+//! * **Server** ([`Console`]): axum on tokio, bound to `127.0.0.1:8080` by default
+//!   ([`ConsoleConfig`]). It serves the page (`/`, its script and the vendored three.js, all
+//!   compiled into the binary), the world as glTF binary (`/world.glb`, interop's export with
+//!   the robot at its start), its entities (`/api/world.json`: id, class, name, label,
+//!   relations) and a WebSocket (`/ws`). Nothing a client sends names a file.
+//! * **Simulation**: a thread owns the session's [`sim::Simulation`] and steps it in real
+//!   time at the scenario's fixed step, times a speed factor (x0.25 to x10), paused or
+//!   stepped on request. The scenario's scripted commands drive the robot until the operator's
+//!   first `drive` or `stop`; from then on the operator's command does (clamped to the robot's
+//!   limits). States go out 30 times a second, events as they happen, the rules' live state
+//!   when it changes, the verdict when the run ends.
+//! * **Protocol** ([`protocol`]): typed JSON messages with a `type`; unknown types or
+//!   fields, malformed JSON, messages over 64 KiB, out-of-range numbers and messages beyond
+//!   100 a second get an `error` reply and change nothing else. WebSocket upgrades are refused
+//!   (403) unless the `Origin` header is absent or the console's own (`http://HOST:PORT`, and
+//!   `http://localhost:PORT` on loopback, or one of [`ConsoleConfig::allowed_origins`]).
+//! * **Several tabs**: every connection sees the same session. The first connection drives;
+//!   the others watch, and their commands get an `error` reply. When the driver leaves, the
+//!   next connection (in the order they came) drives, and is told so by a `role` message; an
+//!   operator-driven robot stops when its driver leaves.
+//! * **Sessions are runs** ([`Session`]): when the run ends, on `save`, on `reset` (which then
+//!   starts the next session) and when the console stops (Ctrl-C), the session is written to
+//!   `OUT/session-NNN/` as `semsim simulate` writes a run (`events.jsonl`, `trajectory.csv`,
+//!   `report.md`, `scenario.toml`; each file atomically) plus `commands.jsonl`, the operator's
+//!   commands stamped with the step they were applied before ([`CommandLog`]). A session saved
+//!   before its end has an interrupted verdict. [`replay`] runs the log again and gives the
+//!   same events, bit for bit (`semsim simulate --replay`).
+//!
+//! ```
+//! use console::protocol::ClientMessage;
+//!
+//! let drive = ClientMessage::parse(r#"{"type":"drive","linear_m_s":0.4,"angular_rad_s":0.2}"#);
+//! assert_eq!(drive, Ok(ClientMessage::Drive { linear_m_s: 0.4, angular_rad_s: 0.2 }));
+//! // Unknown fields and out-of-range numbers are refused with a message for the reply.
+//! assert!(ClientMessage::parse(r#"{"type":"stop","now":true}"#).is_err());
+//! assert!(ClientMessage::parse(r#"{"type":"speed","factor":100}"#).is_err());
+//! assert!(console::ConsoleConfig::default().listen.ip().is_loopback());
+//! ```
+
+#![warn(missing_docs)]
+
+mod app;
+mod assets;
+mod config;
+mod error;
+mod hub;
+mod log;
+pub mod protocol;
+mod rate;
+mod replay;
+mod runner;
+mod server;
+mod session;
+mod socket;
+mod world;
+
+pub use config::ConsoleConfig;
+pub use error::{ConsoleError, Result};
+pub use log::{CommandLog, RunEnd};
+pub use replay::replay;
+pub use server::{serve_blocking, Console};
+pub use session::{first_free_session, session_dir_name, Session, SessionSetup, RUN_FILES};
+pub use world::ConsoleWorld;

@@ -46,7 +46,8 @@ fn the_corridor_scans_lose_their_no_echo_readings_and_nothing_else() {
 fn without_no_echo_readings_the_default_registration_lands_within_7_cm_and_2_degrees_of_slam6d() {
     let Some(dir) = corridor() else { return };
     let input =
-        pipeline::read_sequence(&[dir.clone()], None, None, &Default::default()).expect("sequence");
+        pipeline::read_sequence(std::slice::from_ref(&dir), None, None, &Default::default())
+            .expect("sequence");
     let scans = pipeline::read_scans(&input.scans, None).expect("scans");
     let cfg = pipeline::Config::default();
     let mut registrar = pipeline::open_registrar(&cfg.registration).expect("registrar");

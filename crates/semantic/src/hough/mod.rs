@@ -19,7 +19,25 @@
 
 use crate::error::Result;
 use cloud::check_range;
+mod accumulator;
 mod ppht;
+/// OpenCV's `cvRound` for floats: round half to even.
+#[inline(always)]
+pub(crate) fn cv_round(v: f32) -> i64 {
+    v.round_ties_even() as i64
+}
+
+/// `cvRound` for `|v| < 2^22`: adding 1.5 * 2^23 rounds in the default mode (to nearest, ties
+/// to even) and leaves the integer in the low mantissa bits, read without a float-to-int
+/// conversion (`round_ties_even` is a library call on baseline x86-64, `as` a checked one).
+#[inline(always)]
+pub(crate) fn cv_round_small(v: f32) -> i32 {
+    const MAGIC: f32 = 12_582_912.0;
+    (v + MAGIC).to_bits() as i32 - 0x4B40_0000
+}
+
+#[cfg(test)]
+mod reference;
 
 use image::GrayImage;
 pub(crate) use ppht::ppht;
@@ -187,7 +205,7 @@ pub fn hough_lines_p(image: &GrayImage, p: &HoughParams) -> Vec<PixelSegment> {
 
 #[cfg(test)]
 mod tests {
-    use super::ppht::{cv_round, cv_round_small, CvRng};
+    use super::ppht::CvRng;
     use super::*;
 
     type Line = ((i32, i32), (i32, i32));

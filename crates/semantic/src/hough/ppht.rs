@@ -1,6 +1,9 @@
 //! The engine of the progressive probabilistic Hough transform (see the `hough` module): the
-//! random order, the accumulator and the corridor walks, as OpenCV's `HoughLinesProbabilistic`.
+//! random order and the corridor walks (the accumulator is `accumulator.rs`), as OpenCV's
+//! `HoughLinesProbabilistic`.
 
+use super::accumulator::{Accumulator, Count};
+use super::cv_round;
 use super::{HoughParams, PixelSegment, Unvote};
 
 /// OpenCV's `cv::RNG`: multiply-with-carry.
@@ -23,80 +26,6 @@ impl CvRng {
     }
 }
 
-/// OpenCV's `cvRound` for floats: round half to even.
-#[inline(always)]
-pub(crate) fn cv_round(v: f32) -> i64 {
-    v.round_ties_even() as i64
-}
-
-/// `cvRound` for `|v| < 2^22`: adding 1.5 * 2^23 rounds in the default mode (to nearest, ties
-/// to even) and leaves the integer in the low mantissa bits, read without a float-to-int
-/// conversion (`round_ties_even` is a library call on baseline x86-64, `as` a checked one).
-#[inline(always)]
-pub(crate) fn cv_round_small(v: f32) -> i32 {
-    const MAGIC: f32 = 12_582_912.0;
-    (v + MAGIC).to_bits() as i32 - 0x4B40_0000
-}
-
-/// An accumulator cell: 16 bits while no line can hold 32767 pixels (half the memory, fewer
-/// cache misses), else 32.
-trait Count: Copy + Default {
-    fn add(&mut self, delta: i32) -> i32;
-}
-
-impl Count for i16 {
-    #[inline(always)]
-    fn add(&mut self, delta: i32) -> i32 {
-        *self = self.wrapping_add(delta as i16);
-        *self as i32
-    }
-}
-
-impl Count for i32 {
-    #[inline(always)]
-    fn add(&mut self, delta: i32) -> i32 {
-        *self = self.wrapping_add(delta);
-        *self
-    }
-}
-
-/// Adds `delta` to the accumulator cells of every line through `(x, y)`; returns the largest
-/// resulting count above `floor` and its angle index.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn vote<C: Count>(
-    accum: &mut [C],
-    trig: &[f32],
-    numrho: usize,
-    half: i32,
-    small: bool,
-    x: f32,
-    y: f32,
-    delta: i32,
-    floor: i32,
-) -> (i32, usize) {
-    let (mut max_val, mut max_n) = (floor, 0);
-    let last = numrho as i32 - 1;
-    for (n, (row, t)) in accum
-        .chunks_exact_mut(numrho)
-        .zip(trig.chunks_exact(2))
-        .enumerate()
-    {
-        let v = x * t[0] + y * t[1];
-        let r = if small {
-            cv_round_small(v)
-        } else {
-            cv_round(v).clamp(i32::MIN as i64, i32::MAX as i64) as i32
-        };
-        let count = row[(r + half).clamp(0, last) as usize].add(delta);
-        if max_val < count {
-            max_val = count;
-            max_n = n;
-        }
-    }
-    (max_val, max_n)
-}
-
 pub(crate) fn ppht(
     mask: Vec<u8>,
     width: usize,
@@ -112,14 +41,44 @@ pub(crate) fn ppht(
     {
         return Vec::new();
     }
+    // Small images (every case with 16-bit counts): pixel positions packed 16 + 16 bits, half
+    // the memory of the randomly indexed list of set pixels.
     if width + height < 30_000 {
-        ppht_with::<i16>(mask, width, height, p)
+        ppht_with::<i16, u32>(mask, width, height, p)
     } else {
-        ppht_with::<i32>(mask, width, height, p)
+        ppht_with::<i32, u64>(mask, width, height, p)
     }
 }
 
-fn ppht_with<C: Count>(
+/// A set pixel's position (x, y) packed in one integer, low half x.
+trait Packed: Copy {
+    fn pack(x: usize, y: usize) -> Self;
+    fn unpack(self) -> (i64, i64);
+}
+
+impl Packed for u32 {
+    #[inline(always)]
+    fn pack(x: usize, y: usize) -> Self {
+        (y as u32) << 16 | x as u32
+    }
+    #[inline(always)]
+    fn unpack(self) -> (i64, i64) {
+        ((self & 0xffff) as i64, (self >> 16) as i64)
+    }
+}
+
+impl Packed for u64 {
+    #[inline(always)]
+    fn pack(x: usize, y: usize) -> Self {
+        (y as u64) << 32 | x as u64
+    }
+    #[inline(always)]
+    fn unpack(self) -> (i64, i64) {
+        ((self & 0xffff_ffff) as i64, (self >> 32) as i64)
+    }
+}
+
+fn ppht_with<C: Count, L: Packed>(
     mut mask: Vec<u8>,
     width: usize,
     height: usize,
@@ -141,21 +100,12 @@ fn ppht_with<C: Count>(
     let line_length = (p.min_line_length_px.round_ties_even()).max(0.0) as i64;
     let line_gap = (p.max_line_gap_px.round_ties_even()).max(0.0) as i64;
     let threshold = p.threshold.min(i32::MAX as u32) as i32;
-    let mut trig = vec![0f32; numangle * 2];
-    for n in 0..numangle {
-        let a = n as f64 * theta_d;
-        trig[2 * n] = (a.cos() * irho as f64) as f32;
-        trig[2 * n + 1] = (a.sin() * irho as f64) as f32;
-    }
-    let half = ((numrho - 1) / 2).min(i32::MAX as usize) as i32;
-    // |x cos + y sin| / rho never exceeds (width + height) / rho: the fast rounding holds below 2^22.
-    let small = ((width + height) as f32 * irho.abs()) < 4_000_000.0;
-    let mut accum = vec![C::default(); numangle * numrho];
-    let mut nzloc: Vec<(u32, u32)> = Vec::new();
+    let mut acc = Accumulator::<C>::new(numangle, numrho, theta_d, irho, width + height);
+    let mut nzloc: Vec<L> = Vec::new();
     for y in 0..height {
         for x in 0..width {
             if mask[y * width + x] != 0 {
-                nzloc.push((x as u32, y as u32));
+                nzloc.push(L::pack(x, y));
             }
         }
     }
@@ -165,31 +115,21 @@ fn ppht_with<C: Count>(
     let mut count = nzloc.len();
     while count > 0 {
         let idx = rng.uniform(0, count as u32) as usize;
-        let (j, i) = (nzloc[idx].0 as i64, nzloc[idx].1 as i64);
+        let (j, i) = nzloc[idx].unpack();
         nzloc[idx] = nzloc[count - 1];
         count -= 1;
         if mask[(i * w + j) as usize] == 0 {
             continue;
         }
-        let (max_val, max_n) = vote(
-            &mut accum,
-            &trig,
-            numrho,
-            half,
-            small,
-            j as f32,
-            i as f32,
-            1,
-            threshold - 1,
-        );
+        let (max_val, max_n) = acc.vote(j as f32, i as f32, threshold - 1);
         if p.unvote == Unvote::Matas {
             mask[(i * w + j) as usize] = 2;
         }
         if max_val < threshold {
             continue;
         }
-        let a = -trig[2 * max_n + 1];
-        let b = trig[2 * max_n];
+        let (cos, sin) = acc.direction(max_n);
+        let (a, b) = (-sin, cos);
         let (mut x0, mut y0) = (j, i);
         let (dx0, dy0, xflag);
         if a.abs() > b.abs() {
@@ -249,17 +189,7 @@ fn ppht_with<C: Count>(
                     Unvote::Matas => *m == 2,
                 };
                 if unvote {
-                    vote(
-                        &mut accum,
-                        &trig,
-                        numrho,
-                        half,
-                        small,
-                        j1 as f32,
-                        i1 as f32,
-                        -1,
-                        i32::MAX,
-                    );
+                    acc.unvote(j1 as f32, i1 as f32);
                 }
                 *m = 0;
                 if (j1, i1) == *end {

@@ -27,6 +27,7 @@ use super::ScanSet;
 use crate::error::{InteropError, Result};
 use cloud::PointCloud;
 use glam::{DVec3, Vec3};
+use std::io::{Seek, SeekFrom};
 use std::path::Path;
 
 /// How far from zero (metres, on every axis) a file's points may lie and still be read without
@@ -173,7 +174,7 @@ fn decode(
     // The count sizes the columns only where it is checked against the file's size (uncompressed)
     // or is no larger than the file's bytes (compressed: real LAZ takes more than a byte a point).
     let trusted = !layout.compressed || layout.points <= src.len();
-    match parallel_split(layout).filter(|_| trusted) {
+    match parallel_split(src, layout).filter(|_| trusted) {
         Some(split) => {
             grow(path, &mut columns, layout.points as usize)?;
             let at = split as usize;
@@ -257,8 +258,9 @@ fn grow(path: &Path, columns: &mut Columns, n: usize) -> Result<()> {
 }
 
 /// Where a LAZ file is split for two threads: the first point of the middle chunk, for files
-/// with fixed-size chunks large enough to be worth it.
-fn parallel_split(layout: &LasLayout) -> Option<u64> {
+/// with fixed-size chunks large enough to be worth it and a chunk table to seek with (the
+/// second thread starts there; a file without a readable table decodes on one thread).
+fn parallel_split(src: &impl ByteSource, layout: &LasLayout) -> Option<u64> {
     let vlr = laz::LazVlr::from_buffer(layout.laz_vlr.as_deref()?).ok()?;
     let chunk = u64::from(vlr.chunk_size());
     if !layout.compressed
@@ -269,7 +271,11 @@ fn parallel_split(layout: &LasLayout) -> Option<u64> {
         return None;
     }
     let chunks = layout.points.div_ceil(chunk);
-    Some(chunks / 2 * chunk)
+    let split = chunks / 2 * chunk;
+    let mut reader = src.reader().ok()?;
+    reader.seek(SeekFrom::Start(layout.points_at)).ok()?;
+    let table = laz::laszip::ChunkTable::read_from(reader, &vlr).ok()?;
+    (table.as_ref().len() as u64 >= chunks).then_some(split)
 }
 
 /// Zero where every point lies within [`LOCAL_EXTENT_M`] of zero on every axis, else the centre
@@ -309,5 +315,32 @@ mod tests {
             DVec3::new(500_005.0, 5_400_011.0, 105.0)
         );
         assert_eq!(local_origin(std::iter::empty()), DVec3::ZERO);
+    }
+
+    #[test]
+    fn large_laz_files_with_a_chunk_table_split_at_a_chunk_boundary() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let n = 260_000;
+        let cloud = PointCloud::from_points(
+            (0..n)
+                .map(|i| glam::Vec3::new(i as f32 * 1e-4, 1.0, 2.0))
+                .collect(),
+        );
+        let path = dir.path().join("big.laz");
+        crate::write_cloud(&path, &cloud).expect("write");
+        let src = super::super::source::FileSource::open(&path).expect("open");
+        let layout = check_las_header(&path, &src).expect("header");
+        // The las crate writes 50,000-point chunks: 6 chunks, the second thread from chunk 3.
+        assert_eq!(parallel_split(&src, &layout), Some(150_000));
+        // Small files stay on one thread.
+        let small = dir.path().join("small.laz");
+        crate::write_cloud(
+            &small,
+            &PointCloud::from_points(cloud.points[..1000].to_vec()),
+        )
+        .expect("write");
+        let src = super::super::source::FileSource::open(&small).expect("open");
+        let layout = check_las_header(&small, &src).expect("header");
+        assert_eq!(parallel_split(&src, &layout), None);
     }
 }

@@ -4,7 +4,7 @@
 
 use crate::exit::bad_input;
 use clap::Args;
-use console::{ConsoleConfig, ConsoleWorld, SessionSetup};
+use console::{ConsoleConfig, ConsoleWorld, RecordedRun, RunSetup, SessionSetup};
 use pipeline::ScenarioSource;
 use scanner::Building;
 use sim::RobotModel;
@@ -31,6 +31,11 @@ pub struct ConsoleArgs {
     /// TOML or a URDF file.
     #[arg(long, value_name = "NAME|FILE")]
     robot: Option<String>,
+    /// Replay a recorded run folder (from `semsim simulate` or a console session) with a time
+    /// slider instead of a live simulation; its world is --map or --building (default: its
+    /// scenario's building). Nothing can be driven.
+    #[arg(long, value_name = "RUN_DIR", conflicts_with_all = ["scenario", "robot"])]
+    run: Option<PathBuf>,
     /// The port (0: any free port).
     #[arg(long, default_value_t = 8080)]
     port: u16,
@@ -49,31 +54,16 @@ pub struct ConsoleArgs {
 
 /// Runs `semsim console` until Ctrl-C (which saves the session and exits 0).
 pub fn run(a: ConsoleArgs) -> anyhow::Result<()> {
+    if let Some(dir) = &a.run {
+        return replay_run(&a, dir);
+    }
     pipeline::check_output_dir(&a.out)?;
     let mut source = ScenarioSource::load(a.scenario.as_deref())?;
     if let Some(robot) = &a.robot {
         use_robot(&mut source, robot)?;
     }
-    let world = match (&a.map, &a.building) {
-        (Some(m), _) => ConsoleWorld::from_semantic_map_file(m)?,
-        (None, Some(b)) if b.as_os_str() == "default" => {
-            ConsoleWorld::from_building(&Building::default_building()?)?
-        }
-        (None, b) => ConsoleWorld::from_building(&source.building(b.as_deref())?)?,
-    };
-    let config = ConsoleConfig {
-        listen: SocketAddr::new(a.listen, a.port),
-        allowed_origins: a.allow_origin.clone(),
-        ..ConsoleConfig::default()
-    };
-    config.validate().map_err(|e| bad_input(e.to_string()))?;
-    if !config.is_loopback() {
-        eprintln!(
-            "warning: listening on {}: anyone who can reach this address can watch and drive \
-             (the console has no login); use the default 127.0.0.1 to keep it to this machine",
-            a.listen
-        );
-    }
+    let world = world(&a, &source)?;
+    let config = config(&a)?;
     let setup = SessionSetup {
         world,
         scenario: source.scenario,
@@ -102,6 +92,66 @@ pub fn run(a: ConsoleArgs) -> anyhow::Result<()> {
     if saved.is_empty() {
         println!("no session to save (the simulation took no step)");
     }
+    Ok(())
+}
+
+/// The world: --map, --building, or the scenario's building.
+fn world(a: &ConsoleArgs, source: &ScenarioSource) -> anyhow::Result<ConsoleWorld> {
+    Ok(match (&a.map, &a.building) {
+        (Some(m), _) => ConsoleWorld::from_semantic_map_file(m)?,
+        (None, Some(b)) if b.as_os_str() == "default" => {
+            ConsoleWorld::from_building(&Building::default_building()?)?
+        }
+        (None, b) => ConsoleWorld::from_building(&source.building(b.as_deref())?)?,
+    })
+}
+
+/// The server's configuration, checked; warns when it listens beyond this machine.
+fn config(a: &ConsoleArgs) -> anyhow::Result<ConsoleConfig> {
+    let config = ConsoleConfig {
+        listen: SocketAddr::new(a.listen, a.port),
+        allowed_origins: a.allow_origin.clone(),
+        ..ConsoleConfig::default()
+    };
+    config.validate().map_err(|e| bad_input(e.to_string()))?;
+    if !config.is_loopback() {
+        eprintln!(
+            "warning: listening on {}: anyone who can reach this address can watch and drive \
+             (the console has no login); use the default 127.0.0.1 to keep it to this machine",
+            a.listen
+        );
+    }
+    Ok(config)
+}
+
+/// `semsim console --run RUN_DIR`: serves the recorded run until Ctrl-C (then exits 0).
+fn replay_run(a: &ConsoleArgs, dir: &Path) -> anyhow::Result<()> {
+    let run = RecordedRun::load(dir)?;
+    let source = ScenarioSource::load(Some(&dir.join("scenario.toml")))?;
+    let setup = RunSetup {
+        world: world(a, &source)?,
+        robot_name: source.scenario.robot_name.clone(),
+        start: source.scenario.start,
+        robot: source.robot,
+        run,
+    };
+    let config = config(a)?;
+    crate::interrupt::install();
+    console::serve_run_blocking(
+        config,
+        &setup,
+        |c| {
+            println!("console: {}", c.url());
+            eprintln!(
+                "replaying {} ({} events, verdict: {}); Ctrl-C quits",
+                dir.display(),
+                setup.run.events.len(),
+                setup.run.verdict
+            );
+            let _ = std::io::stdout().flush();
+        },
+        crate::interrupt::requested,
+    )?;
     Ok(())
 }
 

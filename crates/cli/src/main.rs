@@ -15,6 +15,7 @@ mod map;
 mod print;
 mod progress;
 mod register;
+mod report_cmd;
 mod run;
 mod scan;
 mod scan_input;
@@ -65,6 +66,8 @@ enum Command {
     /// The operator console: a local web page showing the world in 3D, where you drive the
     /// robot live; each session is saved as a run folder.
     Console(console_cmd::ConsoleArgs),
+    /// A run folder as one self-contained HTML file (3D world, trajectory, events, verdict).
+    Report(report_cmd::ReportArgs),
     /// Benchmarks that print and save figures (ICP on CPU and GPU).
     #[command(subcommand)]
     Bench(bench::BenchCommand),
@@ -102,6 +105,7 @@ fn main() -> ExitCode {
             Command::Bench(c) => bench::run(c),
             Command::Simulate(a) => simulate::run(a),
             Command::Console(a) => console_cmd::run(a),
+            Command::Report(a) => report_cmd::run(a),
         });
     match result {
         Ok(()) => ExitCode::SUCCESS,

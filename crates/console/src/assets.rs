@@ -27,6 +27,11 @@ pub(crate) const ASSETS: &[Asset] = &[
         bytes: include_bytes!("../web/app.js"),
     },
     Asset {
+        path: "/replay.js",
+        content_type: JS,
+        bytes: include_bytes!("../web/replay.js"),
+    },
+    Asset {
         path: "/style.css",
         content_type: "text/css; charset=utf-8",
         bytes: include_bytes!("../web/style.css"),
@@ -89,6 +94,8 @@ mod tests {
         }
         // The addons import each other relatively and three by its bare name.
         assert!(served("/vendor/three/three.core.js"));
+        let app = std::str::from_utf8(ASSETS[1].bytes).expect("utf-8");
+        assert!(app.contains("'/replay.js'") && served("/replay.js"));
         assert!(served("/vendor/three/addons/utils/BufferGeometryUtils.js"));
         assert!(served("/vendor/three/addons/utils/SkeletonUtils.js"));
     }

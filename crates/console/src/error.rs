@@ -46,6 +46,16 @@ pub enum ConsoleError {
         /// What is wrong.
         msg: String,
     },
+    /// A run folder (or one of its files) that is missing or malformed.
+    #[error("{}{}: {msg}", path.display(), line.map(|l| format!(":{l}")).unwrap_or_default())]
+    RunFolder {
+        /// The folder or file.
+        path: PathBuf,
+        /// The line (1-based), where one is at fault.
+        line: Option<usize>,
+        /// What is wrong.
+        msg: String,
+    },
     /// The simulation thread ended unexpectedly (a bug, not the input's fault).
     #[error("the simulation thread ended unexpectedly")]
     SimulationThread,
@@ -59,7 +69,9 @@ impl cloud::BadInput for ConsoleError {
             ConsoleError::Scanner(e) => e.is_bad_input(),
             ConsoleError::Semantic(e) => e.is_bad_input(),
             ConsoleError::Interop(e) => e.is_bad_input(),
-            ConsoleError::Config(_) | ConsoleError::CommandLog { .. } => true,
+            ConsoleError::Config(_)
+            | ConsoleError::CommandLog { .. }
+            | ConsoleError::RunFolder { .. } => true,
             // An address this machine does not have is the user's; a port in use is not.
             ConsoleError::Bind { source, .. } => {
                 source.kind() == std::io::ErrorKind::AddrNotAvailable

@@ -29,6 +29,12 @@
 //!   commands stamped with the step they were applied before ([`CommandLog`]). A session saved
 //!   before its end has an interrupted verdict. [`replay`] runs the log again and gives the
 //!   same events, bit for bit (`semsim simulate --replay`).
+//! * **Reports** ([`report_html`]): a run folder ([`RecordedRun`]) as one self-contained HTML
+//!   file (the world, the trajectory with its events marked, the verdict and rules, and a
+//!   time slider) that opens from disk with no server (`semsim report RUN_DIR --html F`).
+//! * **Replays** ([`RunConsole`]): the console serving a recorded run instead of a live
+//!   session (`semsim console --run RUN_DIR`): the page gets it from `/api/run.json` and
+//!   replays it with a time slider, play/pause and speed; every WebSocket message is refused.
 //!
 //! ```
 //! use console::protocol::ClientMessage;
@@ -52,6 +58,9 @@ mod log;
 pub mod protocol;
 mod rate;
 mod replay;
+mod report;
+mod run;
+mod run_server;
 mod runner;
 mod server;
 mod session;
@@ -62,6 +71,11 @@ pub use config::ConsoleConfig;
 pub use error::{ConsoleError, Result};
 pub use log::{CommandLog, RunEnd};
 pub use replay::replay;
+pub use report::{base64, report_html, write_report};
+pub use run::{
+    parse_events, parse_trajectory, RecordedRun, RuleRow, TrackPoint, TRAJECTORY_HEADER,
+};
+pub use run_server::{serve_run_blocking, RunConsole, RunSetup, REPLAY_REFUSAL};
 pub use server::{serve_blocking, Console};
 pub use session::{first_free_session, session_dir_name, Session, SessionSetup, RUN_FILES};
 pub use world::ConsoleWorld;

@@ -183,6 +183,7 @@ fn router(app: Arc<App>) -> Router {
     let mut r = Router::new()
         .route("/world.glb", get(glb))
         .route("/api/world.json", get(world_json))
+        .route("/api/run.json", get(no_run))
         .route("/ws", get(websocket));
     for asset in ASSETS {
         r = r.route(
@@ -222,6 +223,19 @@ async fn world_json(State(app): State<Arc<App>>) -> Response {
             (X_CONTENT_TYPE_OPTIONS, "nosniff"),
         ],
         app.world_json.clone(),
+    )
+        .into_response()
+}
+
+/// A live console has no recorded run: `null` (a replaying one serves the run here).
+async fn no_run() -> Response {
+    (
+        [
+            (CONTENT_TYPE, "application/json"),
+            (CACHE_CONTROL, "no-cache"),
+            (X_CONTENT_TYPE_OPTIONS, "nosniff"),
+        ],
+        "null",
     )
         .into_response()
 }

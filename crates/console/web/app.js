@@ -3,6 +3,7 @@
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { startReplay } from '/replay.js';
 
 const $ = (id) => document.getElementById(id);
 const DEG = Math.PI / 180;
@@ -344,4 +345,13 @@ renderer.setAnimationLoop((now) => {
   renderer.render(scene, camera);
 });
 
-loadWorld().then(connect).catch((e) => setStatus(`cannot load the world: ${e}`, true));
+// A console started with --run serves a recorded run (/api/run.json) to replay; a live one
+// answers null there, and the page connects to the simulation.
+loadWorld()
+  .then(() => fetch('/api/run.json'))
+  .then((r) => r.json())
+  .then((run) => {
+    if (run) startReplay(run, scene, world.robot, (p) => { robotYaw = p.yaw_deg * DEG; });
+    else connect();
+  })
+  .catch((e) => setStatus(`cannot load the world: ${e}`, true));

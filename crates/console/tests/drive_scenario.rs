@@ -199,7 +199,10 @@ async fn an_operator_driven_session_gives_the_scripted_run() {
         .iter()
         .filter(|e| e.kind == sim::EventKind::StairsStepReached)
         .count();
-    assert!(door_events > 0 && stair_steps == 7, "through the door and up the stairs");
+    assert!(
+        door_events > 0 && stair_steps == 7,
+        "through the door and up the stairs"
+    );
 
     // The console, with room for one message per step and one per change of command.
     let config = ConsoleConfig {
@@ -248,8 +251,16 @@ async fn an_operator_driven_session_gives_the_scripted_run() {
         assert_eq!(step_of(&state), k + 1, "one step a `step`");
         assert_eq!(state["paused"], true);
         // The operator's command as the console applied it is the one sent, unclamped.
-        assert_eq!(state["operator"]["linear_m_s"].as_f64(), Some(v), "step {k}");
-        assert_eq!(state["operator"]["angular_rad_s"].as_f64(), Some(w), "step {k}");
+        assert_eq!(
+            state["operator"]["linear_m_s"].as_f64(),
+            Some(v),
+            "step {k}"
+        );
+        assert_eq!(
+            state["operator"]["angular_rad_s"].as_f64(),
+            Some(w),
+            "step {k}"
+        );
         // The robot is where the scripted run had it, bit for bit.
         assert_eq!(
             state["robot"]["pose"],
@@ -293,13 +304,20 @@ async fn an_operator_driven_session_gives_the_scripted_run() {
         sim::events_to_jsonl(&reference.events)
     );
     let scripted_dir = tempfile::tempdir().expect("temp dir");
-    sim::write_outputs(scripted_dir.path(), &reference, &sim::ReportConfig::default())
-        .expect("writes");
+    sim::write_outputs(
+        scripted_dir.path(),
+        &reference,
+        &sim::ReportConfig::default(),
+    )
+    .expect("writes");
     for f in ["events.jsonl", "trajectory.csv", "report.md"] {
         assert_eq!(read(&dir, f), read(scripted_dir.path(), f), "{f} differs");
     }
     assert!(read(&dir, "report.md").contains("## Verdict: PASSED"));
-    assert_eq!(read(&dir, "scenario.toml"), Scenario::default_scenario_toml());
+    assert_eq!(
+        read(&dir, "scenario.toml"),
+        Scenario::default_scenario_toml()
+    );
 
     // The command log has the operator's commands at the steps they were sent before.
     let log = CommandLog::load(&dir.join("commands.jsonl")).expect("the command log");

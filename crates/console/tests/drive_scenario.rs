@@ -5,8 +5,8 @@
 //! scenario in the built-in building) is not a list of timed velocity segments but four
 //! waypoints followed by a closed-loop controller, whose command changes almost every step.
 //! So the operator here does what the controller does: before each step it computes the
-//! controller's command from the robot's pose (a copy of `sim`'s waypoint follower, whose
-//! type is private to `sim`), sends it as `drive` (or `stop` for a standstill) whenever it
+//! controller's command from the robot's pose (with `sim::Controller`, the scenario's own
+//! controller, outside the simulation), sends it as `drive` (or `stop` for a standstill) whenever it
 //! changes, and advances with `step`, so that every command lands before exactly the step the
 //! controller would have given it to. A command set through the protocol reaches the motors
 //! exactly as the controller's does (the console clamps it to the robot's limits, and the
@@ -19,70 +19,11 @@ mod common;
 use common::*;
 use console::{CommandLog, ConsoleConfig, ConsoleWorld, SessionSetup};
 use serde_json::{json, Value};
-use sim::{ControllerConfig, RobotPose, Scenario, VelocityCommand, Waypoint};
+use sim::{RobotPose, Scenario};
 use std::path::Path;
 
-/// A copy of `sim`'s controller (`crates/sim/src/controller.rs`, private to `sim`): timed
-/// velocity commands first, else the waypoints in order.
-#[derive(Default)]
-struct Follower {
-    next_waypoint: usize,
-    turning: bool,
-}
-
-impl Follower {
-    fn command(
-        &mut self,
-        t_s: f64,
-        pose: &RobotPose,
-        velocity: &[VelocityCommand],
-        waypoints: &[Waypoint],
-        cfg: &ControllerConfig,
-    ) -> (f64, f64) {
-        if let Some(v) = velocity.iter().find(|v| t_s >= v.from_s && t_s < v.to_s) {
-            return (v.linear_mps, v.angular_radps);
-        }
-        while let Some(w) = waypoints.get(self.next_waypoint) {
-            let (dx, dy) = (w.x_m - pose.x_m, w.y_m - pose.y_m);
-            let dist = dx.hypot(dy);
-            if dist <= w.tolerance_m.unwrap_or(cfg.tolerance_m) {
-                self.next_waypoint += 1;
-                self.turning = false;
-                continue;
-            }
-            let err = wrap_rad(dy.atan2(dx) - pose.yaw_deg.to_radians());
-            let limit = cfg.turn_in_place_deg.to_radians();
-            if err.abs() > limit || (self.turning && err.abs() > limit * 0.3) {
-                self.turning = true;
-                return (0.0, cfg.turn_rate_radps.copysign(err));
-            }
-            self.turning = false;
-            let cruise = w.speed_mps.unwrap_or(cfg.speed_mps);
-            let last = self.next_waypoint + 1 == waypoints.len();
-            let speed = if last && cfg.slowdown_m > 0.0 {
-                cruise * (dist / cfg.slowdown_m).clamp(0.3, 1.0)
-            } else {
-                cruise
-            };
-            return (speed * err.cos().max(0.0), cfg.heading_gain * err);
-        }
-        (0.0, 0.0)
-    }
-}
-
-fn wrap_rad(a: f64) -> f64 {
-    let two_pi = std::f64::consts::TAU;
-    let mut a = a % two_pi;
-    if a > std::f64::consts::PI {
-        a -= two_pi;
-    } else if a <= -std::f64::consts::PI {
-        a += two_pi;
-    }
-    a
-}
-
 /// The scripted run, step by step as `Simulation::run` takes it: the controller's command
-/// before each step (as the copy computes it), the robot's pose before each step and at the
+/// before each step (as `sim::Controller` computes it), the robot's pose before each step and at the
 /// end, and the outcome.
 struct Scripted {
     commands: Vec<(f64, f64)>,
@@ -93,7 +34,7 @@ struct Scripted {
 fn scripted(setup: &SessionSetup) -> Scripted {
     let sc = &setup.scenario;
     let mut s = sim::Simulation::new(&setup.world.spec, sc, &setup.robot).expect("simulation");
-    let mut follower = Follower::default();
+    let mut follower = sim::Controller::default();
     let (mut commands, mut poses) = (vec![], vec![]);
     while !s.is_finished() {
         let pose = s.robot_pose();

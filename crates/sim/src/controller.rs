@@ -159,16 +159,20 @@ pub(crate) fn validate_commands(
     Ok(())
 }
 
-/// The command cursor: which waypoint is next.
+/// The scenario's scripted controller: timed velocity commands first, else the waypoints in
+/// order (turn in place towards the next one, then drive with a heading gain). Its state is
+/// the cursor: which waypoint is next. Public so that a driver outside the simulation (an
+/// operator console's test driving through its protocol) computes exactly what the scenario
+/// would command.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
-pub(crate) struct Controller {
-    pub next_waypoint: usize,
+pub struct Controller {
+    pub(crate) next_waypoint: usize,
     turning: bool,
 }
 
 impl Controller {
     /// The (linear m/s, angular rad/s) command at time `t_s` for a robot at `pose`.
-    pub(crate) fn command(
+    pub fn command(
         &mut self,
         t_s: f64,
         pose: &RobotPose,

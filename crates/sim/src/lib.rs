@@ -78,7 +78,7 @@ mod validate;
 mod world;
 
 pub use cloud::EntityClass;
-pub use controller::{ControllerConfig, VelocityCommand, Waypoint};
+pub use controller::{Controller, ControllerConfig, VelocityCommand, Waypoint};
 pub use error::{Result, SimError};
 pub use events::{events_to_jsonl, EntityRef, Event, EventConfig, EventKind};
 pub use import::ImportConfig;

@@ -53,6 +53,7 @@ mod app;
 mod assets;
 mod config;
 mod error;
+mod http;
 mod hub;
 mod log;
 pub mod protocol;

@@ -13,9 +13,8 @@ use crate::run::RecordedRun;
 use crate::world::ConsoleWorld;
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
 use axum::extract::State;
-use axum::http::header::{CACHE_CONTROL, CONTENT_TYPE, ORIGIN, X_CONTENT_TYPE_OPTIONS};
-use axum::http::{HeaderMap, StatusCode};
-use axum::response::{IntoResponse, Response};
+use axum::http::HeaderMap;
+use axum::response::Response;
 use axum::routing::get;
 use axum::Router;
 use sim::{RobotModel, StartPose};
@@ -117,7 +116,7 @@ impl RunConsole {
         for asset in ASSETS {
             r = r.route(
                 asset.path,
-                get(move || async move { file(asset.content_type, asset.bytes) }),
+                get(move || async move { crate::http::file(asset.content_type, asset.bytes) }),
             );
         }
         axum::serve(self.listener, r.with_state(self.app))
@@ -127,28 +126,16 @@ impl RunConsole {
     }
 }
 
-fn file(content_type: &'static str, body: impl IntoResponse) -> Response {
-    (
-        [
-            (CONTENT_TYPE, content_type),
-            (CACHE_CONTROL, "no-cache"),
-            (X_CONTENT_TYPE_OPTIONS, "nosniff"),
-        ],
-        body,
-    )
-        .into_response()
-}
-
 async fn glb(State(app): State<Arc<RunApp>>) -> Response {
-    file("model/gltf-binary", app.glb.clone())
+    crate::http::file("model/gltf-binary", app.glb.clone())
 }
 
 async fn world_json(State(app): State<Arc<RunApp>>) -> Response {
-    file("application/json", app.world_json.clone())
+    crate::http::file("application/json", app.world_json.clone())
 }
 
 async fn run_json(State(app): State<Arc<RunApp>>) -> Response {
-    file("application/json", app.run_json.clone())
+    crate::http::file("application/json", app.run_json.clone())
 }
 
 async fn websocket(
@@ -156,17 +143,8 @@ async fn websocket(
     headers: HeaderMap,
     upgrade: WebSocketUpgrade,
 ) -> Response {
-    if let Some(origin) = headers.get(ORIGIN) {
-        let allowed = origin
-            .to_str()
-            .is_ok_and(|o| app.origins.iter().any(|a| a.eq_ignore_ascii_case(o)));
-        if !allowed {
-            return (
-                StatusCode::FORBIDDEN,
-                "WebSocket refused: the page is not the console's own (Origin does not match)",
-            )
-                .into_response();
-        }
+    if let Some(refusal) = crate::http::refuse_foreign_origin(&headers, &app.origins) {
+        return refusal;
     }
     upgrade
         .max_message_size(app.max_message_bytes)

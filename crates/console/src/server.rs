@@ -15,9 +15,9 @@ use crate::runner::{self, Control, Runner};
 use crate::session::{first_free_session, SessionSetup};
 use axum::extract::ws::WebSocketUpgrade;
 use axum::extract::State;
-use axum::http::header::{CACHE_CONTROL, CONTENT_TYPE, ORIGIN, X_CONTENT_TYPE_OPTIONS};
-use axum::http::{HeaderMap, StatusCode};
-use axum::response::{IntoResponse, Response};
+use axum::http::header::{CACHE_CONTROL, CONTENT_TYPE, X_CONTENT_TYPE_OPTIONS};
+use axum::http::HeaderMap;
+use axum::response::Response;
 use axum::routing::get;
 use axum::Router;
 use std::future::Future;
@@ -204,40 +204,16 @@ fn router(app: Arc<App>) -> Router {
 }
 
 async fn glb(State(app): State<Arc<App>>) -> Response {
-    (
-        [
-            (CONTENT_TYPE, "model/gltf-binary"),
-            (CACHE_CONTROL, "no-cache"),
-            (X_CONTENT_TYPE_OPTIONS, "nosniff"),
-        ],
-        app.glb.clone(),
-    )
-        .into_response()
+    crate::http::file("model/gltf-binary", app.glb.clone())
 }
 
 async fn world_json(State(app): State<Arc<App>>) -> Response {
-    (
-        [
-            (CONTENT_TYPE, "application/json"),
-            (CACHE_CONTROL, "no-cache"),
-            (X_CONTENT_TYPE_OPTIONS, "nosniff"),
-        ],
-        app.world_json.clone(),
-    )
-        .into_response()
+    crate::http::file("application/json", app.world_json.clone())
 }
 
 /// A live console has no recorded run: `null` (a replaying one serves the run here).
 async fn no_run() -> Response {
-    (
-        [
-            (CONTENT_TYPE, "application/json"),
-            (CACHE_CONTROL, "no-cache"),
-            (X_CONTENT_TYPE_OPTIONS, "nosniff"),
-        ],
-        "null",
-    )
-        .into_response()
+    crate::http::file("application/json", "null")
 }
 
 async fn websocket(
@@ -245,17 +221,8 @@ async fn websocket(
     headers: HeaderMap,
     upgrade: WebSocketUpgrade,
 ) -> Response {
-    if let Some(origin) = headers.get(ORIGIN) {
-        let allowed = origin
-            .to_str()
-            .is_ok_and(|o| app.origins.iter().any(|a| a.eq_ignore_ascii_case(o)));
-        if !allowed {
-            return (
-                StatusCode::FORBIDDEN,
-                "WebSocket refused: the page is not the console's own (Origin does not match)",
-            )
-                .into_response();
-        }
+    if let Some(refusal) = crate::http::refuse_foreign_origin(&headers, &app.origins) {
+        return refusal;
     }
     let max = app.config.max_message_bytes.saturating_mul(16);
     upgrade

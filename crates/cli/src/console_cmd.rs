@@ -97,12 +97,22 @@ pub fn run(a: ConsoleArgs) -> anyhow::Result<()> {
 
 /// The world: --map, --building, or the scenario's building.
 fn world(a: &ConsoleArgs, source: &ScenarioSource) -> anyhow::Result<ConsoleWorld> {
-    Ok(match (&a.map, &a.building) {
+    world_from(a.map.as_deref(), a.building.as_deref(), source)
+}
+
+/// The world of `--map M | --building B|default`, else the building `source` names (shared by
+/// `console` and `report`).
+pub(crate) fn world_from(
+    map: Option<&Path>,
+    building: Option<&Path>,
+    source: &ScenarioSource,
+) -> anyhow::Result<ConsoleWorld> {
+    Ok(match (map, building) {
         (Some(m), _) => ConsoleWorld::from_semantic_map_file(m)?,
         (None, Some(b)) if b.as_os_str() == "default" => {
             ConsoleWorld::from_building(&Building::default_building()?)?
         }
-        (None, b) => ConsoleWorld::from_building(&source.building(b.as_deref())?)?,
+        (None, b) => ConsoleWorld::from_building(&source.building(b)?)?,
     })
 }
 

@@ -6,9 +6,8 @@
 
 use crate::exit::bad_input;
 use clap::Args;
-use console::{ConsoleWorld, RecordedRun};
+use console::RecordedRun;
 use pipeline::ScenarioSource;
-use scanner::Building;
 use std::path::PathBuf;
 
 /// Arguments of `semsim report`.
@@ -34,13 +33,7 @@ pub struct ReportArgs {
 pub fn run(a: ReportArgs) -> anyhow::Result<()> {
     let recorded = RecordedRun::load(&a.run_dir)?;
     let source = ScenarioSource::load(Some(&a.run_dir.join("scenario.toml")))?;
-    let world = match (&a.map, &a.building) {
-        (Some(m), _) => ConsoleWorld::from_semantic_map_file(m)?,
-        (None, Some(b)) if b.as_os_str() == "default" => {
-            ConsoleWorld::from_building(&Building::default_building()?)?
-        }
-        (None, b) => ConsoleWorld::from_building(&source.building(b.as_deref())?)?,
-    };
+    let world = crate::console_cmd::world_from(a.map.as_deref(), a.building.as_deref(), &source)?;
     if let Some(parent) = a.html.parent().filter(|p| !p.as_os_str().is_empty()) {
         if !parent.is_dir() {
             return Err(bad_input(format!(

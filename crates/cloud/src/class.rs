@@ -19,6 +19,9 @@ use serde::{Deserialize, Serialize};
 /// | 7 | `furniture` | furniture and clutter |
 /// | 8 | `free_space_for_door` | the free volume of a door opening |
 /// | 9 | `robot` | a robot (simulation only) |
+/// | 10 | `obstacle` | anything else standing on the floor and occupying space (cars, shelves, clutter) |
+/// | 11 | `column` | a pillar: a free-standing vertical post from the floor to the ceiling |
+/// | 12 | `beam` | a downstand beam, duct or pipe under the ceiling, above head height |
 #[derive(
     Debug, Clone, Copy, PartialEq, Eq, Hash, Default, PartialOrd, Ord, Serialize, Deserialize,
 )]
@@ -46,11 +49,19 @@ pub enum EntityClass {
     FreeSpaceForDoor = 8,
     /// A robot (a body of the simulation; never a point label of a building).
     Robot = 9,
+    /// Anything else that stands on the floor and occupies space: parked cars, shelves,
+    /// cabinets, clutter. The semantic map's class for what it cannot name more precisely.
+    Obstacle = 10,
+    /// A pillar: a free-standing vertical post from the floor to the ceiling.
+    Column = 11,
+    /// A downstand beam, duct or pipe under the ceiling, above head height: a robot passes
+    /// under it.
+    Beam = 12,
 }
 
 impl EntityClass {
     /// All classes, in code order.
-    pub const ALL: [EntityClass; 10] = [
+    pub const ALL: [EntityClass; 13] = [
         EntityClass::Unknown,
         EntityClass::Floor,
         EntityClass::Ceiling,
@@ -61,6 +72,9 @@ impl EntityClass {
         EntityClass::Furniture,
         EntityClass::FreeSpaceForDoor,
         EntityClass::Robot,
+        EntityClass::Obstacle,
+        EntityClass::Column,
+        EntityClass::Beam,
     ];
 
     /// The class for a stored code; `None` for codes no class has.
@@ -86,6 +100,9 @@ impl EntityClass {
             EntityClass::Furniture => "furniture",
             EntityClass::FreeSpaceForDoor => "free_space_for_door",
             EntityClass::Robot => "robot",
+            EntityClass::Obstacle => "obstacle",
+            EntityClass::Column => "column",
+            EntityClass::Beam => "beam",
         }
     }
 
@@ -113,7 +130,7 @@ mod tests {
             assert_eq!(c.to_string(), c.name());
         }
         assert_eq!(EntityClass::from_code(200), None);
-        assert_eq!(EntityClass::from_name("beam"), None);
+        assert_eq!(EntityClass::from_name("pillar"), None);
     }
 
     #[test]

@@ -38,6 +38,9 @@ pub fn class_color(class: EntityClass) -> [u8; 3] {
         EntityClass::Stairs => [235, 150, 40],
         EntityClass::Furniture => [120, 60, 160],
         EntityClass::Robot => [20, 160, 160],
+        EntityClass::Obstacle => [150, 40, 120],
+        EntityClass::Column => [90, 90, 90],
+        EntityClass::Beam => [120, 120, 60],
     }
 }
 

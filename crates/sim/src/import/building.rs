@@ -86,7 +86,10 @@ fn fixed_and_stairs(
             | EntityClass::Ceiling
             | EntityClass::Wall
             | EntityClass::WallAboveDoor
-            | EntityClass::Furniture => fixed.push(FixedBox {
+            | EntityClass::Furniture
+            | EntityClass::Obstacle
+            | EntityClass::Column
+            | EntityClass::Beam => fixed.push(FixedBox {
                 entity: id,
                 class,
                 name: ent.name.clone(),

@@ -71,9 +71,14 @@ impl WorldSpec {
                 geometry: box_of(b),
             };
             match e.class {
-                EntityClass::Floor | EntityClass::Ceiling | EntityClass::WallAboveDoor => {
-                    spec.fixed.push(fixed(e.class, &e.geometry))
-                }
+                // Obstacles, columns and beams are fixed bodies: the robot collides with what
+                // the scans saw (and passes under a beam above its height).
+                EntityClass::Floor
+                | EntityClass::Ceiling
+                | EntityClass::WallAboveDoor
+                | EntityClass::Obstacle
+                | EntityClass::Column
+                | EntityClass::Beam => spec.fixed.push(fixed(e.class, &e.geometry)),
                 EntityClass::Wall => match &e.wall {
                     Some(w) if !w.solid_boxes.is_empty() => {
                         for b in &w.solid_boxes {

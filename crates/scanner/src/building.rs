@@ -56,6 +56,27 @@ fn default_slab_m() -> f64 {
     0.2
 }
 
+/// What a surface is made of, as a laser sees it (the realistic laser's reflectivity; the
+/// ideal laser returns from every material alike).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Material {
+    /// Plaster, concrete, wood: a matte surface that returns the beam well.
+    #[default]
+    Matte,
+    /// A dark or black surface (tyres, dark paint, black cabinets): returns little light.
+    Dark,
+    /// Glass: most beams pass through it, a few come back.
+    Glass,
+}
+
+impl Material {
+    /// Whether this is the default (for `skip_serializing_if`).
+    pub fn is_matte(&self) -> bool {
+        *self == Material::Matte
+    }
+}
+
 /// A straight wall from `start_m` to `end_m` (its centre line), standing on the floor.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -75,6 +96,9 @@ pub struct Wall {
     /// Door openings in this wall.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub doors: Vec<Door>,
+    /// What the wall is made of (`glass` for a glass wall).
+    #[serde(default, skip_serializing_if = "Material::is_matte")]
+    pub material: Material,
 }
 
 impl Wall {
@@ -132,6 +156,9 @@ pub struct Leaf {
     /// Leaf thickness.
     #[serde(default = "default_leaf_m")]
     pub thickness_m: f64,
+    /// What the leaf is made of (`glass` for a glass door).
+    #[serde(default, skip_serializing_if = "Material::is_matte")]
+    pub material: Material,
 }
 
 fn default_leaf_m() -> f64 {
@@ -162,13 +189,21 @@ pub struct Staircase {
     pub landing_m: f64,
 }
 
-/// A furniture or clutter box standing anywhere (usually on the floor).
+/// A box standing anywhere: furniture or clutter (usually on the floor), or, by its `class`,
+/// an obstacle such as a parked car or a shelf, a column (pillar) or a beam under the ceiling.
+/// Things of several boxes (a table and its legs) are several boxes with one name.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Furniture {
     /// Optional name for people.
     #[serde(default, skip_serializing_if = "String::is_empty")]
     pub name: String,
+    /// Its ground-truth class: `furniture` (default), `obstacle`, `column` or `beam`.
+    #[serde(default = "default_box_class", skip_serializing_if = "is_furniture")]
+    pub class: cloud::EntityClass,
+    /// What it is made of.
+    #[serde(default, skip_serializing_if = "Material::is_matte")]
+    pub material: Material,
     /// Box centre.
     pub center_m: [f64; 3],
     /// Full box size along its own axes.
@@ -177,6 +212,22 @@ pub struct Furniture {
     #[serde(default)]
     pub yaw_deg: f64,
 }
+
+fn default_box_class() -> cloud::EntityClass {
+    cloud::EntityClass::Furniture
+}
+
+fn is_furniture(c: &cloud::EntityClass) -> bool {
+    *c == cloud::EntityClass::Furniture
+}
+
+/// The classes a building's box may have.
+pub const BOX_CLASSES: [cloud::EntityClass; 4] = [
+    cloud::EntityClass::Furniture,
+    cloud::EntityClass::Obstacle,
+    cloud::EntityClass::Column,
+    cloud::EntityClass::Beam,
+];
 
 const BUILTIN: &str = include_str!("../data/default_building.toml");
 

@@ -140,6 +140,7 @@ pub fn generate_building(seed: u64, config: &GeneratorConfig) -> Result<Building
             swing,
             open_deg,
             thickness_m: 0.04,
+            material: Default::default(),
         });
         room.door = Some((offset + t / 2.0, offset + t / 2.0 + width));
         corridor[usize::from(!room.north)].push(Door {
@@ -194,6 +195,7 @@ fn wall(name: &str, start_m: [f64; 2], end_m: [f64; 2], thickness_m: f64) -> Wal
         thickness_m,
         height_m: None,
         doors: Vec::new(),
+        material: Default::default(),
     }
 }
 
@@ -281,6 +283,8 @@ fn place_box(r: &mut Rng, room: &Room, t: f64, stairs: &Option<Zone>) -> Option<
         if x.is_finite() && y.is_finite() && !overlaps(stairs) && !overlaps(&door_swing) {
             return Some(Furniture {
                 name: "clutter".into(),
+                class: cloud::EntityClass::Furniture,
+                material: Default::default(),
                 center_m: [x, y, size[2] / 2.0],
                 size_m: size,
                 yaw_deg: r.range(-45.0, 45.0),

@@ -1,7 +1,7 @@
 //! The building as solid geometry: every element becomes one or more boxes rotated about z,
 //! each carrying the ground-truth label of its entity; a BVH (parry3d `Compound`) answers rays.
 
-use crate::building::{Building, Hinge, Swing, Wall};
+use crate::building::{Building, Hinge, Material, Swing, Wall};
 use cloud::{EntityClass, Label};
 use glam::{Quat, Vec3};
 use parry3d::math::Pose;
@@ -20,6 +20,8 @@ pub struct BoxPart {
     pub yaw_rad: f32,
     /// The ground-truth label of every point on this box.
     pub label: Label,
+    /// What its surface is made of.
+    pub material: Material,
 }
 
 /// A semantic entity of the building (ground truth): id, class and a name for people.
@@ -88,9 +90,11 @@ impl BuildingGeometry {
             }
         }
         for (i, f) in b.boxes.iter().enumerate() {
-            let id = g.entity(EntityClass::Furniture, format!("boxes[{i}]"));
+            let id = g.entity(f.class, format!("boxes[{i}]"));
             let h = [f.size_m[0] / 2.0, f.size_m[1] / 2.0, f.size_m[2] / 2.0];
+            g.material = f.material;
             g.oriented(id, f.center_m, h, f.yaw_deg.to_radians());
+            g.material = Material::Matte;
         }
         g.finish()
     }
@@ -144,6 +148,7 @@ fn add_wall(g: &mut Builder, w: &Wall, height: f64, i: usize) {
     let at = |s: f64| [w.start_m[0] + u[0] * s, w.start_m[1] + u[1] * s];
     let half_t = w.thickness_m / 2.0;
     let wall = g.entity(EntityClass::Wall, format!("walls[{i}]"));
+    g.material = w.material;
     let mut doors: Vec<_> = w.doors.iter().enumerate().collect();
     doors.sort_by(|a, b| a.1.offset_m.total_cmp(&b.1.offset_m));
     let piece = |g: &mut Builder, id: u32, s0: f64, s1: f64, z0: f64, z1: f64| {
@@ -194,19 +199,24 @@ fn add_wall(g: &mut Builder, w: &Wall, height: f64, i: usize) {
             h[1] + leaf_yaw.sin() * leaf_len / 2.0,
         ];
         let leaf_h = (d.height_m - 0.01).max(0.01);
+        g.material = leaf.material;
         g.oriented(
             id,
             [mid[0], mid[1], 0.005 + leaf_h / 2.0],
             [leaf_len / 2.0, leaf.thickness_m / 2.0, leaf_h / 2.0],
             leaf_yaw,
         );
+        g.material = w.material;
     }
+    g.material = Material::Matte;
 }
 
 #[derive(Default)]
 struct Builder {
     parts: Vec<BoxPart>,
     entities: Vec<TruthEntity>,
+    /// The material of the boxes added next.
+    material: Material,
 }
 
 impl Builder {
@@ -246,6 +256,7 @@ impl Builder {
             half_extents_m: Vec3::new(half[0] as f32, half[1] as f32, half[2] as f32),
             yaw_rad: yaw as f32,
             label,
+            material: self.material,
         });
     }
 

@@ -105,6 +105,15 @@ impl Building {
             let el = || format!("boxes[{i}]{}", named(&b.name));
             all_finite(&[b.center_m[0], b.center_m[1], b.center_m[2], b.yaw_deg])
                 .map_err(|m| bad(el(), m))?;
+            if !crate::building::BOX_CLASSES.contains(&b.class) {
+                return Err(bad(
+                    el(),
+                    format!(
+                        "class `{}` is not one a box may have (furniture, obstacle, column, beam)",
+                        b.class
+                    ),
+                ));
+            }
             for s in b.size_m {
                 positive("size_m", s).map_err(|m| bad(el(), m))?;
             }

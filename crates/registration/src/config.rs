@@ -200,6 +200,17 @@ pub struct IcpConfig {
     /// `Target::with_viewpoints`), pairs whose target surface faces away from the source's
     /// sensor are no pairs (on the CPU and on the GPU alike).
     pub reject_back_faces: bool,
+    /// Weights each source point by the inverse variance of a laser point at range `r` from
+    /// its sensor: `w = 1 / (1 + (r / knee)^2)`. A point's error is its range noise
+    /// (`sigma_r`) plus an angular error (`r * sigma_angle`: beam direction, encoder and mount
+    /// calibration), so beyond `knee = sigma_r / sigma_angle` far points are less certain;
+    /// a downsampled source (one point per voxel) would otherwise give them the weight of
+    /// the dense, precise near field. 1 m: a SICK LMS 2xx-class scanner's ~5 mm range noise
+    /// (1 sigma) over an angular uncertainty of half a 0.5 degree step of the scanner or of
+    /// its rotating unit (5 mm / 0.0044 rad = 1.1 m). 0: every point weighs the same (the
+    /// default for pairs, and the 2009 paper's ICP); sequences of stop-and-scan scans use 1 m
+    /// (see [`crate::SequenceConfig`]).
+    pub range_knee_m: f64,
 }
 
 impl Default for IcpConfig {
@@ -223,6 +234,7 @@ impl Default for IcpConfig {
             min_fitness: 0.2,
             device: Device::Auto,
             reject_back_faces: true,
+            range_knee_m: 0.0,
         }
     }
 }
@@ -289,6 +301,9 @@ impl IcpConfig {
         positive("normal_voxel_m", self.normal_voxel_m, 1e-4, 100.0)?;
         if let Some(v) = self.source_voxel_m {
             positive("source_voxel_m", v, 1e-4, 100.0)?;
+        }
+        if self.range_knee_m != 0.0 {
+            positive("range_knee_m", self.range_knee_m, 1e-3, 1e4)?;
         }
         if let Some(v) = self.target_voxel_m {
             positive("target_voxel_m", v, 1e-4, 100.0)?;

@@ -20,8 +20,14 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct SequenceConfig {
-    /// Settings of each scan-to-map registration.
+    /// Settings of each scan-to-map registration (its `range_knee_m` is replaced by the
+    /// sequence's).
     pub icp: IcpConfig,
+    /// The range weighting of every scan-to-map registration (`IcpConfig::range_knee_m`;
+    /// 0: off). Stop-and-scan scans from a rotating laser are less certain far from the
+    /// sensor; on 3DTK's corridor 1 m brings the registration from 6.6 cm / 1.5 deg to
+    /// 1.3 cm / 0.5 deg of slam6d's 2009 result.
+    pub range_knee_m: f64,
     /// Each scan is downsampled to this voxel edge before it is registered and merged.
     pub scan_voxel_m: f64,
     /// The map is kept downsampled to this voxel edge.
@@ -32,6 +38,7 @@ impl Default for SequenceConfig {
     fn default() -> Self {
         SequenceConfig {
             icp: IcpConfig::default(),
+            range_knee_m: 1.0,
             scan_voxel_m: 0.05,
             map_voxel_m: 0.05,
         }
@@ -84,6 +91,11 @@ pub fn register_sequence_with(
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<SequenceResult> {
     config.icp.validate()?;
+    let icp = IcpConfig {
+        range_knee_m: config.range_knee_m,
+        ..config.icp.clone()
+    };
+    icp.validate()?;
     for (name, v) in [
         ("scan_voxel_m", config.scan_voxel_m),
         ("map_voxel_m", config.map_voxel_m),
@@ -143,12 +155,12 @@ pub fn register_sequence_with(
     for k in 1..total {
         let points = scan_points(k)?;
         let map_cloud = PointCloud::from_points(std::mem::take(&mut map));
-        let target = Target::with_viewpoints(&map_cloud, &views, &config.icp)?;
+        let target = Target::with_viewpoints(&map_cloud, &views, &icp)?;
         map = map_cloud.points;
         let guess = world_from_scan[k - 1] * odom(k - 1).inverse() * odom(k);
         let mut source = PointCloud::from_points(points);
         source.sensor_origin = sensor(k);
-        let result = match registrar.register_to(&target, &source, guess, &config.icp) {
+        let result = match registrar.register_to(&target, &source, guess, &icp) {
             Ok(r) => r,
             Err(RegistrationError::NotConverged { result, reason }) => {
                 return Err(RegistrationError::NotConverged {

@@ -152,22 +152,27 @@ fn gpu_point_to_point_equals_cpu_on_a_synthetic_room() {
 }
 
 #[test]
-fn gpu_point_to_plane_equals_cpu_on_a_synthetic_room_also_with_a_kernel() {
+fn gpu_point_to_plane_equals_cpu_on_a_synthetic_room_also_with_a_kernel_and_range_weights() {
     if !gpu_or_skip("synthetic p2plane") {
         return;
     }
     let (target, source, truth) = room_pair();
-    for kernel in [RobustKernel::None, RobustKernel::Huber { k_m: 0.05 }] {
+    for (kernel, range_knee_m) in [
+        (RobustKernel::None, 0.0),
+        (RobustKernel::Huber { k_m: 0.05 }, 0.0),
+        (RobustKernel::None, 1.0),
+    ] {
         let config = tight(voxel(
             IcpConfig {
                 method: Method::PointToPlane,
                 kernel,
+                range_knee_m,
                 ..IcpConfig::default()
             },
             0.1,
         ));
         let r = assert_parity(
-            &format!("synthetic room, p2plane, {kernel:?}"),
+            &format!("synthetic room, p2plane, {kernel:?}, range knee {range_knee_m} m"),
             &source,
             &target,
             standard_start(&truth),
@@ -313,6 +318,8 @@ fn gpu_sequence_equals_cpu_sequence_with_one_device_for_every_scan() {
             device,
             ..IcpConfig::default()
         }),
+        // Parity of the unweighted loop step by step (the weighted one is checked on a pair).
+        range_knee_m: 0.0,
         scan_voxel_m: 0.1,
         map_voxel_m: 0.1,
     };
@@ -465,6 +472,8 @@ fn gpu_back_face_test_keeps_the_room_scan_off_the_far_face_of_the_wall() {
             reject_back_faces,
             ..IcpConfig::default()
         },
+        // Parity of the unweighted loop step by step (the weighted one is checked on a pair).
+        range_knee_m: 0.0,
         scan_voxel_m: 0.1,
         map_voxel_m: 0.1,
     };

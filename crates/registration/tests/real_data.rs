@@ -76,6 +76,8 @@ fn threedtk_corridor_sequence_matches_the_2009_registration() {
             final_correspondence_distance_m: 0.1,
             ..IcpConfig::point_to_point()
         },
+        // The paper's ICP: every point weighs the same.
+        range_knee_m: 0.0,
         scan_voxel_m: 0.02,
         map_voxel_m: 0.02,
     };

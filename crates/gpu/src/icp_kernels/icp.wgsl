@@ -19,7 +19,7 @@ struct Params {
 };
 
 @group(0) @binding(0) var<uniform> params: Params;
-@group(0) @binding(1) var<storage, read> source: array<vec4<f32>>;
+@group(0) @binding(1) var<storage, read> source: array<vec4<f32>>;  // xyz, w: prior weight
 @group(0) @binding(2) var<storage, read> model: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read> normals: array<vec4<f32>>;
 @group(0) @binding(4) var<storage, read> keys: array<u32>;
@@ -158,7 +158,7 @@ fn search_reduce(@builtin(global_invocation_id) gid: vec3<u32>,
             if (params.counts.y == 0u) {
                 // Point-to-point: pairs (transformed data point, model point), centred on
                 // `reference`, weighted by the robust kernel of the point distance.
-                let w = robust_weight(sqrt(hit.d2));
+                let w = robust_weight(sqrt(hit.d2)) * source[i].w;
                 sh[o] = 1.0;
                 sh[o + 1u] = w * pc.x; sh[o + 2u] = w * pc.y; sh[o + 3u] = w * pc.z;
                 sh[o + 4u] = w * q.x; sh[o + 5u] = w * q.y; sh[o + 6u] = w * q.z;
@@ -173,7 +173,7 @@ fn search_reduce(@builtin(global_invocation_id) gid: vec3<u32>,
                 // Point-to-plane: residual r = (p - q) . n, Jacobian J = [p x n, n] (about `reference`).
                 let n = normals[hit.index].xyz;
                 let r = dot(pc - q, n);
-                let w = robust_weight(r);
+                let w = robust_weight(r) * source[i].w;
                 var jac: array<f32, 6>;
                 let cr = cross(pc, n);
                 jac[0] = cr.x; jac[1] = cr.y; jac[2] = cr.z; jac[3] = n.x; jac[4] = n.y; jac[5] = n.z;

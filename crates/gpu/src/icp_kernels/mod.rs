@@ -267,6 +267,24 @@ impl GpuIcp {
 
     /// Uploads the data cloud, reusing the buffers when they are large enough.
     pub fn set_source(&mut self, points: &[Vec3]) -> Result<()> {
+        self.set_weighted_source(points, &[])
+    }
+
+    /// [`GpuIcp::set_source`] with a prior weight per point (multiplying each pair's robust
+    /// kernel weight; empty: all 1).
+    pub fn set_weighted_source(&mut self, points: &[Vec3], weights: &[f32]) -> Result<()> {
+        if !weights.is_empty() && weights.len() != points.len() {
+            return Err(GpuError::Invalid(format!(
+                "{} weights for {} source points",
+                weights.len(),
+                points.len()
+            )));
+        }
+        if let Some(i) = weights.iter().position(|w| !(w.is_finite() && *w >= 0.0)) {
+            return Err(GpuError::Invalid(format!(
+                "source weight {i} is not a finite non-negative number"
+            )));
+        }
         if points.is_empty() {
             return Err(GpuError::Invalid("the source cloud is empty".into()));
         }
@@ -280,7 +298,12 @@ impl GpuIcp {
             )));
         }
         self.check_size(points.len() * 16, "the source cloud")?;
-        let data: Vec<[f32; 4]> = points.iter().map(|p| [p.x, p.y, p.z, 1.0]).collect();
+        // The fourth component is the point's prior weight.
+        let data: Vec<[f32; 4]> = points
+            .iter()
+            .enumerate()
+            .map(|(i, p)| [p.x, p.y, p.z, weights.get(i).copied().unwrap_or(1.0)])
+            .collect();
         let ctx = &self.ctx;
         let source = &mut self.source;
         let bind = &mut self.bind;

@@ -2,7 +2,9 @@
 //! over source points) and the method's reduction to step sums.
 
 use super::correspondences::Correspondences;
-use super::{gicp, point_to_plane, point_to_point, run_loop, PairSums, StepSums};
+use super::{
+    gicp, point_to_plane, point_to_point, run_loop, PairSums, PreparedSource, StepSums, Weighting,
+};
 use crate::config::{IcpConfig, Method};
 use crate::covariance::estimate_surface;
 use crate::error::Result;
@@ -14,10 +16,11 @@ use glam::{Affine3A, DAffine3, DMat4, DVec3, Mat3, Vec3};
 pub(crate) fn register_points_cpu(
     target: &Target,
     sensor: Vec3,
-    points: &[Vec3],
+    prepared: &PreparedSource,
     guess: DAffine3,
     config: &IcpConfig,
 ) -> Result<IcpResult> {
+    let points = &prepared.points;
     let source_cov = if config.method == Method::Gicp {
         estimate_surface(points, config.source_voxel_m, config, true)?.covariances
     } else {
@@ -28,6 +31,7 @@ pub(crate) fn register_points_cpu(
         target,
         sensor,
         source: points,
+        weights: &prepared.weights,
         source_cov: &source_cov,
         corr: Correspondences::new(points.len()),
     };
@@ -41,6 +45,8 @@ struct CpuPairs<'a> {
     /// The source's sensor position in the source frame.
     sensor: Vec3,
     source: &'a [Vec3],
+    /// Each source point's prior weight (empty: all 1).
+    weights: &'a [f32],
     source_cov: &'a [Mat3],
     corr: Correspondences,
 }
@@ -67,6 +73,10 @@ impl PairSums for CpuPairs<'_> {
         );
         let matched = self.corr.matched;
         self.corr.reject_worst(c.reject_worst_fraction);
+        let weighting = Weighting {
+            kernel: c.kernel,
+            prior: self.weights,
+        };
         let sums = match c.method {
             Method::PointToPoint => StepSums::Svd(
                 point_to_point::accumulate(
@@ -74,7 +84,7 @@ impl PairSums for CpuPairs<'_> {
                     self.source,
                     target.points(),
                     &t32,
-                    c.kernel,
+                    weighting,
                     reference,
                 ),
                 reference,
@@ -86,7 +96,7 @@ impl PairSums for CpuPairs<'_> {
                     target.points(),
                     target.normals(),
                     &t32,
-                    c.kernel,
+                    weighting,
                     reference,
                 ),
                 reference,
@@ -100,7 +110,7 @@ impl PairSums for CpuPairs<'_> {
                     target.points(),
                     target.covariances(),
                     t,
-                    c.kernel,
+                    weighting,
                 ),
                 DVec3::ZERO,
             ),

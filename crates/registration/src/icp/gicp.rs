@@ -7,7 +7,7 @@
 //! `J^T M J` and `J^T M e` to the 6x6 normal equations.
 
 use super::correspondences::Correspondences;
-use crate::config::RobustKernel;
+use super::Weighting;
 use crate::linalg::{skew, System6};
 use glam::{DAffine3, Mat3, Vec3};
 
@@ -21,7 +21,7 @@ pub(crate) fn accumulate(
     target: &[Vec3],
     target_cov: &[Mat3],
     target_from_source: &DAffine3,
-    kernel: RobustKernel,
+    weighting: Weighting<'_>,
 ) -> System6 {
     let r = target_from_source.matrix3;
     corr.fold(
@@ -38,7 +38,7 @@ pub(crate) fn accumulate(
             if det.abs() <= 1e-18 || det.is_nan() {
                 return;
             }
-            let w = kernel.weight((d2 as f64).sqrt());
+            let w = weighting.of(i, (d2 as f64).sqrt());
             let m = c.inverse() * w;
             // J = [P, -I] with P = [p]x (and P^T = -P): J^T M J = [[-P M P, P M], [-M P, M]],
             // J^T M e = (-p x (M e), -M e).
@@ -55,6 +55,7 @@ pub(crate) fn accumulate(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::config::RobustKernel;
     use crate::linalg::increment;
     use glam::{DQuat, DVec3};
 
@@ -104,7 +105,7 @@ mod tests {
                 &target,
                 &covs,
                 &t,
-                RobustKernel::Huber { k_m: 0.5 },
+                RobustKernel::Huber { k_m: 0.5 }.into(),
             );
             t = increment(&sys.solve().expect("solvable")) * t;
         }

@@ -1,6 +1,17 @@
 //! Robust kernels as iteratively re-weighted least squares (IRLS) weights.
 
 use crate::config::RobustKernel;
+use glam::Vec3;
+
+/// Each point's prior weight `1 / (1 + (r / knee_m)^2)`, `r` its distance from `sensor`
+/// (see [`crate::IcpConfig::range_knee_m`]).
+pub(crate) fn range_weights(points: &[Vec3], sensor: Vec3, knee_m: f64) -> Vec<f32> {
+    let inv_knee2 = 1.0 / (knee_m * knee_m);
+    points
+        .iter()
+        .map(|p| (1.0 / (1.0 + p.distance_squared(sensor) as f64 * inv_knee2)) as f32)
+        .collect()
+}
 
 impl RobustKernel {
     /// The IRLS weight of a pair with residual `r_m` (metres, sign ignored).
@@ -31,6 +42,20 @@ mod tests {
     use super::*;
     use crate::icp::point_to_point::CorrelationSums;
     use glam::{DAffine3, DVec3};
+
+    #[test]
+    fn range_weights_halve_at_the_knee_and_fall_with_the_square_of_range() {
+        let sensor = Vec3::new(1.0, 0.0, 0.0);
+        let pts = [
+            sensor,
+            sensor + Vec3::new(0.0, 2.0, 0.0),
+            sensor + Vec3::new(0.0, 0.0, 20.0),
+        ];
+        let w = range_weights(&pts, sensor, 2.0);
+        assert_eq!(w[0], 1.0);
+        assert!((w[1] - 0.5).abs() < 1e-6, "{w:?}");
+        assert!((w[2] - 1.0 / 101.0).abs() < 1e-6, "{w:?}");
+    }
 
     #[test]
     fn weights_follow_the_kernels() {

@@ -18,7 +18,7 @@ mod kernel;
 pub(crate) mod point_to_plane;
 pub(crate) mod point_to_point;
 
-use crate::config::IcpConfig;
+use crate::config::{IcpConfig, RobustKernel};
 use crate::downsample::{finite_points, voxel_downsample};
 use crate::error::{RegistrationError, Result};
 use crate::linalg::{increment, motion_size, System6};
@@ -40,13 +40,22 @@ const GATE_RMSE_FACTOR: f64 = 3.0;
 /// the stop criteria are checked only while the gate is kept.
 const GATE_MIN_SHRINK: f64 = 0.9;
 
-/// The checks of [`crate::register_to`] and the source's preparation: its finite (downsampled) points.
+/// A source ready for the loop: its finite (downsampled) points and each point's prior weight
+/// (empty: all 1).
+pub(crate) struct PreparedSource {
+    pub(crate) points: Vec<Vec3>,
+    pub(crate) weights: Vec<f32>,
+}
+
+/// The checks of [`crate::register_to`] and the source's preparation: its finite
+/// (downsampled) points, weighted by their range from the source's sensor
+/// ([`IcpConfig::range_knee_m`]).
 pub(crate) fn prepare_source(
     target: &Target,
     source: &PointCloud,
     target_from_source_guess: &DAffine3,
     config: &IcpConfig,
-) -> Result<Vec<Vec3>> {
+) -> Result<PreparedSource> {
     config.validate()?;
     if !target.supports(config.method) {
         return Err(RegistrationError::invalid(
@@ -70,7 +79,12 @@ pub(crate) fn prepare_source(
     if let Some(v) = config.source_voxel_m {
         points = voxel_downsample(&points, v, "source_voxel_m")?;
     }
-    Ok(points)
+    let weights = if config.range_knee_m > 0.0 {
+        kernel::range_weights(&points, source.sensor_origin, config.range_knee_m)
+    } else {
+        Vec::new()
+    };
+    Ok(PreparedSource { points, weights })
 }
 
 /// Turns a finished loop into the outcome: an unconverged or unfit result is
@@ -126,6 +140,34 @@ impl StepSums {
             * centred
             * DAffine3::from_translation(-reference);
         step.is_finite().then_some((step, pairs, sq_dist))
+    }
+}
+
+/// The prior weight of source point `i` (1 when there are none).
+#[inline]
+pub(crate) fn prior(weights: &[f32], i: usize) -> f64 {
+    weights.get(i).map_or(1.0, |w| *w as f64)
+}
+
+/// A pair's weight: the robust kernel of its residual times its source point's prior weight.
+#[derive(Clone, Copy)]
+pub(crate) struct Weighting<'a> {
+    pub(crate) kernel: RobustKernel,
+    /// Per source point (empty: all 1).
+    pub(crate) prior: &'a [f32],
+}
+
+impl Weighting<'_> {
+    /// The weight of a pair of source point `i` with residual `r_m`.
+    #[inline]
+    pub(crate) fn of(&self, i: usize, r_m: f64) -> f64 {
+        self.kernel.weight(r_m) * prior(self.prior, i)
+    }
+}
+
+impl From<RobustKernel> for Weighting<'static> {
+    fn from(kernel: RobustKernel) -> Self {
+        Weighting { kernel, prior: &[] }
     }
 }
 

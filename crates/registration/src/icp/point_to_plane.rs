@@ -6,7 +6,7 @@
 //! current transform.
 
 use super::correspondences::Correspondences;
-use crate::config::RobustKernel;
+use super::Weighting;
 use crate::linalg::System6;
 use glam::{Affine3A, DVec3, Vec3, Vec3A};
 
@@ -20,7 +20,7 @@ pub(crate) fn accumulate(
     target: &[Vec3],
     normals: &[Vec3],
     target_from_source: &Affine3A,
-    kernel: RobustKernel,
+    weighting: Weighting<'_>,
     reference: DVec3,
 ) -> System6 {
     corr.fold(
@@ -33,7 +33,7 @@ pub(crate) fn accumulate(
             let d = Vec3::from(target_from_source.transform_point3a(Vec3A::from(source[i])));
             let (d, m, n) = (d.as_dvec3(), target[j as usize].as_dvec3(), n.as_dvec3());
             let r = n.dot(d - m);
-            let w = kernel.weight(r);
+            let w = weighting.of(i, r);
             let c = (d - reference).cross(n);
             acc.add_row(&[c.x, c.y, c.z, n.x, n.y, n.z], r, w);
             acc.sq_dist += d2 as f64;
@@ -46,6 +46,7 @@ pub(crate) fn accumulate(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::config::RobustKernel;
     use crate::icp::correspondences::NONE;
     use crate::linalg::increment;
     use glam::{DAffine3, DQuat};
@@ -92,7 +93,7 @@ mod tests {
                 &target,
                 &normals,
                 &a,
-                RobustKernel::None,
+                RobustKernel::None.into(),
                 DVec3::ZERO,
             );
             assert_eq!(sys.pairs, source.len());
@@ -108,7 +109,7 @@ mod tests {
                 &target,
                 &normals,
                 &a,
-                RobustKernel::None,
+                RobustKernel::None.into(),
                 DVec3::ZERO
             )
             .pairs,

@@ -11,7 +11,7 @@
 //! 4. The translation `t = c_m - R c_d`.
 
 use super::correspondences::Correspondences;
-use crate::config::RobustKernel;
+use super::Weighting;
 use crate::linalg::svd3;
 use glam::{Affine3A, DAffine3, DMat3, DVec3, Vec3, Vec3A};
 
@@ -100,14 +100,14 @@ pub(crate) fn accumulate(
     source: &[Vec3],
     target: &[Vec3],
     target_from_source: &Affine3A,
-    kernel: RobustKernel,
+    weighting: Weighting<'_>,
     reference: DVec3,
 ) -> CorrelationSums {
     corr.fold(
         CorrelationSums::default(),
         |acc, i, j, d2| {
             let d = target_from_source.transform_point3a(Vec3A::from(source[i]));
-            let w = kernel.weight((d2 as f64).sqrt());
+            let w = weighting.of(i, (d2 as f64).sqrt());
             acc.add(
                 Vec3::from(d).as_dvec3() - reference,
                 target[j as usize].as_dvec3() - reference,

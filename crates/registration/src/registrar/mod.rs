@@ -184,12 +184,12 @@ impl Registrar {
         config: &IcpConfig,
     ) -> Result<IcpResult> {
         let start = Instant::now();
-        let points = prepare_source(target, source, &target_from_source_guess, config)?;
+        let prepared = prepare_source(target, source, &target_from_source_guess, config)?;
         let result = match &mut self.backend {
             #[cfg(feature = "gpu")]
             Backend::Gpu(g) if config.device != Device::Cpu && cpu_only(config).is_none() => {
                 let sensor = back_face_test(config, target).then_some(source.sensor_origin);
-                g.register(target, &points, sensor, target_from_source_guess, config)?
+                g.register(target, &prepared, sensor, target_from_source_guess, config)?
             }
             _ => {
                 if config.device == Device::Gpu {
@@ -205,7 +205,7 @@ impl Registrar {
                 register_points_cpu(
                     target,
                     source.sensor_origin,
-                    &points,
+                    &prepared,
                     target_from_source_guess,
                     config,
                 )?

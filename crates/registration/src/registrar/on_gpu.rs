@@ -6,7 +6,7 @@ use crate::config::RobustKernel;
 use crate::config::{IcpConfig, Method};
 use crate::error::{RegistrationError, Result};
 use crate::icp::point_to_point::CorrelationSums;
-use crate::icp::{run_loop, PairSums, StepSums};
+use crate::icp::{run_loop, PairSums, PreparedSource, StepSums};
 use crate::linalg::System6;
 use crate::result::IcpResult;
 use crate::target::Target;
@@ -53,7 +53,7 @@ impl GpuBackend {
     pub(super) fn register(
         &mut self,
         target: &Target,
-        points: &[Vec3],
+        prepared: &PreparedSource,
         sensor: Option<Vec3>,
         guess: DAffine3,
         config: &IcpConfig,
@@ -71,8 +71,9 @@ impl GpuBackend {
                 .map_err(RegistrationError::gpu("uploading the target cloud"))?;
             self.uploaded = Some(key);
         }
+        let points = &prepared.points;
         self.icp
-            .set_source(points)
+            .set_weighted_source(points, &prepared.weights)
             .map_err(RegistrationError::gpu("uploading the source cloud"))?;
         self.icp
             .set_back_face_test(sensor)

@@ -6,24 +6,22 @@
 //   3. headless Chromium: time from page.goto to the first frame with the world in it (the page
 //      has no "loaded" hook, so the canvas is polled for non-background pixels);
 //   4. headless Chromium (SwiftShader software WebGL): frames per second over 5 s
-//      (requestAnimationFrame counting in page.evaluate).
+//      (requestAnimationFrame counting in page.evaluate), with the point-cloud layer shown
+//      when the console has one (--cloud).
 // Run by bench/console.sh, which starts `semsim console` and passes its URL and PID:
 //
 //     node --experimental-websocket bench/console_bench.mjs URL PID RESULTS_DIR
 //
 // Node 20 needs --experimental-websocket for the global WebSocket (Node 22 has it by default).
 // CHROMIUM names the browser (default /usr/bin/chromium); WS_SECONDS (default 20) and
-// FPS_SECONDS (default 5) the windows.
+// FPS_SECONDS (default 5) the windows; CONSOLE_CMD the console's command line (for the
+// results' header).
 import { readFileSync, writeFileSync, mkdirSync } from 'node:fs';
 import { execSync } from 'node:child_process';
 import os from 'node:os';
 import path from 'node:path';
-import { createRequire } from 'node:module';
-import { fileURLToPath } from 'node:url';
 
-const here = path.dirname(fileURLToPath(import.meta.url));
-const require = createRequire(path.join(here, '..', 'tools', 'oracles', 'package.json'));
-const { chromium } = require('playwright-core');
+import { launch } from '../tools/oracles/browser.mjs';
 
 const [url, pidArg, resultsDir] = process.argv.slice(2);
 if (!url || !pidArg || !resultsDir) {
@@ -139,12 +137,7 @@ results.state_messages = {
 };
 
 // ---- 3 + 4. headless Chromium ----------------------------------------------------------------
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  headless: true,
-  timeout: 60_000,
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
-});
+const browser = await launch();
 const consoleErrors = [];
 try {
   const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
@@ -193,6 +186,24 @@ try {
     goto_to_websocket_connected_ms: round(tConnected - tGoto, 0),
     method: 'page.goto (waitUntil commit) to the first requestAnimationFrame poll whose canvas, drawn into a 160x100 2D canvas, has >= 5% pixels off the background #1d2127 (no loaded hook in app.js)',
   };
+  // The cloud layer: its size on the wire and in points, shown for the frame rate.
+  const cloudMeta = await page.evaluate(() => fetch('/api/cloud.json').then((r) => r.json()));
+  if (cloudMeta) {
+    await page.waitForSelector('#cloud-section:not([hidden])', { timeout: 120_000 });
+    const tCloud = performance.now();
+    const res = await page.evaluate(() => {
+      const r = performance.getEntriesByType('resource').find((e) => e.name.endsWith('/api/cloud.bin'));
+      return r ? { bytes: r.transferSize || r.encodedBodySize, fetched_ms: r.responseEnd } : null;
+    });
+    await page.check('#cloud');
+    results.cloud_layer = {
+      ...cloudMeta.info,
+      body_bytes: res ? res.bytes : null,
+      body_fetched_since_navigation_ms: res ? round(res.fetched_ms, 0) : null,
+      goto_to_layer_ready_ms: round(tCloud - tGoto, 0),
+      shown_for_frame_rate: true,
+    };
+  }
   await sleep(1000); // settle
   const fps = await page.evaluate((seconds) => new Promise((resolve) => {
     const times = [];
@@ -251,13 +262,17 @@ const rows = [
   ['Chromium: page.goto to first frame with the world', `${bf.from_goto_ms} ms (GLB ${bf.glb_bytes} bytes fetched at ${bf.glb_fetched_since_navigation_ms} ms)`],
   ['Chromium: goto to WebSocket connected', `${bf.goto_to_websocket_connected_ms} ms`],
   [`Chromium frame rate, software WebGL, ${fp.canvas_px.join('x')} (${fp.seconds} s)`, `${fp.fps} fps (median ${fp.median_frame_ms} ms, p95 ${fp.p95_frame_ms} ms)`],
+  ...(results.cloud_layer ? [[
+    'cloud layer (shown during the frame rate)',
+    `${results.cloud_layer.points} of ${results.cloud_layer.points_in_file} points (voxel ${round(results.cloud_layer.voxel_m, 3)} m, classes ${results.cloud_layer.classes ? 'yes' : 'no'}), ${results.cloud_layer.body_bytes} bytes binary, ready ${results.cloud_layer.goto_to_layer_ready_ms} ms after goto`,
+  ]] : []),
   ['server CPU while the browser loads and renders', `${results.server_with_browser.cpu_pct_one_core} % of one core`],
   ['load average (1/5/15 min), start -> end', `${results.machine.loadavg_start.join(' ')} -> ${results.machine.loadavg_end.join(' ')} on ${results.machine.cpus} CPUs`],
 ];
 const md = [
   '# Operator console figures',
   '',
-  `\`bash bench/console.sh\` on ${results.date}: \`semsim console --building default --robot inspection --port 0\` (scenario "${results.scenario.name}", ${results.scenario.world}, robot ${results.scenario.robot}, step ${results.scenario.dt_secs} s), loopback, ${results.machine.cpus} CPUs (${results.machine.cpu_model}), Chromium ${results.chromium_version}.`,
+  `\`bash bench/console.sh\` on ${results.date}: \`${process.env.CONSOLE_CMD || 'semsim console'}\` (scenario "${results.scenario.name}", ${results.scenario.world}, robot ${results.scenario.robot}, step ${results.scenario.dt_secs} s), loopback, ${results.machine.cpus} CPUs (${results.machine.cpu_model}), Chromium ${results.chromium_version}.`,
   '',
   '| measure | value |',
   '|---|---|',

@@ -1,75 +1,42 @@
-// The operator console (`semsim console`) in a real browser: headless Chromium driven by npm
-// `playwright-core` (installed in tools/oracles/node_modules by setup.sh), WebGL by software
-// rendering (SwiftShader). It loads the page, checks that the world rendered (the canvas is
-// not blank), holds W and checks that the robot moved forwards, turns left and drives until
-// the timeline shows a `wall_touched` event, saving screenshots on the way:
-// OUT_DIR/console_loaded.png, console_after_drive.png, console_wall_event.png.
-// Prints one JSON line with the results; exits 1 (with the failing step's message on stderr)
-// on any failure, any console error or any uncaught page error.
-// Used by crates/cli/tests/console_browser.rs, which starts the console with a scenario that
-// puts the robot in the default building's corridor at (10, 0) facing east. Usage:
+// The operator console (`semsim console`) in a real browser (browser.mjs: headless Chromium,
+// software WebGL). It loads the page and checks, saving screenshots in OUT_DIR:
+//   1. the world rendered (the canvas is not blank) and the minimap is drawn with the robot;
+//   2. with --cloud: the point-cloud layer renders (turning it on changes the picture, and so
+//      does its colour mode) -> console_cloud.png;
+//   3. holding W drives the robot forwards -> console_after_drive.png;
+//   4. the on-screen drive buttons drive it (pointer down on the forward button);
+//   5. a gamepad's left stick drives it: a gamepad cannot be plugged into headless Chromium,
+//      so an init script (playwright's addInitScript) replaces navigator.getGamepads with a
+//      fake pad whose axes the test sets; the page's own polling code path then reads it;
+//   6. turning left and driving into the corridor's wall shows a `wall_touched` event
+//      -> console_wall_event.png; the follow camera, behind a robot whose back is to the
+//      corridor's other wall, is pulled in in front of that wall -> console_follow.png.
+// Prints one JSON line with the results; exits 1 naming the failing step on any failure,
+// console error or uncaught page error. Used by crates/cli/tests/console_browser.rs, which
+// starts the console with a scenario that puts the robot in the default building's corridor
+// at (10, 0) facing east. Usage:
 //
-//     node tools/oracles/console_e2e.mjs URL OUT_DIR
-//
-// CHROMIUM names the browser (default /usr/bin/chromium).
-import { mkdir } from 'node:fs/promises';
+//     node tools/oracles/console_e2e.mjs URL OUT_DIR [--expect-cloud]
 import path from 'node:path';
-import { createRequire } from 'node:module';
+import { run, canvasStats, canvasPixels, pixelsDiffer, assertNotBlank, sleep } from './browser.mjs';
 
-const require = createRequire(import.meta.url);
-const { chromium } = require('playwright-core');
-
-const [url, outDir] = process.argv.slice(2);
+const [url, outDir, flag] = process.argv.slice(2);
 if (!url || !outDir) {
-  console.error('usage: node console_e2e.mjs URL OUT_DIR');
+  console.error('usage: node console_e2e.mjs URL OUT_DIR [--expect-cloud]');
   process.exit(2);
 }
+const expectCloud = flag === '--expect-cloud';
 
-// The whole run's limit: a hang becomes an explicit failure.
-const TOTAL_MS = 200_000;
-const watchdog = setTimeout(() => fail(`gave up after ${TOTAL_MS / 1000} s (step: ${step})`), TOTAL_MS);
-
-let step = 'launch';
-let browser = null;
-const consoleErrors = [];
-const t0 = Date.now();
-const timings = {};
-
-async function fail(message) {
-  console.error(`console_e2e: FAILED at step "${step}": ${message}`);
-  if (consoleErrors.length) console.error(`console errors:\n  ${consoleErrors.join('\n  ')}`);
-  try { if (browser) await browser.close(); } catch { /* already gone */ }
-  process.exit(1);
-}
-
-function mark(name) {
-  timings[name] = (Date.now() - t0) / 1000;
-  step = name;
-}
-
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-
-try {
-  await mkdir(outDir, { recursive: true });
-  browser = await chromium.launch({
-    executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-    headless: true,
-    timeout: 60_000,
-    args: [
-      '--no-sandbox',
-      '--use-angle=swiftshader',
-      '--enable-unsafe-swiftshader',
-      '--ignore-gpu-blocklist',
-    ],
+await run('console_e2e', outDir, 240_000, async (s) => {
+  const { page } = s;
+  // The fake gamepad (see 5. above): null until the test plugs it in.
+  await page.addInitScript(() => {
+    window.__fakePad = null;
+    navigator.getGamepads = () => [window.__fakePad];
   });
-  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-  page.setDefaultTimeout(60_000);
-  page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(`console: ${m.text()}`); });
-  page.on('pageerror', (e) => consoleErrors.push(`page error: ${e.message}`));
-  page.on('requestfailed', (r) => consoleErrors.push(`request failed: ${r.url()} ${r.failure()?.errorText}`));
 
-  // ---- load: the world, the connection (this tab drives) and the first states --------------
-  mark('load');
+  // ---- load: the world, the connection (this tab drives) and the first states -------------
+  s.mark('load');
   await page.goto(url, { waitUntil: 'load' });
   await page.waitForFunction(
     () => document.getElementById('status').textContent === 'connected: you drive',
@@ -84,33 +51,55 @@ try {
   const tStart = (await clock()).t;
   await page.waitForFunction((t) => Number(document.getElementById('clock').dataset.time) > t + 0.5, tStart);
 
-  // ---- 1. the canvas is not blank --------------------------------------------------------
-  mark('canvas');
-  const canvas = await page.evaluate(() => {
-    const gl = document.querySelector('#view canvas');
-    const c = document.createElement('canvas');
-    c.width = gl.width;
-    c.height = gl.height;
-    const ctx = c.getContext('2d');
-    ctx.drawImage(gl, 0, 0); // preserveDrawingBuffer: the last frame
-    const px = ctx.getImageData(0, 0, c.width, c.height).data;
+  // ---- 1. the canvas is not blank; the minimap is drawn ------------------------------------
+  s.mark('canvas');
+  const canvas = await page.evaluate(canvasStats);
+  await page.screenshot({ path: path.join(outDir, 'console_loaded.png') });
+  assertNotBlank(canvas);
+  const minimap = await page.evaluate(() => {
+    const c = document.getElementById('minimap');
+    if (!c) return null;
+    const px = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
     const colours = new Set();
-    let other = 0;
+    let robot = 0;
     for (let i = 0; i < px.length; i += 4) {
       colours.add((px[i] << 16) | (px[i + 1] << 8) | px[i + 2]);
-      // The scene's background is #1d2127.
-      if (Math.abs(px[i] - 0x1d) + Math.abs(px[i + 1] - 0x21) + Math.abs(px[i + 2] - 0x27) > 12) other++;
+      if (px[i] === 0x00 && px[i + 1] === 0xe6 && px[i + 2] === 0x76) robot++; // the robot's arrow
     }
-    return { width: c.width, height: c.height, colours: colours.size, nonBackground: other / (px.length / 4) };
+    return { width: c.width, colours: colours.size, robot_pixels: robot, robot_px: c.dataset.robotPx };
   });
-  await page.screenshot({ path: path.join(outDir, 'console_loaded.png') });
-  if (canvas.width < 100 || canvas.height < 100) throw new Error(`the canvas is ${canvas.width}x${canvas.height}`);
-  if (canvas.colours <= 16 || canvas.nonBackground < 0.05) {
-    throw new Error(`the canvas looks blank: ${canvas.colours} colours, ${(canvas.nonBackground * 100).toFixed(1)}% not background`);
+  if (!minimap) throw new Error('no minimap');
+  if (minimap.colours < 3 || minimap.robot_pixels < 10) throw new Error(`the minimap looks empty: ${JSON.stringify(minimap)}`);
+
+  // ---- 2. the cloud layer ----------------------------------------------------------------
+  let cloud = null;
+  if (expectCloud) {
+    s.mark('cloud');
+    await page.waitForSelector('#cloud-section:not([hidden])', { timeout: 60_000 });
+    const off = await page.evaluate(canvasPixels);
+    await page.check('#cloud');
+    await sleep(500);
+    const on = await page.evaluate(canvasPixels);
+    await page.screenshot({ path: path.join(outDir, 'console_cloud.png') });
+    await page.selectOption('#cloud-mode', 'height');
+    await sleep(500);
+    const height = await page.evaluate(canvasPixels);
+    await page.uncheck('#cloud');
+    await sleep(300);
+    const offAgain = await page.evaluate(canvasPixels);
+    cloud = {
+      info: await page.evaluate(() => document.getElementById('cloud-info').textContent),
+      toggle_changed: Number(pixelsDiffer(off, on).toFixed(4)),
+      mode_changed: Number(pixelsDiffer(on, height).toFixed(4)),
+      off_again_changed: Number(pixelsDiffer(off, offAgain).toFixed(4)),
+    };
+    // The robot idles while this runs: only the layer changes the picture.
+    if (!(cloud.toggle_changed > 0.02)) throw new Error(`showing the cloud changed ${cloud.toggle_changed} of the pixels`);
+    if (!(cloud.mode_changed > 0.02)) throw new Error(`colouring by height changed ${cloud.mode_changed} of the pixels`);
   }
 
-  // ---- 2. W drives forwards --------------------------------------------------------------
-  mark('drive');
+  // ---- 3. W drives forwards --------------------------------------------------------------
+  s.mark('drive');
   // The top-down camera, for the screenshots; then focus back on the page so that keys drive.
   await page.check('input[name=camera][value=top]');
   await page.evaluate(() => document.activeElement && document.activeElement.blur());
@@ -118,21 +107,47 @@ try {
   await page.keyboard.down('w');
   await sleep(1500);
   await page.keyboard.up('w');
-  // Let the stop arrive and the robot come to rest.
-  await sleep(700);
+  await sleep(700); // the stop arrives, the robot comes to rest
   const after = await clock();
   const dx = after.x - before.x, dy = after.y - before.y;
   const moved = Math.hypot(dx, dy);
   await page.screenshot({ path: path.join(outDir, 'console_after_drive.png') });
   if (!(moved > 0.2)) throw new Error(`holding W moved the robot ${moved.toFixed(3)} m (${JSON.stringify(before)} -> ${JSON.stringify(after)})`);
 
-  // ---- 3. turn left (north) and drive into the corridor's wall ----------------------------
-  mark('turn');
+  // ---- 4. the on-screen forward button -----------------------------------------------------
+  s.mark('buttons');
+  const forward = page.locator('[data-drive=forward]');
+  await forward.dispatchEvent('pointerdown');
+  await sleep(1000);
+  await forward.dispatchEvent('pointerup');
+  await sleep(700);
+  const afterButton = await clock();
+  const buttonDx = afterButton.x - after.x;
+  if (!(buttonDx > 0.2)) throw new Error(`the forward button moved the robot ${buttonDx.toFixed(3)} m east`);
+
+  // ---- 5. the (fake) gamepad: stick back, the robot reverses --------------------------------
+  s.mark('gamepad');
+  await page.evaluate(() => {
+    window.__fakePad = { id: 'semsim test pad', index: 0, connected: true, axes: [0, 0.8, 0, 0], buttons: [] };
+  });
+  await sleep(1000);
+  await page.evaluate(() => { window.__fakePad.axes = [0, 0, 0, 0]; });
+  await sleep(700);
+  const afterPad = await clock();
+  const padDx = afterPad.x - afterButton.x;
+  const padLabel = await page.evaluate(() => document.getElementById('gamepad').textContent);
+  if (!(padDx < -0.2)) throw new Error(`the gamepad's stick (back) moved the robot ${padDx.toFixed(3)} m east`);
+  if (!padLabel.includes('semsim test pad')) throw new Error(`the page does not name the gamepad: "${padLabel}"`);
+  await page.evaluate(() => { window.__fakePad = null; });
+
+  // ---- 6. turn left (north) and drive into the corridor's wall; the follow camera ---------
+  s.mark('turn');
+  await page.evaluate(() => document.activeElement && document.activeElement.blur());
   await page.keyboard.down('a');
   await page.waitForFunction(() => Number(document.getElementById('clock').dataset.yaw) > 75, null, { timeout: 30_000 })
     .catch(async () => { throw new Error(`the robot did not turn left to 75 degrees: ${JSON.stringify(await clock())}`); });
   await page.keyboard.up('a');
-  mark('wall');
+  s.mark('wall');
   await page.keyboard.down('w');
   const wallEvent = await page.waitForSelector('#events li.wall_touched', { timeout: 30_000 })
     .catch(async () => { throw new Error(`no wall_touched event in the timeline: ${JSON.stringify(await clock())}`); });
@@ -142,26 +157,30 @@ try {
   const atWall = await clock();
   await sleep(300);
   await page.screenshot({ path: path.join(outDir, 'console_wall_event.png') });
-  mark('done');
+  s.mark('follow');
+  await page.check('input[name=camera][value=follow]');
+  await sleep(500);
+  const followDistance = await page.evaluate(() => document.getElementById('view').dataset.followDistance);
+  await page.screenshot({ path: path.join(outDir, 'console_follow.png') });
+  const followCanvas = await page.evaluate(canvasStats);
+  assertNotBlank(followCanvas);
 
-  if (consoleErrors.length) throw new Error(`${consoleErrors.length} console error(s)`);
-  console.log(JSON.stringify({
-    ok: true,
-    console_errors: consoleErrors,
+  return {
     canvas_width: canvas.width,
     canvas_height: canvas.height,
     canvas_colours: canvas.colours,
     canvas_non_background: Number(canvas.nonBackground.toFixed(4)),
+    minimap,
+    cloud,
     pose_before: before,
     pose_after: after,
     moved_m: Number(moved.toFixed(4)),
     moved_dx_m: Number(dx.toFixed(4)),
+    button_dx_m: Number(buttonDx.toFixed(4)),
+    gamepad_dx_m: Number(padDx.toFixed(4)),
+    gamepad_label: padLabel,
     wall_event: wallText,
     pose_at_wall: atWall,
-    timings_s: timings,
-  }));
-  clearTimeout(watchdog);
-  await browser.close();
-} catch (e) {
-  await fail(e && e.message ? e.message : String(e));
-}
+    follow_distance: followDistance,
+  };
+});

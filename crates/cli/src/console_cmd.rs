@@ -4,7 +4,10 @@
 
 use crate::exit::bad_input;
 use clap::Args;
-use console::{ConsoleConfig, ConsoleWorld, RecordedRun, RunSetup, SessionSetup};
+use console::{
+    CloudLayer, Console, ConsoleConfig, ConsoleWorld, RecordedRun, RunConsole, RunSetup,
+    SessionSetup, MAX_CLOUD_POINTS,
+};
 use pipeline::ScenarioSource;
 use scanner::Building;
 use sim::RobotModel;
@@ -15,8 +18,9 @@ use std::path::{Path, PathBuf};
 /// Arguments of `semsim console`.
 #[derive(Args)]
 pub struct ConsoleArgs {
-    /// A semantic map (semantic_map.json): the world is built from its entities.
-    #[arg(long, value_name = "FILE", conflicts_with = "building")]
+    /// A semantic map (semantic_map.json): the world is built from its entities. A folder
+    /// (`semsim demo`'s or `semsim run`'s output) means its `map/semantic_map.json`.
+    #[arg(long, value_name = "FILE|DIR", conflicts_with = "building")]
     map: Option<PathBuf>,
     /// A building description (TOML/JSON), or "default" for the built-in building; default:
     /// the scenario's building.
@@ -36,6 +40,13 @@ pub struct ConsoleArgs {
     /// scenario's building). Nothing can be driven.
     #[arg(long, value_name = "RUN_DIR", conflicts_with_all = ["scenario", "robot"])]
     run: Option<PathBuf>,
+    /// A registered point cloud (PCD or any cloud file semsim reads) shown as a layer,
+    /// downsampled to at most 200,000 points, coloured by class (its `class` field) or by
+    /// height. Default: the cloud beside --map (`labels.pcd`, else `../registration/map.pcd`)
+    /// or beside --run's folder (`../map/labels.pcd`, `../registration/map.pcd`), if there is
+    /// one.
+    #[arg(long, value_name = "FILE")]
+    cloud: Option<PathBuf>,
     /// The port (0: any free port).
     #[arg(long, default_value_t = 8080)]
     port: u16,
@@ -70,9 +81,10 @@ pub fn run(a: ConsoleArgs) -> anyhow::Result<()> {
         scenario_toml: source.text,
         robot: source.robot,
         out_dir: a.out.clone(),
+        cloud: cloud_layer(&a, MAX_CLOUD_POINTS)?,
     };
     crate::interrupt::install();
-    let saved = console::serve_blocking(
+    let saved = console::serve_blocking::<Console>(
         config,
         setup,
         |c| {
@@ -97,7 +109,56 @@ pub fn run(a: ConsoleArgs) -> anyhow::Result<()> {
 
 /// The world: --map, --building, or the scenario's building.
 fn world(a: &ConsoleArgs, source: &ScenarioSource) -> anyhow::Result<ConsoleWorld> {
-    world_from(a.map.as_deref(), a.building.as_deref(), source)
+    world_from(map_file(a).as_deref(), a.building.as_deref(), source)
+}
+
+/// --map as a file: a folder means its `map/semantic_map.json` (a demo's or run's output), or
+/// its `semantic_map.json`.
+fn map_file(a: &ConsoleArgs) -> Option<PathBuf> {
+    let m = a.map.as_ref()?;
+    if !m.is_dir() {
+        return Some(m.clone());
+    }
+    let nested = m.join("map/semantic_map.json");
+    Some(if nested.is_file() {
+        nested
+    } else {
+        m.join("semantic_map.json")
+    })
+}
+
+/// The cloud layer: --cloud, else the registered cloud found beside --map or --run (see
+/// [`found_cloud`]), downsampled to `max_points`.
+pub(crate) fn cloud_layer(
+    a: &ConsoleArgs,
+    max_points: usize,
+) -> anyhow::Result<Option<CloudLayer>> {
+    let path = match &a.cloud {
+        Some(c) => c.clone(),
+        None => {
+            let beside = map_file(a)
+                .and_then(|m| found_cloud(m.parent()?, &["labels.pcd", "../registration/map.pcd"]))
+                .or_else(|| {
+                    let run = a.run.as_ref()?;
+                    found_cloud(run, &["../map/labels.pcd", "../registration/map.pcd"])
+                });
+            match beside {
+                Some(p) => {
+                    eprintln!("cloud layer: {} (found beside the map or run; --cloud FILE to choose another)", p.display());
+                    p
+                }
+                None => return Ok(None),
+            }
+        }
+    };
+    Ok(Some(CloudLayer::from_file(&path, max_points)?))
+}
+
+/// The first of `names` (relative to `dir`) that is a file: where `semsim demo` and
+/// `semsim run` leave the registered cloud (`map/labels.pcd`, labelled by the map, and
+/// `registration/map.pcd`).
+fn found_cloud(dir: &Path, names: &[&str]) -> Option<PathBuf> {
+    names.iter().map(|n| dir.join(n)).find(|p| p.is_file())
 }
 
 /// The world of `--map M | --building B|default`, else the building `source` names (shared by
@@ -138,26 +199,28 @@ fn config(a: &ConsoleArgs) -> anyhow::Result<ConsoleConfig> {
 fn replay_run(a: &ConsoleArgs, dir: &Path) -> anyhow::Result<()> {
     let run = RecordedRun::load(dir)?;
     let source = ScenarioSource::load(Some(&dir.join("scenario.toml")))?;
+    let about = format!(
+        "replaying {} ({} events, verdict: {}); Ctrl-C quits",
+        dir.display(),
+        run.events.len(),
+        run.verdict
+    );
     let setup = RunSetup {
         world: world(a, &source)?,
         robot_name: source.scenario.robot_name.clone(),
         start: source.scenario.start,
         robot: source.robot,
         run,
+        cloud: cloud_layer(a, MAX_CLOUD_POINTS)?,
     };
     let config = config(a)?;
     crate::interrupt::install();
-    console::serve_run_blocking(
+    console::serve_blocking::<RunConsole>(
         config,
-        &setup,
+        setup,
         |c| {
             println!("console: {}", c.url());
-            eprintln!(
-                "replaying {} ({} events, verdict: {}); Ctrl-C quits",
-                dir.display(),
-                setup.run.events.len(),
-                setup.run.verdict
-            );
+            eprintln!("{about}");
             let _ = std::io::stdout().flush();
         },
         crate::interrupt::requested,

@@ -3,7 +3,9 @@
 //! the default scenario judged in the map's world, each stage scored against ground truth.
 
 use clap::Args;
-use pipeline::{prepare_demo, scans_to_verdict, score_demo, Config, ScenarioSource};
+use pipeline::{
+    prepare_demo, scans_to_verdict, score_demo, Config, ScenarioChoice, ScenarioSource,
+};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -30,7 +32,8 @@ pub fn run(a: DemoArgs, cfg: &Config) -> anyhow::Result<()> {
     crate::scan::print_summary(&demo.scanned);
     println!("  wrote {}", demo.building_file.display());
 
-    let scenario = ScenarioSource::load(None)?;
+    // The demo's own scenario (it names the default building's door and stairs).
+    let scenario = ScenarioChoice::Given(Box::new(ScenarioSource::load(None)?));
     let chain_t0 = Instant::now();
     crate::interrupt::install();
     let mut printer = crate::print::Printer::default();
@@ -74,8 +77,9 @@ pub fn run(a: DemoArgs, cfg: &Config) -> anyhow::Result<()> {
     );
     println!("done in {:.1} s", t0.elapsed().as_secs_f64());
     println!(
-        "see it in 3D and drive the robot yourself: semsim console --map {} --scenario {} --out {}",
+        "see it in 3D and drive the robot yourself: semsim console --map {} --cloud {} --scenario {} --out {}",
         a.out.join("map/semantic_map.json").display(),
+        a.out.join("map/labels.pcd").display(),
         a.out.join("simulation/scenario.toml").display(),
         a.out.join("console").display()
     );

@@ -103,7 +103,7 @@ fn main() -> ExitCode {
             Command::Eval(c) => map::run_eval(c),
             Command::Building(c) => building_cmd::run(c, &cfg),
             Command::Bench(c) => bench::run(c),
-            Command::Simulate(a) => simulate::run(a),
+            Command::Simulate(a) => simulate::run(a, &cfg),
             Command::Console(a) => console_cmd::run(a),
             Command::Report(a) => report_cmd::run(a),
         });

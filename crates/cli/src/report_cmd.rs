@@ -27,6 +27,10 @@ pub struct ReportArgs {
     /// scenario's `building` (the built-in building for the default scenario).
     #[arg(long, value_name = "FILE")]
     building: Option<PathBuf>,
+    /// A registered point cloud to embed as a layer, downsampled to at most 30,000 points
+    /// (about 0.5 MB more in the file); default: none.
+    #[arg(long, value_name = "FILE")]
+    cloud: Option<PathBuf>,
 }
 
 /// Runs `semsim report`.
@@ -42,7 +46,20 @@ pub fn run(a: ReportArgs) -> anyhow::Result<()> {
             )));
         }
     }
-    let html = console::report_html(&world, &source.robot, source.scenario.start, &recorded)?;
+    let cloud = match &a.cloud {
+        Some(c) => Some(console::CloudLayer::from_file(
+            c,
+            console::REPORT_CLOUD_POINTS,
+        )?),
+        None => None,
+    };
+    let html = console::report_html(
+        &world,
+        &source.robot,
+        source.scenario.start,
+        &recorded,
+        cloud.as_ref(),
+    )?;
     console::write_report(&a.html, &html)?;
     println!(
         "wrote {} ({} trajectory points, {} events, verdict: {})",

@@ -12,14 +12,23 @@ pub struct ScanArgs {
     #[arg(long, value_name = "FILE")]
     building: PathBuf,
     /// A scan pose `x,y,yaw_deg` (metres, degrees); repeat for a sequence.
-    #[arg(long = "pose", value_name = "X,Y,YAW", required = true, value_parser = parse_pose)]
+    #[arg(long = "pose", value_name = "X,Y,YAW", required_unless_present = "survey",
+          conflicts_with = "survey", value_parser = parse_pose)]
     poses: Vec<ScanPose>,
+    /// Choose the poses as a surveyor would (along corridors, into every room through an open
+    /// door, each scan near an earlier one) instead of giving them with --pose.
+    #[arg(long)]
+    survey: bool,
     /// Output folder (created if missing).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
     /// Range noise sigma in metres (overrides the configuration).
     #[arg(long, value_name = "M")]
     noise: Option<f64>,
+    /// The laser: `ideal` (exact geometry) or `real` (a SICK LMS 200's noise, dropouts,
+    /// mixed pixels, glass, walking people, a tilted mount, no-echo readings; see the README).
+    #[arg(long = "laser", value_name = "PRESET", value_parser = scanner::PRESETS)]
+    laser: Option<String>,
 }
 
 /// Parses `x,y,yaw_deg`.
@@ -48,13 +57,24 @@ fn parse_pose(s: &str) -> Result<ScanPose, String> {
 pub fn run(a: ScanArgs, cfg: &Config) -> anyhow::Result<()> {
     pipeline::check_output_dir(&a.out)?;
     let building = Building::load(&a.building)?;
+    let poses = if a.survey {
+        let poses = scanner::survey_poses(&building, &scanner::SurveyConfig::default())
+            .map_err(|e| anyhow::Error::from(e).context(a.building.display().to_string()))?;
+        println!("survey: {} poses", poses.len());
+        poses
+    } else {
+        a.poses
+    };
     let mut cfg = cfg.clone();
     if let Some(n) = a.noise {
         cfg.laser.range_noise_sigma_m = n;
     }
+    if let Some(preset) = &a.laser {
+        cfg.laser.realism = scanner::Realism::preset(preset).unwrap_or_default();
+    }
     std::fs::create_dir_all(&a.out).map_err(|e| cloud::CloudError::io(&a.out, e))?;
-    let bar = crate::progress::scan_bar(a.poses.len(), "scanning");
-    let summary = write_scan_folder(&building, &a.poses, &cfg, &a.out, &mut |done, _| {
+    let bar = crate::progress::scan_bar(poses.len(), "scanning");
+    let summary = write_scan_folder(&building, &poses, &cfg, &a.out, &mut |done, _| {
         bar.set_position(done as u64)
     })?;
     bar.finish_and_clear();

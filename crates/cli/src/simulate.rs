@@ -4,14 +4,18 @@
 //! is run again from its command log.
 
 use clap::Args;
-use pipeline::{simulate, write_simulation, Observer, ScenarioSource};
+use pipeline::{simulate, write_simulation, Config, Observer, ScenarioSource};
 use sim::WorldSpec;
 use std::path::PathBuf;
 
 /// Arguments of `semsim simulate`.
 #[derive(Args)]
 pub struct SimulateArgs {
-    /// The scenario (TOML); default: the built-in default scenario.
+    /// The scenario (TOML). Without one: with --map, a scenario is planned in the map's world
+    /// (a tour through every reachable door opening and up every staircase the robot, `[plan]
+    /// robot` of --config, can climb; it starts at the free spot nearest the middle of the
+    /// largest free region); otherwise the built-in default scenario (it names the default
+    /// building's door and stairs).
     #[arg(long, value_name = "FILE")]
     scenario: Option<PathBuf>,
     /// The building to simulate (TOML/JSON); default: the scenario's `building` ("default" = built-in).
@@ -32,13 +36,31 @@ pub struct SimulateArgs {
 }
 
 /// Runs `semsim simulate`; exit 0 on a passed verdict, 1 on a failed one.
-pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
+pub fn run(a: SimulateArgs, cfg: &Config) -> anyhow::Result<()> {
     pipeline::check_output_dir(&a.out)?;
-    let source = ScenarioSource::load(a.scenario.as_deref())?;
-    let world = match &a.map {
-        Some(m) => WorldSpec::from_semantic_map_file(m)?,
-        None => WorldSpec::from_building(&source.building(a.building.as_deref())?)?,
+    let (world, source) = match (&a.map, &a.scenario) {
+        // A map and no scenario: plan one in the map's world.
+        (Some(m), None) => {
+            let mut world = WorldSpec::from_semantic_map_file(m)?;
+            // Named by its file, so that "no free space for the robot in <map>" names it.
+            world.name = m.display().to_string();
+            let robot = sim::RobotModel::resolve(&cfg.plan.robot, std::path::Path::new("."))?;
+            let source = ScenarioSource::plan(&world, &robot, None, &cfg.plan)?;
+            (world, source)
+        }
+        (Some(m), Some(_)) => (
+            WorldSpec::from_semantic_map_file(m)?,
+            ScenarioSource::load(a.scenario.as_deref())?,
+        ),
+        (None, _) => {
+            let source = ScenarioSource::load(a.scenario.as_deref())?;
+            let world = WorldSpec::from_building(&source.building(a.building.as_deref())?)?;
+            (world, source)
+        }
     };
+    if let Some(p) = &source.planned {
+        println!("{}", p.summary());
+    }
     let log = match &a.replay {
         Some(path) => Some(console::CommandLog::load(path)?),
         None => None,

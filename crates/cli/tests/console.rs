@@ -214,3 +214,37 @@ fn console_refuses_bad_input_before_listening() {
     assert_eq!(r.code(), 2, "{}", r.stderr());
     assert!(!d.join("runs").is_dir());
 }
+
+#[test]
+fn console_refuses_a_bad_cloud_before_listening_and_picks_up_the_one_beside_a_run() {
+    let d = Dir::new();
+    d.write("building.toml", BUILDING);
+    d.write("scenario.toml", SCENARIO);
+    let live = [
+        "console",
+        "--building",
+        "building.toml",
+        "--scenario",
+        "scenario.toml",
+        "--port",
+        "0",
+        "--out",
+        "runs",
+    ];
+    let r = d.run(&[&live[..], &["--cloud", "missing.pcd"]].concat());
+    assert_eq!(r.code(), 2, "{}", r.stderr());
+    assert!(r.stderr().contains("missing.pcd"), "{}", r.stderr());
+    d.write("empty.xyz", "");
+    let r = d.run(&[&live[..], &["--cloud", "empty.xyz"]].concat());
+    assert_eq!(r.code(), 2, "{}", r.stderr());
+    assert!(r.stderr().contains("empty.xyz"), "{}", r.stderr());
+    assert!(!r.stdout().contains("console: "), "{}", r.stdout());
+    // A run folder in a `semsim run` output: the registered cloud beside it is picked up (here
+    // a broken one, so the console stops before listening and names it).
+    d.run(&["simulate", "--out", "out/simulation"]).ok();
+    std::fs::create_dir_all(d.join("out/registration")).expect("mkdir");
+    d.write("out/registration/map.pcd", "not a PCD file");
+    let r = d.run(&["console", "--run", "out/simulation", "--port", "0"]);
+    assert_eq!(r.code(), 2, "{}", r.stderr());
+    assert!(r.stderr().contains("map.pcd"), "{}", r.stderr());
+}

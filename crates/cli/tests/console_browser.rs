@@ -1,8 +1,11 @@
 //! `semsim console` in a real browser (issue 14): the real binary serves the page, and
 //! headless Chromium (driven by npm `playwright-core`, `tools/oracles/console_e2e.mjs`) loads
-//! it, renders the world with WebGL (software rendering), drives the robot with the keyboard
-//! and into a wall until the timeline shows a `wall_touched` event. The screenshots are also
-//! copied to `target/console_e2e/` for a person to look at.
+//! it, renders the world with WebGL (software rendering) with its minimap and a point-cloud
+//! layer (`--cloud`), drives the robot with the keyboard, the on-screen buttons and a (fake)
+//! gamepad, and into a wall until the timeline shows a `wall_touched` event. A second test
+//! replays a recorded run (`--run`, `tools/oracles/replay_e2e.mjs`): the slider moves the
+//! robot, a timeline event jumps to its moment, the doors swing as `doors.csv` recorded. The
+//! screenshots are also copied to `target/console_e2e/` for a person to look at.
 //!
 //! The oracles are `node`, `playwright-core` and `chromium`: without them the test says so and
 //! passes, unless `SEMSIM_REQUIRE_ORACLES=1` (`scripts/test.sh`), which makes it fail.
@@ -36,11 +39,35 @@ start = { x_m = 10.0, y_m = 0.0, yaw_deg = 0.0 }
 max_wall_contact_s = 0.5
 "#;
 
-const SCREENSHOTS: [&str; 3] = [
+const SCREENSHOTS: [&str; 5] = [
     "console_loaded.png",
+    "console_cloud.png",
     "console_after_drive.png",
     "console_wall_event.png",
+    "console_follow.png",
 ];
+
+const REPLAY_SCREENSHOTS: [&str; 3] = ["replay_start.png", "replay_middle.png", "replay_door.png"];
+
+/// A point cloud as ASCII PCD with a `class` field: a horizontal sheet of "wall" points 2 m up
+/// over the default building's corridor and rooms (x 0 to 20 m, y -4 to 4 m, every 5 cm:
+/// 64,000 points), under the ceiling, which the page hides: turning the layer on must change
+/// the picture seen from above.
+fn sheet_pcd() -> String {
+    let mut rows = String::new();
+    let mut n = 0;
+    for i in 0..400 {
+        for j in 0..160 {
+            let (x, y) = (i as f64 * 0.05, -4.0 + j as f64 * 0.05);
+            rows.push_str(&format!("{x:.3} {y:.3} 2.0 1 3\n"));
+            n += 1;
+        }
+    }
+    format!(
+        "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z label class\nSIZE 4 4 4 4 1\nTYPE F F F U U\n\
+         COUNT 1 1 1 1 1\nWIDTH {n}\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS {n}\nDATA ascii\n{rows}"
+    )
+}
 
 /// Runs `command` to its end, killing it (and failing) after `timeout`: (code, stdout, stderr).
 fn run_with_timeout(command: &mut Command, timeout: Duration) -> (i32, String, String) {
@@ -119,18 +146,12 @@ impl Drop for Server {
     }
 }
 
-/// Starts `semsim console` in `dir` on a free port: the server and its URL.
-fn start_console(dir: &Path) -> (Server, String) {
+/// Starts `semsim console ARGS --port 0` in `dir`: the server and its URL.
+fn start_console(dir: &Path, args: &[&str]) -> (Server, String) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_semsim"))
-        .args(["console", "--building", "default"])
-        .args([
-            "--scenario",
-            "scenario.toml",
-            "--port",
-            "0",
-            "--out",
-            "runs",
-        ])
+        .arg("console")
+        .args(args)
+        .args(["--port", "0"])
         .current_dir(dir)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
@@ -179,7 +200,20 @@ fn console_renders_and_drives_in_a_real_browser() {
     };
     let d = Dir::new();
     d.write("scenario.toml", SCENARIO);
-    let (mut server, url) = start_console(d.path());
+    d.write("sheet.pcd", sheet_pcd());
+    let (mut server, url) = start_console(
+        d.path(),
+        &[
+            "--building",
+            "default",
+            "--scenario",
+            "scenario.toml",
+            "--cloud",
+            "sheet.pcd",
+            "--out",
+            "runs",
+        ],
+    );
     let shots = d.join("screenshots");
     let t0 = Instant::now();
     let (code, out, err) = run_with_timeout(
@@ -187,6 +221,7 @@ fn console_renders_and_drives_in_a_real_browser() {
             .arg(oracles::script("console_e2e.mjs"))
             .arg(&url)
             .arg(&shots)
+            .arg("--expect-cloud")
             .env("CHROMIUM", &chromium),
         BROWSER_TIMEOUT,
     );
@@ -217,8 +252,38 @@ fn console_renders_and_drives_in_a_real_browser() {
     );
     let moved = number(&r, "moved_m");
     assert!(moved > 0.2, "W moved the robot only {moved} m: {r}");
-    // Forwards: east, along the corridor.
+    // Forwards: east, along the corridor; the forward button too; the gamepad's stick held
+    // back: west.
     assert!(number(&r, "moved_dx_m") > 0.2, "{r}");
+    assert!(number(&r, "button_dx_m") > 0.2, "{r}");
+    assert!(number(&r, "gamepad_dx_m") < -0.2, "{r}");
+    // The minimap shows the robot; the cloud layer (64,000 points, under the 200,000 bound:
+    // all sent) changes the picture when shown and when coloured by height.
+    assert!(
+        r["minimap"]["robot_pixels"]
+            .as_f64()
+            .is_some_and(|n| n >= 10.0),
+        "{r}"
+    );
+    assert!(
+        r["cloud"]["info"]
+            .as_str()
+            .is_some_and(|s| s.contains("64000 of 64000 points")),
+        "{r}"
+    );
+    assert!(
+        r["cloud"]["toggle_changed"]
+            .as_f64()
+            .is_some_and(|f| f > 0.02),
+        "{r}"
+    );
+    // Facing the corridor's north wall, the follow camera's wanted place (3 m back) is beyond
+    // the south wall (2.4 m of corridor): it is pulled in front of that wall.
+    let follow: f64 = r["follow_distance"]
+        .as_str()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("the follow camera was not pulled in: {r}"));
+    assert!(follow < 3.0, "{r}");
     assert!(
         r["wall_event"]
             .as_str()
@@ -235,4 +300,78 @@ fn console_renders_and_drives_in_a_real_browser() {
     assert!(d.join("runs/session-001/events.jsonl").is_file(), "{err}");
     let events = std::fs::read_to_string(d.join("runs/session-001/events.jsonl")).expect("events");
     assert!(events.contains("\"wall_touched\""), "{events}");
+}
+
+#[test]
+fn a_recorded_run_replays_in_a_real_browser_with_its_doors() {
+    let Some(node) = oracles::program("node") else {
+        return;
+    };
+    if oracles::node_package("playwright-core").is_none() {
+        return;
+    }
+    let Some(chromium) = oracles::program("chromium") else {
+        return;
+    };
+    let d = Dir::new();
+    d.run(&["simulate", "--out", "run"]).ok();
+    // The door that swung most, and when it was at its widest (doors.csv, as recorded).
+    let csv = std::fs::read_to_string(d.join("run/doors.csv")).expect("doors.csv");
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|c| c.parse().expect("a number")).collect())
+        .collect();
+    let swing = |k: usize| {
+        let a: Vec<f64> = rows.iter().map(|r| r[k]).collect();
+        a.iter().copied().fold(f64::MIN, f64::max) - a.iter().copied().fold(f64::MAX, f64::min)
+    };
+    let k = (1..header.len())
+        .max_by(|a, b| swing(*a).total_cmp(&swing(*b)))
+        .expect("a door");
+    assert!(swing(k) > 5.0, "no door swung in the default scenario");
+    let widest = rows
+        .iter()
+        .max_by(|a, b| a[k].total_cmp(&b[k]))
+        .expect("rows");
+    let door = format!(
+        "{}:{}@{}",
+        header[k].trim_start_matches("door_"),
+        widest[k],
+        widest[0]
+    );
+
+    let (mut server, url) = start_console(d.path(), &["--run", "run"]);
+    let shots = d.join("replay_shots");
+    let (code, out, err) = run_with_timeout(
+        Command::new(&node)
+            .arg(oracles::script("replay_e2e.mjs"))
+            .arg(&url)
+            .arg(&shots)
+            .arg(&door)
+            .env("CHROMIUM", &chromium),
+        BROWSER_TIMEOUT,
+    );
+    let keep: PathBuf = oracles::workspace_root().join("target/console_e2e");
+    let _ = std::fs::create_dir_all(&keep);
+    for name in REPLAY_SCREENSHOTS {
+        let _ = std::fs::copy(shots.join(name), keep.join(name));
+    }
+    assert_eq!(code, 0, "the replay browser test failed:\n{out}\n{err}");
+    let line = out
+        .lines()
+        .rev()
+        .find(|l| l.starts_with('{'))
+        .unwrap_or_else(|| panic!("no JSON line:\n{out}\n{err}"));
+    let r: serde_json::Value = serde_json::from_str(line).expect("JSON results");
+    assert_eq!(r["ok"], true, "{r}");
+    assert!(number(&r, "slider_moved_m") > 0.5, "{r}");
+    assert_eq!(r["clock_after_click_s"], r["event_time_s"], "{r}");
+    let shown = r["door"]["shown_deg"].as_f64().expect("a door angle");
+    assert!((shown - widest[k]).abs() < 0.5, "{r}");
+    for name in REPLAY_SCREENSHOTS {
+        assert!(shots.join(name).is_file(), "no screenshot {name}");
+    }
+    let (code, err) = server.stop();
+    assert_eq!(code, 0, "{err}");
 }

@@ -113,11 +113,63 @@ fn a_report_is_one_self_contained_html_file() {
         .is_some_and(|n| n.starts_with("reach_top_of_stairs"))));
     assert!(rules.iter().all(|r| r["result"] == "passed"));
     assert_eq!(data["title"], "corridor, door, stairs");
+    // The doors' angles (doors.csv), one sample per trajectory row.
+    assert!(!data["doors"]["doors"].as_array().expect("doors").is_empty());
+    assert_eq!(
+        data["doors"]["samples"].as_array().expect("samples").len(),
+        rows
+    );
+    // No --cloud: no cloud embedded.
+    assert_eq!(script_text(&html, "cloud-meta"), "null");
 
     // Written again over itself (atomic rename), and with an explicit world.
     d.run(&["report", "run", "--html", "r.html", "--building", "default"])
         .ok();
     assert_eq!(d.listing(""), ["r.html", "run"]);
+}
+
+#[test]
+fn a_run_folder_without_doors_csv_still_reports_and_replays_doors_at_their_initial_angle() {
+    let d = Dir::new();
+    let run = simulated_run(&d);
+    std::fs::remove_file(run.join("doors.csv")).expect("rm");
+    d.run(&["report", "run", "--html", "r.html"]).ok();
+    let html = std::fs::read_to_string(d.join("r.html")).expect("html");
+    let data: Value = serde_json::from_str(script_text(&html, "run")).expect("run json");
+    assert_eq!(data["doors"]["samples"], serde_json::json!([]));
+    // A malformed doors.csv is refused naming its line.
+    std::fs::write(run.join("doors.csv"), "time_s,door_3\n0,1,2\n").expect("w");
+    d.run(&["report", "run", "--html", "r.html"])
+        .bad_input(&["doors.csv:2"]);
+}
+
+#[test]
+fn a_report_embeds_a_small_downsampled_cloud() {
+    let d = Dir::new();
+    simulated_run(&d);
+    // 250,000 points on a 5 m x 5 m sheet (1 cm apart): downsampled to at most 30,000.
+    let mut text = String::new();
+    for i in 0..500 {
+        for j in 0..500 {
+            text.push_str(&format!("{} {} 1.0\n", i as f64 * 0.01, j as f64 * 0.01));
+        }
+    }
+    d.write("sheet.xyz", text);
+    d.run(&["report", "run", "--html", "plain.html"]).ok();
+    d.run(&["report", "run", "--html", "r.html", "--cloud", "sheet.xyz"])
+        .ok();
+    let html = std::fs::read_to_string(d.join("r.html")).expect("html");
+    let meta: Value = serde_json::from_str(script_text(&html, "cloud-meta")).expect("json");
+    let points = meta["info"]["points"].as_u64().expect("points");
+    assert!((1_000..=30_000).contains(&points), "{meta}");
+    assert_eq!(meta["info"]["points_in_file"], 250_000);
+    assert_eq!(meta["info"]["classes"], false);
+    // 13 bytes a point, base64.
+    let bin = script_text(&html, "cloud-bin").trim();
+    assert_eq!(bin.len(), (points as usize * 13).div_ceil(3) * 4);
+    // The cloud adds at most 30,000 x 13 bytes in base64 (520 kB) to the file.
+    let plain = std::fs::metadata(d.join("plain.html")).expect("plain").len() as usize;
+    assert!(html.len() - plain <= 530_000, "{} bytes more", html.len() - plain);
 }
 
 #[test]

@@ -17,8 +17,6 @@ pub(crate) struct App {
     pub world: WorldSummary,
     pub scenario: ScenarioSummary,
     pub limits: Limits,
-    pub glb: Vec<u8>,
-    pub world_json: String,
     pub stop: watch::Receiver<bool>,
 }
 

@@ -32,6 +32,21 @@ pub(crate) const ASSETS: &[Asset] = &[
         bytes: include_bytes!("../web/replay.js"),
     },
     Asset {
+        path: "/scene.js",
+        content_type: JS,
+        bytes: include_bytes!("../web/scene.js"),
+    },
+    Asset {
+        path: "/cloud.js",
+        content_type: JS,
+        bytes: include_bytes!("../web/cloud.js"),
+    },
+    Asset {
+        path: "/minimap.js",
+        content_type: JS,
+        bytes: include_bytes!("../web/minimap.js"),
+    },
+    Asset {
         path: "/style.css",
         content_type: "text/css; charset=utf-8",
         bytes: include_bytes!("../web/style.css"),
@@ -94,8 +109,14 @@ mod tests {
         }
         // The addons import each other relatively and three by its bare name.
         assert!(served("/vendor/three/three.core.js"));
+        // The page's own modules are imported as `semsim/NAME`, which the import map sends
+        // to `/NAME`.
+        assert!(page.contains(r#""semsim/": "/""#));
         let app = std::str::from_utf8(ASSETS[1].bytes).expect("utf-8");
-        assert!(app.contains("'/replay.js'") && served("/replay.js"));
+        for module in ["replay.js", "scene.js", "cloud.js", "minimap.js"] {
+            assert!(app.contains(&format!("'semsim/{module}'")), "{module}");
+            assert!(served(&format!("/{module}")), "{module}");
+        }
         assert!(served("/vendor/three/addons/utils/BufferGeometryUtils.js"));
         assert!(served("/vendor/three/addons/utils/SkeletonUtils.js"));
     }

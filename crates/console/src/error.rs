@@ -56,6 +56,14 @@ pub enum ConsoleError {
         /// What is wrong.
         msg: String,
     },
+    /// A cloud for the page's cloud layer that has nothing to show.
+    #[error("{}: {msg}", path.display())]
+    CloudLayer {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong.
+        msg: String,
+    },
     /// The simulation thread ended unexpectedly (a bug, not the input's fault).
     #[error("the simulation thread ended unexpectedly")]
     SimulationThread,
@@ -71,7 +79,8 @@ impl cloud::BadInput for ConsoleError {
             ConsoleError::Interop(e) => e.is_bad_input(),
             ConsoleError::Config(_)
             | ConsoleError::CommandLog { .. }
-            | ConsoleError::RunFolder { .. } => true,
+            | ConsoleError::RunFolder { .. }
+            | ConsoleError::CloudLayer { .. } => true,
             // An address this machine does not have is the user's; a port in use is not.
             ConsoleError::Bind { source, .. } => {
                 source.kind() == std::io::ErrorKind::AddrNotAvailable

@@ -6,7 +6,10 @@
 //!   ([`ConsoleConfig`]). It serves the page (`/`, its script and the vendored three.js, all
 //!   compiled into the binary), the world as glTF binary (`/world.glb`, interop's export with
 //!   the robot at its start), its entities (`/api/world.json`: id, class, name, label,
-//!   relations) and a WebSocket (`/ws`). Nothing a client sends names a file.
+//!   relations), the optional point-cloud layer ([`CloudLayer`]: `/api/cloud.json` and the
+//!   binary `/api/cloud.bin`, at most [`MAX_CLOUD_POINTS`] points) and a WebSocket (`/ws`),
+//!   with TCP_NODELAY on every connection. Nothing a client sends names a file. The page
+//!   draws a minimap and a follow camera that keeps in front of walls.
 //! * **Simulation**: a thread owns the session's [`sim::Simulation`] and steps it in real
 //!   time at the scenario's fixed step, times a speed factor (x0.25 to x10), paused or
 //!   stepped on request. The scenario's scripted commands drive the robot until the operator's
@@ -25,16 +28,17 @@
 //! * **Sessions are runs** ([`Session`]): when the run ends, on `save`, on `reset` (which then
 //!   starts the next session) and when the console stops (Ctrl-C), the session is written to
 //!   `OUT/session-NNN/` as `semsim simulate` writes a run (`events.jsonl`, `trajectory.csv`,
-//!   `report.md`, `scenario.toml`; each file atomically) plus `commands.jsonl`, the operator's
+//!   `doors.csv`, `report.md`, `scenario.toml`; each file atomically) plus `commands.jsonl`, the operator's
 //!   commands stamped with the step they were applied before ([`CommandLog`]). A session saved
 //!   before its end has an interrupted verdict. [`replay`] runs the log again and gives the
 //!   same events, bit for bit (`semsim simulate --replay`).
 //! * **Reports** ([`report_html`]): a run folder ([`RecordedRun`]) as one self-contained HTML
-//!   file (the world, the trajectory with its events marked, the verdict and rules, and a
-//!   time slider) that opens from disk with no server (`semsim report RUN_DIR --html F`).
+//!   file (the world, the trajectory with its events marked, the verdict and rules, a time
+//!   slider that moves the robot and swings the doors, optionally a small cloud) that opens from disk with no server (`semsim report RUN_DIR --html F`).
 //! * **Replays** ([`RunConsole`]): the console serving a recorded run instead of a live
 //!   session (`semsim console --run RUN_DIR`): the page gets it from `/api/run.json` and
 //!   replays it with a time slider, play/pause and speed; every WebSocket message is refused.
+//!   Both consoles run from a program without a runtime through [`serve_blocking`].
 //!
 //! ```
 //! use console::protocol::ClientMessage;
@@ -51,6 +55,8 @@
 
 mod app;
 mod assets;
+mod blocking;
+mod cloud_layer;
 mod config;
 mod error;
 mod http;
@@ -68,15 +74,18 @@ mod session;
 mod socket;
 mod world;
 
+pub use blocking::{serve_blocking, Serve};
+pub use cloud_layer::{CloudInfo, CloudLayer, MAX_CLOUD_POINTS};
 pub use config::ConsoleConfig;
 pub use error::{ConsoleError, Result};
 pub use log::{CommandLog, RunEnd};
 pub use replay::replay;
-pub use report::{base64, report_html, write_report};
+pub use report::{base64, report_html, write_report, REPORT_CLOUD_POINTS};
 pub use run::{
-    parse_events, parse_trajectory, RecordedRun, RuleRow, TrackPoint, TRAJECTORY_HEADER,
+    parse_doors, parse_events, parse_trajectory, RecordedRun, RuleRow, TrackPoint,
+    TRAJECTORY_HEADER,
 };
-pub use run_server::{serve_run_blocking, RunConsole, RunSetup, REPLAY_REFUSAL};
-pub use server::{serve_blocking, Console};
+pub use run_server::{RunConsole, RunSetup, REPLAY_REFUSAL};
+pub use server::Console;
 pub use session::{first_free_session, session_dir_name, Session, SessionSetup, RUN_FILES};
 pub use world::ConsoleWorld;

@@ -1,9 +1,13 @@
 //! The static HTML report of a run (`semsim report RUN_DIR --html OUT.html`): one
 //! self-contained file that needs no server and no network. It holds the world as GLB
-//! (base64), three.js and its loader (as `data:` module URLs in an import map, their relative
-//! imports rewritten to bare names the map resolves), the run's trajectory, events, verdict
-//! and rules (JSON), and the page's own script and style (`web/report.html`, `web/report.js`).
+//! (base64), three.js and its loader and the console's shared modules (`web/scene.js`,
+//! `web/minimap.js`, `web/cloud.js`; as `data:` module URLs in an import map, their relative
+//! imports rewritten to bare names the map resolves), the run's trajectory, door angles,
+//! events, verdict and rules (JSON), optionally a small downsampled point cloud (binary,
+//! base64: [`REPORT_CLOUD_POINTS`] points at most, about 0.5 MB), and the page's own script and
+//! style (`web/report.html`, `web/report.js`).
 
+use crate::cloud_layer::{class_names_json, CloudLayer};
 use crate::error::Result;
 use crate::run::RecordedRun;
 use crate::world::ConsoleWorld;
@@ -19,6 +23,13 @@ const GLTF_LOADER: &str = include_str!("../web/vendor/three/addons/loaders/GLTFL
 const BUFFER_UTILS: &str = include_str!("../web/vendor/three/addons/utils/BufferGeometryUtils.js");
 const SKELETON_UTILS: &str = include_str!("../web/vendor/three/addons/utils/SkeletonUtils.js");
 const ORBIT_CONTROLS: &str = include_str!("../web/vendor/three/addons/controls/OrbitControls.js");
+const SCENE: &str = include_str!("../web/scene.js");
+const MINIMAP: &str = include_str!("../web/minimap.js");
+const CLOUD: &str = include_str!("../web/cloud.js");
+
+/// The most cloud points a report embeds: 13 bytes each, base64 4/3 of that, so about 0.5 MB
+/// (the file stays small enough to mail).
+pub const REPORT_CLOUD_POINTS: usize = 30_000;
 
 /// A relative import (`'./three.core.js'`) and the bare name it becomes.
 type Rewrite = (&'static str, &'static str);
@@ -57,15 +68,20 @@ const MODULES: &[(&str, &str, &[Rewrite])] = &[
         ORBIT_CONTROLS,
         &[],
     ),
+    ("semsim/scene.js", SCENE, &[]),
+    ("semsim/minimap.js", MINIMAP, &[]),
+    ("semsim/cloud.js", CLOUD, &[]),
 ];
 
 /// The report of `run` in `world` (the robot drawn at `start`, then moved along the
-/// trajectory by the page), as one HTML document.
+/// trajectory by the page), with `cloud` as a layer if given (downsample it to
+/// [`REPORT_CLOUD_POINTS`]), as one HTML document.
 pub fn report_html(
     world: &ConsoleWorld,
     robot: &RobotModel,
     start: StartPose,
     run: &RecordedRun,
+    cloud: Option<&CloudLayer>,
 ) -> Result<String> {
     let glb = world.glb(robot, start)?;
     let imports: serde_json::Map<String, serde_json::Value> = MODULES
@@ -80,12 +96,25 @@ pub fn report_html(
         })
         .collect();
     let import_map = serde_json::json!({ "imports": imports }).to_string();
+    let (cloud_meta, cloud_bin) = match cloud {
+        Some(c) => (
+            format!(
+                r#"{{"info":{},"class_codes":{}}}"#,
+                c.info_json().replace('<', "\\u003c"),
+                class_names_json()
+            ),
+            base64(&c.bytes),
+        ),
+        None => ("null".to_string(), String::new()),
+    };
     // The run's JSON goes in last: nothing it holds is taken for a placeholder.
     Ok(TEMPLATE
         .replace("@@STYLE@@", STYLE)
         .replace("@@IMPORTMAP@@", &import_map)
         .replace("@@SCRIPT@@", SCRIPT)
         .replace("@@GLB@@", &base64(&glb))
+        .replace("@@CLOUD_META@@", &cloud_meta)
+        .replace("@@CLOUD@@", &cloud_bin)
         .replace("@@RUN@@", &run.to_json()))
 }
 
@@ -151,6 +180,8 @@ mod tests {
             "@@IMPORTMAP@@",
             "@@SCRIPT@@",
             "@@GLB@@",
+            "@@CLOUD_META@@",
+            "@@CLOUD@@",
             "@@RUN@@",
         ] {
             assert!(TEMPLATE.contains(p), "the template lacks {p}");

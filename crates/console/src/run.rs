@@ -1,11 +1,13 @@
 //! A recorded run folder, as `semsim simulate` and the console's sessions write it: the
-//! trajectory (`trajectory.csv`), the events (`events.jsonl`), the verdict and rules
-//! (`report.md`) and the scenario (`scenario.toml`). The static HTML report and the console's
+//! trajectory (`trajectory.csv`), the doors' angles (`doors.csv`; optional: a folder written
+//! before doors were recorded shows them at their initial angle), the events
+//! (`events.jsonl`), the verdict and rules (`report.md`) and the scenario (`scenario.toml`). The static HTML report and the console's
 //! replay mode (`--run`) show it. Errors name the file (and the line).
 
 use crate::error::{ConsoleError, Result};
 use serde::Serialize;
 use serde_json::{Map, Value};
+use sim::{DoorSample, DoorTrack};
 use std::path::{Path, PathBuf};
 
 /// The header `trajectory.csv` starts with.
@@ -58,6 +60,8 @@ pub struct RecordedRun {
     pub rules: Vec<RuleRow>,
     /// The trajectory, in time order.
     pub trajectory: Vec<TrackPoint>,
+    /// The doors' angles over time (empty for a folder without `doors.csv`).
+    pub doors: DoorTrack,
     /// Every event, as `events.jsonl` has it (each with a `time_s` and a `kind`).
     pub events: Vec<Map<String, Value>>,
     /// The scenario's TOML text.
@@ -85,6 +89,12 @@ impl RecordedRun {
         }
         let file = |name: &str| -> PathBuf { dir.join(name) };
         let trajectory = parse_trajectory(&file("trajectory.csv"))?;
+        let doors_path = file(sim::DOORS_CSV);
+        let doors = if doors_path.exists() {
+            parse_doors(&doors_path)?
+        } else {
+            DoorTrack::default()
+        };
         let events = parse_events(&file("events.jsonl"))?;
         let report_path = file("report.md");
         let report = read(&report_path)?;
@@ -110,6 +120,7 @@ impl RecordedRun {
             verdict,
             rules: parse_rules(&report),
             trajectory,
+            doors,
             events,
             scenario_toml,
         })
@@ -169,6 +180,50 @@ pub fn parse_trajectory(path: &Path) -> Result<Vec<TrackPoint>> {
         return Err(bad(path, None, "no trajectory rows"));
     }
     Ok(out)
+}
+
+/// Parses `doors.csv`: `time_s` and columns `door_ID`, then rows of as many finite numbers
+/// (degrees) in time order.
+pub fn parse_doors(path: &Path) -> Result<DoorTrack> {
+    let text = read(path)?;
+    let mut lines = text.lines().enumerate();
+    let header = lines.next().map(|(_, h)| h.trim()).unwrap_or("");
+    let mut columns = header.split(',');
+    if columns.next() != Some("time_s") {
+        return Err(bad(path, Some(1), "expected `time_s,door_ID,...`"));
+    }
+    let doors: Vec<u32> = columns
+        .map(|c| c.trim().strip_prefix("door_")?.parse::<u32>().ok())
+        .collect::<Option<_>>()
+        .ok_or_else(|| bad(path, Some(1), "expected `time_s,door_ID,...`"))?;
+    let mut samples: Vec<DoorSample> = Vec::new();
+    for (i, line) in lines {
+        if line.trim().is_empty() {
+            continue;
+        }
+        let n = i + 1;
+        let v: Vec<f64> = line
+            .split(',')
+            .map(|c| c.trim().parse::<f64>().ok().filter(|x| x.is_finite()))
+            .collect::<Option<_>>()
+            .filter(|v: &Vec<f64>| v.len() == doors.len() + 1)
+            .ok_or_else(|| {
+                bad(
+                    path,
+                    Some(n),
+                    format!("not {} numbers: `{line}`", doors.len() + 1),
+                )
+            })?;
+        let time_s = v[0];
+        if samples.last().is_some_and(|p| time_s < p.time_s) {
+            return Err(bad(path, Some(n), "time goes backwards"));
+        }
+        samples.push(DoorSample {
+            time_s,
+            angles_deg: v[1..].to_vec(),
+        });
+    }
+    Ok(DoorTrack { doors, samples })
 }
 
 /// Parses `events.jsonl`: one JSON object a line, each with a finite `time_s` and a `kind`.
@@ -248,6 +303,24 @@ mod tests {
     }
 
     #[test]
+    fn doors_csv_is_read_and_bad_rows_name_the_line() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let p = dir.path().join("doors.csv");
+        std::fs::write(&p, "time_s,door_4,door_9\n0,0,0\n0.1,12.5,-1\n").expect("write");
+        let t = parse_doors(&p).expect("doors");
+        assert_eq!(t.doors, vec![4, 9]);
+        assert_eq!(t.samples.len(), 2);
+        assert_eq!(t.samples[1].angles_deg, vec![12.5, -1.0]);
+        std::fs::write(&p, "time_s,door_4\n0,0\n0.1,1,2\n").expect("write");
+        let e = parse_doors(&p).expect_err("a row too long");
+        assert!(e.to_string().contains("doors.csv:3"), "{e}");
+        std::fs::write(&p, "time_s,leaf\n").expect("write");
+        assert!(parse_doors(&p).is_err());
+        std::fs::write(&p, "time_s\n0\n1\n").expect("write");
+        assert_eq!(parse_doors(&p).expect("no doors").samples.len(), 2);
+    }
+
+    #[test]
     fn json_for_a_page_never_closes_its_script() {
         let mut e = Map::new();
         e.insert("kind".into(), Value::String("</script><b>".into()));
@@ -257,6 +330,7 @@ mod tests {
             passed: true,
             rules: vec![],
             trajectory: vec![],
+            doors: DoorTrack::default(),
             events: vec![e],
             scenario_toml: String::new(),
         };

@@ -5,9 +5,11 @@
 //! the WebSocket gets an `error` reply (its upgrade is refused from another page's origin, as
 //! the live console's is). Nothing is written.
 
-use crate::assets::ASSETS;
+use crate::blocking::Serve;
+use crate::cloud_layer::CloudLayer;
 use crate::config::{own_origins, ConsoleConfig};
-use crate::error::{ConsoleError, Result};
+use crate::error::Result;
+use crate::http::WorldFiles;
 use crate::protocol::ServerMessage;
 use crate::run::RecordedRun;
 use crate::world::ConsoleWorld;
@@ -38,13 +40,13 @@ pub struct RunSetup {
     pub start: StartPose,
     /// The run.
     pub run: RecordedRun,
+    /// The registered point cloud, shown as a layer (`--cloud`).
+    pub cloud: Option<CloudLayer>,
 }
 
 struct RunApp {
     origins: Vec<String>,
     max_message_bytes: usize,
-    glb: Vec<u8>,
-    world_json: String,
     run_json: String,
 }
 
@@ -53,39 +55,33 @@ pub struct RunConsole {
     listener: tokio::net::TcpListener,
     addr: SocketAddr,
     app: Arc<RunApp>,
+    files: WorldFiles,
 }
 
 impl RunConsole {
     /// Builds the world's GLB (the robot at `start`) and opens the listening socket.
-    pub async fn bind(config: ConsoleConfig, setup: &RunSetup) -> Result<RunConsole> {
+    pub async fn bind(config: ConsoleConfig, setup: RunSetup) -> Result<RunConsole> {
         config.validate()?;
-        let glb = setup.world.glb(&setup.robot, setup.start)?;
-        let world_json = setup
-            .world
-            .entities_json(&setup.robot_name, &setup.robot.name);
-        let listener = tokio::net::TcpListener::bind(config.listen)
-            .await
-            .map_err(|source| ConsoleError::Bind {
-                addr: config.listen,
-                source,
-            })?;
-        let addr = listener.local_addr().map_err(|source| ConsoleError::Bind {
-            addr: config.listen,
-            source,
-        })?;
+        let files = WorldFiles {
+            glb: setup.world.glb(&setup.robot, setup.start)?,
+            world_json: setup
+                .world
+                .entities_json(&setup.robot_name, &setup.robot.name),
+            cloud: setup.cloud,
+        };
+        let (listener, addr) = crate::http::bind(config.listen).await?;
         let mut origins = own_origins(addr);
         origins.extend(config.allowed_origins.iter().cloned());
         let app = Arc::new(RunApp {
             origins,
             max_message_bytes: config.max_message_bytes,
-            glb,
-            world_json,
             run_json: setup.run.to_json(),
         });
         Ok(RunConsole {
             listener,
             addr,
             app,
+            files,
         })
     }
 
@@ -96,11 +92,7 @@ impl RunConsole {
 
     /// The page's URL, `http://HOST:PORT/`.
     pub fn url(&self) -> String {
-        let mut addr = self.addr;
-        if addr.ip().is_unspecified() {
-            addr.set_ip(std::net::Ipv4Addr::LOCALHOST.into());
-        }
-        format!("http://{addr}/")
+        crate::http::page_url(self.addr)
     }
 
     /// Serves until `shutdown` completes.
@@ -108,30 +100,13 @@ impl RunConsole {
     where
         F: Future<Output = ()> + Send + 'static,
     {
-        let mut r = Router::new()
-            .route("/world.glb", get(glb))
-            .route("/api/world.json", get(world_json))
+        let router = Router::new()
             .route("/api/run.json", get(run_json))
-            .route("/ws", get(websocket));
-        for asset in ASSETS {
-            r = r.route(
-                asset.path,
-                get(move || async move { crate::http::file(asset.content_type, asset.bytes) }),
-            );
-        }
-        axum::serve(self.listener, r.with_state(self.app))
-            .with_graceful_shutdown(shutdown)
-            .await
-            .map_err(ConsoleError::Serve)
+            .route("/ws", get(websocket))
+            .with_state(self.app)
+            .merge(crate::http::world_routes(self.files));
+        crate::http::serve(self.listener, router, shutdown).await
     }
-}
-
-async fn glb(State(app): State<Arc<RunApp>>) -> Response {
-    crate::http::file("model/gltf-binary", app.glb.clone())
-}
-
-async fn world_json(State(app): State<Arc<RunApp>>) -> Response {
-    crate::http::file("application/json", app.world_json.clone())
 }
 
 async fn run_json(State(app): State<Arc<RunApp>>) -> Response {
@@ -172,28 +147,22 @@ async fn refuse_everything(mut socket: WebSocket) {
     }
 }
 
-/// Serves a recorded run on a runtime of its own until `stop()` answers true (polled every
-/// 100 ms), calling `listening` once the socket is open.
-pub fn serve_run_blocking(
-    config: ConsoleConfig,
-    setup: &RunSetup,
-    listening: impl FnOnce(&RunConsole),
-    stop: impl Fn() -> bool + Send + 'static,
-) -> Result<()> {
-    let runtime = tokio::runtime::Builder::new_multi_thread()
-        .worker_threads(2)
-        .enable_all()
-        .build()
-        .map_err(ConsoleError::Serve)?;
-    runtime.block_on(async move {
-        let console = RunConsole::bind(config, setup).await?;
-        listening(&console);
-        console
-            .serve(async move {
-                while !stop() {
-                    tokio::time::sleep(std::time::Duration::from_millis(100)).await;
-                }
-            })
-            .await
-    })
+impl Serve for RunConsole {
+    type Setup = RunSetup;
+    type Output = ();
+
+    fn bind(config: ConsoleConfig, setup: RunSetup) -> impl Future<Output = Result<Self>> {
+        RunConsole::bind(config, setup)
+    }
+
+    fn url(&self) -> String {
+        RunConsole::url(self)
+    }
+
+    fn serve<F>(self, shutdown: F) -> impl Future<Output = Result<()>>
+    where
+        F: Future<Output = ()> + Send + 'static,
+    {
+        RunConsole::serve(self, shutdown)
+    }
 }

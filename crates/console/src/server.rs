@@ -3,9 +3,10 @@
 //! console's own page (no `Origin` header, or one of the console's origins).
 
 use crate::app::App;
-use crate::assets::ASSETS;
+use crate::blocking::Serve;
 use crate::config::{own_origins, ConsoleConfig};
 use crate::error::{ConsoleError, Result};
+use crate::http::WorldFiles;
 use crate::hub::Hub;
 use crate::protocol::{
     Limits, RobotSummary, ScenarioSummary, WorldSummary, MAX_ANGULAR_RAD_S, MAX_LINEAR_M_S,
@@ -15,13 +16,12 @@ use crate::runner::{self, Control, Runner};
 use crate::session::{first_free_session, SessionSetup};
 use axum::extract::ws::WebSocketUpgrade;
 use axum::extract::State;
-use axum::http::header::{CACHE_CONTROL, CONTENT_TYPE, X_CONTENT_TYPE_OPTIONS};
 use axum::http::HeaderMap;
 use axum::response::Response;
 use axum::routing::get;
 use axum::Router;
 use std::future::Future;
-use std::net::{IpAddr, Ipv4Addr, SocketAddr};
+use std::net::SocketAddr;
 use std::path::PathBuf;
 use std::sync::{mpsc, Arc, Mutex};
 use tokio::sync::{oneshot, watch};
@@ -31,6 +31,7 @@ pub struct Console {
     listener: tokio::net::TcpListener,
     addr: SocketAddr,
     app: Arc<App>,
+    files: WorldFiles,
     stop: watch::Sender<bool>,
     thread: std::thread::JoinHandle<()>,
 }
@@ -51,16 +52,7 @@ impl Console {
         let runner = Runner::new(setup.clone(), hub.clone(), number, config.state_rate_hz)?;
         let rules = runner.rules();
         hub.new_session(number, rules.clone());
-        let listener = tokio::net::TcpListener::bind(config.listen)
-            .await
-            .map_err(|source| ConsoleError::Bind {
-                addr: config.listen,
-                source,
-            })?;
-        let addr = listener.local_addr().map_err(|source| ConsoleError::Bind {
-            addr: config.listen,
-            source,
-        })?;
+        let (listener, addr) = crate::http::bind(config.listen).await?;
         let (controls, received) = mpsc::channel();
         let thread = runner::spawn(runner, received)?;
         let spec = &setup.world.spec;
@@ -107,14 +99,18 @@ impl Console {
             world,
             scenario,
             limits,
-            glb,
-            world_json,
             stop: stop_rx,
         });
+        let files = WorldFiles {
+            glb,
+            world_json,
+            cloud: setup.cloud.clone(),
+        };
         Ok(Console {
             listener,
             addr,
             app,
+            files,
             stop,
             thread,
         })
@@ -128,11 +124,7 @@ impl Console {
     /// The page's URL, `http://HOST:PORT/` (an unspecified listen address shows as
     /// 127.0.0.1).
     pub fn url(&self) -> String {
-        let mut addr = self.addr;
-        if addr.ip().is_unspecified() {
-            addr.set_ip(IpAddr::V4(Ipv4Addr::LOCALHOST));
-        }
-        format!("http://{addr}/")
+        crate::http::page_url(self.addr)
     }
 
     /// Serves until `shutdown` completes; then the session is saved (if it stepped since its
@@ -144,6 +136,7 @@ impl Console {
         let Console {
             listener,
             app,
+            files,
             stop,
             thread,
             ..
@@ -165,11 +158,9 @@ impl Console {
                 let _ = stop.send(true);
             }
         };
-        let served = axum::serve(listener, router(app))
-            .with_graceful_shutdown(graceful)
-            .await;
+        let served = crate::http::serve(listener, router(app, files), graceful).await;
         let _ = thread.join();
-        served.map_err(ConsoleError::Serve)?;
+        served?;
         let result = saved
             .lock()
             .unwrap_or_else(|e| e.into_inner())
@@ -179,36 +170,12 @@ impl Console {
     }
 }
 
-fn router(app: Arc<App>) -> Router {
-    let mut r = Router::new()
-        .route("/world.glb", get(glb))
-        .route("/api/world.json", get(world_json))
+fn router(app: Arc<App>, files: WorldFiles) -> Router {
+    Router::new()
         .route("/api/run.json", get(no_run))
-        .route("/ws", get(websocket));
-    for asset in ASSETS {
-        r = r.route(
-            asset.path,
-            get(move || async move {
-                (
-                    [
-                        (CONTENT_TYPE, asset.content_type),
-                        (CACHE_CONTROL, "no-cache"),
-                        (X_CONTENT_TYPE_OPTIONS, "nosniff"),
-                    ],
-                    asset.bytes,
-                )
-            }),
-        );
-    }
-    r.with_state(app)
-}
-
-async fn glb(State(app): State<Arc<App>>) -> Response {
-    crate::http::file("model/gltf-binary", app.glb.clone())
-}
-
-async fn world_json(State(app): State<Arc<App>>) -> Response {
-    crate::http::file("application/json", app.world_json.clone())
+        .route("/ws", get(websocket))
+        .with_state(app)
+        .merge(crate::http::world_routes(files))
 }
 
 /// A live console has no recorded run: `null` (a replaying one serves the run here).
@@ -231,29 +198,22 @@ async fn websocket(
         .on_upgrade(move |socket| crate::socket::serve(socket, app))
 }
 
-/// Runs a console on a runtime of its own until `stop()` answers true (polled every 100
-/// ms; e.g. a Ctrl-C flag), calling `listening` once the socket is open; returns the run
-/// folders saved. For programs without a tokio runtime (the `semsim` binary).
-pub fn serve_blocking(
-    config: ConsoleConfig,
-    setup: SessionSetup,
-    listening: impl FnOnce(&Console),
-    stop: impl Fn() -> bool + Send + 'static,
-) -> Result<Vec<PathBuf>> {
-    let runtime = tokio::runtime::Builder::new_multi_thread()
-        .worker_threads(2)
-        .enable_all()
-        .build()
-        .map_err(ConsoleError::Serve)?;
-    runtime.block_on(async move {
-        let console = Console::bind(config, setup).await?;
-        listening(&console);
-        console
-            .serve(async move {
-                while !stop() {
-                    tokio::time::sleep(std::time::Duration::from_millis(100)).await;
-                }
-            })
-            .await
-    })
+impl Serve for Console {
+    type Setup = SessionSetup;
+    type Output = Vec<PathBuf>;
+
+    fn bind(config: ConsoleConfig, setup: SessionSetup) -> impl Future<Output = Result<Self>> {
+        Console::bind(config, setup)
+    }
+
+    fn url(&self) -> String {
+        Console::url(self)
+    }
+
+    fn serve<F>(self, shutdown: F) -> impl Future<Output = Result<Vec<PathBuf>>>
+    where
+        F: Future<Output = ()> + Send + 'static,
+    {
+        Console::serve(self, shutdown)
+    }
 }

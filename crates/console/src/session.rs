@@ -2,6 +2,7 @@
 //! and its run folder (what `semsim simulate` writes, plus `commands.jsonl`). Sessions know
 //! nothing of time or sockets: the runner steps them in real time.
 
+use crate::cloud_layer::CloudLayer;
 use crate::error::Result;
 use crate::log::{CommandLog, RunEnd};
 use crate::protocol::{ClientMessage, DriveCommand};
@@ -24,12 +25,15 @@ pub struct SessionSetup {
     pub robot: RobotModel,
     /// The folder the sessions are saved in, each as `session-NNN/`.
     pub out_dir: PathBuf,
+    /// The registered point cloud, shown as a layer (`--cloud`).
+    pub cloud: Option<CloudLayer>,
 }
 
-/// The file names of a run folder (the first four as `semsim simulate` writes them).
-pub const RUN_FILES: [&str; 5] = [
+/// The file names of a run folder (the first five as `semsim simulate` writes them).
+pub const RUN_FILES: [&str; 6] = [
     "events.jsonl",
     "trajectory.csv",
+    "doors.csv",
     "report.md",
     "scenario.toml",
     "commands.jsonl",

@@ -67,6 +67,7 @@ fn default_setup(out: &Path) -> SessionSetup {
         scenario_toml: Scenario::default_scenario_toml().to_string(),
         scenario,
         out_dir: out.to_path_buf(),
+        cloud: None,
     }
 }
 

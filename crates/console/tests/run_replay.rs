@@ -31,6 +31,20 @@ fn write_run(dir: &Path) {
     std::fs::write(dir.join("scenario.toml"), scenario_toml(600.0)).expect("scenario");
 }
 
+/// Two wall points, 4 m apart (more than any voxel edge: both are kept).
+fn two_point_cloud() -> console::CloudLayer {
+    let mut c = cloud::PointCloud::from_points(vec![
+        glam::Vec3::new(0.0, 0.0, 1.0),
+        glam::Vec3::new(4.0, 0.0, 1.0),
+    ]);
+    let wall = cloud::Label {
+        entity: 1,
+        class: cloud::EntityClass::Wall,
+    };
+    c.labels = Some(vec![wall; 2]);
+    console::CloudLayer::from_cloud(&c, "two.pcd", 100).expect("a layer")
+}
+
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_recorded_run_is_served_and_driving_is_refused() {
     let tmp = tempfile::tempdir().expect("temp dir");
@@ -43,8 +57,9 @@ async fn a_recorded_run_is_served_and_driving_is_refused() {
         start: live.scenario.start,
         robot: live.robot,
         run,
+        cloud: Some(two_point_cloud()),
     };
-    let console = RunConsole::bind(any_port(), &setup).await.expect("binds");
+    let console = RunConsole::bind(any_port(), setup).await.expect("binds");
     let addr = console.local_addr();
     assert!(addr.ip().is_loopback());
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
@@ -75,6 +90,22 @@ async fn a_recorded_run_is_served_and_driving_is_refused() {
     for id in ["id=\"replay-slider\"", "id=\"play\"", "id=\"replay-speed\""] {
         assert!(page.contains(id), "the page lacks {id}");
     }
+    // The cloud layer: what it is, then the points (3 x f32 each, then the class codes).
+    let (status, body) = get(addr, "/api/cloud.json").await;
+    assert_eq!(status, 200);
+    let meta: Value = serde_json::from_slice(&body).expect("JSON");
+    assert_eq!(meta["info"]["points"], 2);
+    assert_eq!(meta["info"]["classes"], true);
+    assert!(meta["class_codes"]
+        .as_array()
+        .expect("codes")
+        .contains(&serde_json::json!([3, "wall"])));
+    let (status, bin) = get(addr, "/api/cloud.bin").await;
+    assert_eq!(status, 200);
+    assert_eq!(bin.len(), 2 * 13);
+    assert_eq!(f32::from_le_bytes(bin[12..16].try_into().expect("4")), 4.0);
+    assert_eq!(&bin[24..], &[3, 3]);
+
     let (status, js) = get(addr, "/replay.js").await;
     assert_eq!(status, 200);
     assert!(String::from_utf8_lossy(&js).contains("export function startReplay"));

@@ -55,6 +55,10 @@ async fn serves_the_page_the_world_and_nothing_else() {
     assert!(entities.iter().all(|e| e["relations"].is_array()));
     // The GLB has the robot with that id too.
     assert!(String::from_utf8_lossy(&glb).contains(&format!("\"robot {robot}\"")));
+    // No --cloud: the layer's description is null and there are no points.
+    let (status, cloud) = get(console.addr, "/api/cloud.json").await;
+    assert_eq!((status, cloud.as_slice()), (200, b"null".as_slice()));
+    assert_eq!(get(console.addr, "/api/cloud.bin").await.0, 404);
     for path in [
         "/nope",
         "/../Cargo.toml",

@@ -1,76 +1,56 @@
-// semsim console: the world from /world.glb, the live session from the WebSocket /ws
-// (protocol: crates/console/src/protocol.rs). glTF is +Y up: semsim (x, y, z) = (x, z, -y).
+// semsim console: the world from /world.glb (scene.js), the optional point-cloud layer
+// (/api/cloud.json + /api/cloud.bin, cloud.js), the minimap (minimap.js), and the live session
+// from the WebSocket /ws (protocol: crates/console/src/protocol.rs) or, with --run, the
+// recorded run (replay.js). glTF is +Y up: semsim (x, y, z) = (x, z, -y).
 import * as THREE from 'three';
-import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { startReplay } from '/replay.js';
+import {
+  DEG, createView, loadWorldUrl, showClass, setRobotPose, setDoorAngles, placeFollowCamera,
+  placeTopCamera, visibleInScene,
+} from 'semsim/scene.js';
+import { createCloudLayer } from 'semsim/cloud.js';
+import { createMinimap } from 'semsim/minimap.js';
+import { startReplay } from 'semsim/replay.js';
 
 const $ = (id) => document.getElementById(id);
-const DEG = Math.PI / 180;
 const QUIET_EVENTS = new Set(['movement', 'collision_continued']);
 
 // ---- scene -------------------------------------------------------------------------------
 const view = $('view');
-const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
-renderer.setPixelRatio(window.devicePixelRatio);
-view.appendChild(renderer.domElement);
-const scene = new THREE.Scene();
-scene.background = new THREE.Color(0x1d2127);
-scene.add(new THREE.HemisphereLight(0xffffff, 0x445566, 2.2));
-const sun = new THREE.DirectionalLight(0xffffff, 1.6);
-sun.position.set(8, 20, 6);
-scene.add(sun);
-const camera = new THREE.PerspectiveCamera(55, 1, 0.05, 1000);
-const controls = new OrbitControls(camera, renderer.domElement);
-
-function resize() {
-  const w = view.clientWidth, h = view.clientHeight;
-  renderer.setSize(w, h);
-  camera.aspect = w / Math.max(h, 1);
-  camera.updateProjectionMatrix();
-}
-window.addEventListener('resize', resize);
-resize();
+const v = createView(view);
+const { renderer, scene, camera, controls } = v;
 
 // ---- the world ---------------------------------------------------------------------------
-const world = {
-  root: null, robot: null, wheels: [], arm: [], doors: new Map(), byClass: new Map(),
-  entities: new Map(), center: new THREE.Vector3(), size: 10,
-};
+let world = null;
+const entities = new Map();
+let minimap = null;
 
 async function loadWorld() {
   const info = await (await fetch('/api/world.json')).json();
-  for (const e of info.entities) world.entities.set(e.id, e);
-  const gltf = await new GLTFLoader().loadAsync('/world.glb');
-  world.root = gltf.scene;
-  scene.add(gltf.scene);
-  gltf.scene.traverse((o) => {
-    const x = o.userData || {};
-    if (x.wheel !== undefined) world.wheels[x.wheel] = o;
-    else if (x.arm_link !== undefined) {
-      world.arm[x.arm_link] = { node: o, axis: new THREE.Vector3(...x.joint_axis) };
-    } else if (x.class === 'robot' && x.model !== undefined) world.robot = o;
-    else if (x.hinge) world.doors.set(x.entity, { node: o, sign: x.hinge.opening_sign });
-    if (x.class && x.entity !== undefined && x.wheel === undefined && x.arm_link === undefined) {
-      if (!world.byClass.has(x.class)) world.byClass.set(x.class, []);
-      world.byClass.get(x.class).push(o);
-    }
-  });
-  const box = new THREE.Box3().setFromObject(gltf.scene);
-  box.getCenter(world.center);
-  world.size = Math.max(box.max.x - box.min.x, box.max.z - box.min.z, 4);
-  controls.target.copy(world.center);
-  camera.position.set(world.center.x, world.center.y + world.size * 0.8, world.center.z + world.size * 0.45);
-  controls.update();
-  showClass('ceiling', $('ceiling').checked);
-  showClass('free_space_for_door', $('freespace').checked);
+  for (const e of info.entities) entities.set(e.id, e);
+  world = await loadWorldUrl(v, '/world.glb');
+  showClass(world, 'ceiling', $('ceiling').checked);
+  showClass(world, 'free_space_for_door', $('freespace').checked);
+  minimap = createMinimap(view, world);
+  await loadCloud();
 }
+$('ceiling').addEventListener('change', (e) => world && showClass(world, 'ceiling', e.target.checked));
+$('freespace').addEventListener('change', (e) => world && showClass(world, 'free_space_for_door', e.target.checked));
 
-function showClass(cls, visible) {
-  for (const o of world.byClass.get(cls) || []) o.visible = visible;
+// ---- the point-cloud layer (semsim console --cloud) --------------------------------------
+let cloud = null;
+async function loadCloud() {
+  const meta = await (await fetch('/api/cloud.json')).json();
+  if (!meta) return; // no --cloud: the controls stay hidden
+  const body = await (await fetch('/api/cloud.bin')).arrayBuffer();
+  cloud = createCloudLayer(scene, world, meta, body);
+  $('cloud-section').hidden = false;
+  $('cloud-info').textContent = `${meta.info.source}: ${meta.info.points} of ${meta.info.points_in_file} points (voxel ${meta.info.voxel_m.toFixed(3)} m)`;
+  if (!meta.info.classes) $('cloud-mode').querySelector('option[value=class]').disabled = true;
+  $('cloud-mode').value = meta.info.classes ? 'class' : 'height';
+  cloud.setVisible($('cloud').checked);
 }
-$('ceiling').addEventListener('change', (e) => showClass('ceiling', e.target.checked));
-$('freespace').addEventListener('change', (e) => showClass('free_space_for_door', e.target.checked));
+$('cloud').addEventListener('change', (e) => cloud && cloud.setVisible(e.target.checked));
+$('cloud-mode').addEventListener('change', (e) => cloud && cloud.setMode(e.target.value));
 
 // ---- labels on hover ---------------------------------------------------------------------
 const raycaster = new THREE.Raycaster();
@@ -83,12 +63,12 @@ function entityOf(o) {
 }
 
 function describe(id) {
-  const e = world.entities.get(id);
+  const e = entities.get(id);
   if (!e) return `entity ${id}`;
   const lines = [`${e.class} ${e.id}${e.name ? '  (' + e.name + ')' : ''}`];
   if (e.label) lines.push(e.label);
   for (const r of e.relations.slice(0, 8)) {
-    const other = world.entities.get(r.other);
+    const other = entities.get(r.other);
     const name = other ? `${other.class} ${other.id}` : r.other;
     lines.push(r.role === 'subject' ? `${r.type} ${name}` : `${name} ${r.type} this`);
   }
@@ -97,7 +77,7 @@ function describe(id) {
 }
 
 renderer.domElement.addEventListener('pointermove', (ev) => {
-  if (!world.root) return;
+  if (!world) return;
   const rect = renderer.domElement.getBoundingClientRect();
   pointer.set(((ev.clientX - rect.left) / rect.width) * 2 - 1, -((ev.clientY - rect.top) / rect.height) * 2 + 1);
   raycaster.setFromCamera(pointer, camera);
@@ -111,11 +91,6 @@ renderer.domElement.addEventListener('pointermove', (ev) => {
   }
 });
 
-function visibleInScene(o) {
-  for (; o; o = o.parent) if (!o.visible) return false;
-  return true;
-}
-
 // ---- cameras -----------------------------------------------------------------------------
 let cameraMode = 'orbit';
 for (const r of document.querySelectorAll('input[name=camera]')) {
@@ -128,18 +103,13 @@ for (const r of document.querySelectorAll('input[name=camera]')) {
 }
 
 function placeCamera() {
-  if (cameraMode === 'orbit' || !world.robot) return;
-  const p = world.robot.position;
+  if (cameraMode === 'orbit' || !world || !world.robot) return;
   if (cameraMode === 'follow') {
-    const yaw = robotYaw;
-    const heading = new THREE.Vector3(Math.cos(yaw), 0, -Math.sin(yaw));
-    camera.position.copy(p).addScaledVector(heading, -3).add(new THREE.Vector3(0, 1.8, 0));
-    camera.lookAt(p.clone().addScaledVector(heading, 1.5));
-  } else {
-    camera.up.set(0, 0, -1); // semsim +y up on the screen
-    camera.position.set(p.x, p.y + Math.max(world.size * 0.6, 8), p.z);
-    camera.lookAt(p);
-  }
+    // How far the camera was pulled in by a wall behind the robot (m; none: not pulled in),
+    // as data for tests.
+    const pulled = placeFollowCamera(v, world, robotYaw);
+    view.dataset.followDistance = pulled === null ? 'free' : pulled.toFixed(2);
+  } else placeTopCamera(v, world);
 }
 
 // ---- live state --------------------------------------------------------------------------
@@ -150,11 +120,9 @@ let role = 'watcher';
 
 function applyState(s) {
   const r = s.robot;
-  if (r && world.robot) {
+  if (r && world && world.robot) {
     const p = r.pose;
-    world.robot.position.set(p.x_m, p.z_m, -p.y_m);
-    const [qx, qy, qz, qw] = r.rotation_xyzw;
-    world.robot.quaternion.set(qx, qz, -qy, qw);
+    setRobotPose(world, p, r.rotation_xyzw);
     robotYaw = p.yaw_deg * DEG;
     // The pose as data, for tests and tools (tools/oracles/console_e2e.mjs).
     Object.assign($('clock').dataset, { x: p.x_m, y: p.y_m, yaw: p.yaw_deg });
@@ -163,13 +131,10 @@ function applyState(s) {
       if (deg !== null && world.arm[i]) world.arm[i].node.quaternion.setFromAxisAngle(world.arm[i].axis, deg * DEG);
     });
   }
-  for (const d of s.doors) {
-    const door = world.doors.get(d.entity);
-    if (door) door.node.rotation.set(0, door.sign * d.angle_deg * DEG, 0);
-  }
+  if (world) setDoorAngles(world, s.doors.map((d) => [d.entity, d.angle_deg]));
   const limit = hello ? hello.scenario.time_limit_s : 0;
   const who = s.operator ? `operator (${s.operator.linear_m_s.toFixed(2)} m/s, ${s.operator.angular_rad_s.toFixed(2)} rad/s)` : 'scenario';
-  const touching = s.contacts.map((id) => (world.entities.get(id) || { class: 'entity' }).class + ' ' + id);
+  const touching = s.contacts.map((id) => (entities.get(id) || { class: 'entity' }).class + ' ' + id);
   $('clock').textContent = `t = ${s.time_s.toFixed(2)} / ${limit} s, x${s.speed}` +
     `${s.finished ? ', ended' : s.paused ? ', paused' : ''}\ndriven by ${who}` +
     (touching.length ? `\ntouching ${touching.join(', ')}` : '');
@@ -342,6 +307,7 @@ function pollGamepad(now) {
 renderer.setAnimationLoop((now) => {
   pollGamepad(now);
   placeCamera();
+  if (minimap) minimap.draw(robotYaw);
   renderer.render(scene, camera);
 });
 
@@ -351,7 +317,7 @@ loadWorld()
   .then(() => fetch('/api/run.json'))
   .then((r) => r.json())
   .then((run) => {
-    if (run) startReplay(run, scene, world.robot, (p) => { robotYaw = p.yaw_deg * DEG; });
+    if (run) startReplay(run, scene, world, (p) => { robotYaw = p.yaw_deg * DEG; });
     else connect();
   })
   .catch((e) => setStatus(`cannot load the world: ${e}`, true));

@@ -1,33 +1,18 @@
 // semsim console, replay mode (`semsim console --run RUN_DIR`): the recorded run from
 // /api/run.json replayed on the world the page loaded: a time slider, play/pause and speed;
 // the robot follows the slider and a click on a timeline event jumps to its moment. Nothing is
-// driven: the page opens no WebSocket. glTF is +Y up: semsim (x, y, z) = (x, z, -y).
+// driven: the page opens no WebSocket. The doors swing as `doors.csv` recorded them.
 import * as THREE from 'three';
+import { poseAt, doorAnglesAt, setRobotPose, setDoorAngles } from 'semsim/scene.js';
 
 const $ = (id) => document.getElementById(id);
-const DEG = Math.PI / 180;
-
-/** The pose at time `t`, interpolated between the trajectory's rows (position only). */
-export function poseAt(track, t) {
-  if (t <= track[0].time_s) return track[0];
-  let lo = 0, hi = track.length - 1;
-  if (t >= track[hi].time_s) return track[hi];
-  while (hi - lo > 1) {
-    const mid = (lo + hi) >> 1;
-    if (track[mid].time_s <= t) lo = mid; else hi = mid;
-  }
-  const a = track[lo], b = track[hi];
-  const f = (t - a.time_s) / Math.max(b.time_s - a.time_s, 1e-9);
-  const mix = (k) => a[k] + (b[k] - a[k]) * f;
-  return { time_s: t, x_m: mix('x_m'), y_m: mix('y_m'), z_m: mix('z_m'),
-    roll_deg: a.roll_deg, pitch_deg: a.pitch_deg, yaw_deg: a.yaw_deg };
-}
 
 /**
- * Replays `run` ({title, verdict, passed, rules, trajectory, events}) in `scene`, moving
- * `robot` (the GLB's robot node, or null); `onPose(p)` hears every pose shown.
+ * Replays `run` ({title, verdict, passed, rules, trajectory, doors, events}) in `scene`,
+ * moving the robot and swinging the doors of `world` (scene.js) as recorded (a run without
+ * door angles leaves the doors at their initial angle); `onPose(p)` hears every pose shown.
  */
-export function startReplay(run, scene, robot, onPose) {
+export function startReplay(run, scene, world, onPose) {
   const track = run.trajectory;
   const t0 = track[0].time_s, t1 = track[track.length - 1].time_s;
   for (const id of ['sim-section', 'drive-section']) $(id).hidden = true;
@@ -64,14 +49,14 @@ export function startReplay(run, scene, robot, onPose) {
     t = Math.min(Math.max(time, t0), t1);
     slider.value = String(t);
     const p = poseAt(track, t);
-    if (robot) {
-      robot.position.set(p.x_m, p.z_m, -p.y_m);
-      const q = new THREE.Quaternion().setFromEuler(
-        new THREE.Euler(p.roll_deg * DEG, p.pitch_deg * DEG, p.yaw_deg * DEG, 'ZYX'));
-      robot.quaternion.set(q.x, q.z, -q.y, q.w);
-    }
+    setRobotPose(world, p);
+    const doors = doorAnglesAt(run.doors, t);
+    setDoorAngles(world, doors);
     $('clock').textContent = `t = ${t.toFixed(2)} / ${t1.toFixed(2)} s (replay)`;
-    Object.assign($('clock').dataset, { x: p.x_m, y: p.y_m, yaw: p.yaw_deg, time: t });
+    Object.assign($('clock').dataset, {
+      x: p.x_m, y: p.y_m, yaw: p.yaw_deg, time: t,
+      doors: doors.map(([id, a]) => `${id}:${a.toFixed(2)}`).join(' '),
+    });
     onPose(p);
   }
 

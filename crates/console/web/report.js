@@ -1,55 +1,28 @@
-// semsim run report: the world (GLB embedded as base64), the run's trajectory as a line, its
-// events marked on it and listed, the verdict and rules, and a time slider that moves the
-// robot. Everything is in this one file; nothing is fetched. glTF is +Y up: semsim (x, y, z)
-// is (x, z, -y).
+// semsim run report: the world (GLB embedded as base64; scene.js), the run's trajectory as a
+// line, its events marked on it and listed, the verdict and rules, a time slider that moves
+// the robot and swings the doors as recorded, the minimap, and optionally a small downsampled
+// point cloud. Everything is in this one file; nothing is fetched. glTF is +Y up: semsim
+// (x, y, z) is (x, z, -y).
 import * as THREE from 'three';
-import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import {
+  DEG, createView, loadWorldBytes, poseAt as poseOf, doorAnglesAt, setRobotPose, setDoorAngles,
+  showClass,
+} from 'semsim/scene.js';
+import { createMinimap } from 'semsim/minimap.js';
+import { createCloudLayer } from 'semsim/cloud.js';
 
 const $ = (id) => document.getElementById(id);
-const DEG = Math.PI / 180;
 const run = JSON.parse($('run').textContent);
 const track = run.trajectory;
 const toScene = (p, lift = 0) => new THREE.Vector3(p.x_m, p.z_m + lift, -p.y_m);
+const poseAt = (t) => poseOf(track, t);
 
 // ---- scene -------------------------------------------------------------------------------
 const view = $('view');
-const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
-renderer.setPixelRatio(window.devicePixelRatio);
-view.appendChild(renderer.domElement);
-const scene = new THREE.Scene();
-scene.background = new THREE.Color(0x1d2127);
-scene.add(new THREE.HemisphereLight(0xffffff, 0x445566, 2.2));
-const sun = new THREE.DirectionalLight(0xffffff, 1.6);
-sun.position.set(8, 20, 6);
-scene.add(sun);
-const camera = new THREE.PerspectiveCamera(55, 1, 0.05, 1000);
-const controls = new OrbitControls(camera, renderer.domElement);
-function resize() {
-  const w = view.clientWidth, h = view.clientHeight;
-  renderer.setSize(w, h);
-  camera.aspect = w / Math.max(h, 1);
-  camera.updateProjectionMatrix();
-}
-window.addEventListener('resize', resize);
-resize();
+const v = createView(view);
+const { renderer, scene, camera, controls } = v;
 
 // ---- the run: trajectory, event marks, robot marker --------------------------------------
-function poseAt(t) {
-  if (t <= track[0].time_s) return track[0];
-  let lo = 0, hi = track.length - 1;
-  if (t >= track[hi].time_s) return track[hi];
-  while (hi - lo > 1) {
-    const mid = (lo + hi) >> 1;
-    if (track[mid].time_s <= t) lo = mid; else hi = mid;
-  }
-  const a = track[lo], b = track[hi];
-  const f = (t - a.time_s) / Math.max(b.time_s - a.time_s, 1e-9);
-  const mix = (k) => a[k] + (b[k] - a[k]) * f;
-  return { time_s: t, x_m: mix('x_m'), y_m: mix('y_m'), z_m: mix('z_m'),
-    roll_deg: a.roll_deg, pitch_deg: a.pitch_deg, yaw_deg: a.yaw_deg };
-}
-
 const line = new THREE.Line(
   new THREE.BufferGeometry().setFromPoints(track.map((p) => toScene(p, 0.05))),
   new THREE.LineBasicMaterial({ color: 0x4fc3f7 }));
@@ -71,16 +44,16 @@ const marker = new THREE.Mesh(new THREE.ConeGeometry(0.18, 0.45, 16),
   new THREE.MeshBasicMaterial({ color: 0x00e676 }));
 marker.rotation.x = Math.PI;
 scene.add(marker);
-let robot = null;
+let world = null;
+let minimap = null;
 
 function showTime(t) {
   const p = poseAt(t);
   marker.position.copy(toScene(p, 1.0));
-  if (robot) {
-    robot.position.copy(toScene(p));
-    const q = new THREE.Quaternion().setFromEuler(
-      new THREE.Euler(p.roll_deg * DEG, p.pitch_deg * DEG, p.yaw_deg * DEG, 'ZYX'));
-    robot.quaternion.set(q.x, q.z, -q.y, q.w);
+  if (world) {
+    setRobotPose(world, p);
+    setDoorAngles(world, doorAnglesAt(run.doors, t));
+    if (minimap) minimap.draw(p.yaw_deg * DEG);
   }
   $('clock').textContent = `t = ${t.toFixed(2)} s  (x ${p.x_m.toFixed(2)}, y ${p.y_m.toFixed(2)}, z ${p.z_m.toFixed(2)} m)`;
   let current = null;
@@ -135,46 +108,42 @@ function showMovement(on) {
 }
 $('movement').addEventListener('change', (e) => showMovement(e.target.checked));
 
-// ---- the world ---------------------------------------------------------------------------
-const ceilings = [];
-function loadWorld() {
-  const text = $('glb').textContent.trim();
-  const bytes = Uint8Array.from(atob(text), (c) => c.charCodeAt(0));
-  new GLTFLoader().parse(bytes.buffer, '', (gltf) => {
-    scene.add(gltf.scene);
-    gltf.scene.traverse((o) => {
-      const x = o.userData || {};
-      if (x.class === 'robot' && x.model !== undefined) robot = o;
-      if (x.class === 'ceiling') ceilings.push(o);
-    });
-    for (const c of ceilings) c.visible = $('ceiling').checked;
-    const box = new THREE.Box3().setFromObject(gltf.scene);
-    const center = box.getCenter(new THREE.Vector3());
-    const size = Math.max(box.max.x - box.min.x, box.max.z - box.min.z, 4);
-    controls.target.copy(center);
-    camera.position.set(center.x, center.y + size * 0.8, center.z + size * 0.45);
-    controls.update();
-    showTime(track[Number(slider.value)].time_s);
-    $('status').textContent = `${track.length} trajectory points, ${run.events.length} events`;
-    window.report.ready = true;
-  }, (err) => {
-    $('status').textContent = `could not load the world: ${err && err.message ? err.message : err}`;
-    $('status').className = 'error';
-    console.error(err);
-  });
+// ---- the world and the optional cloud layer ----------------------------------------------
+const base64Bytes = (id) => Uint8Array.from(atob($(id).textContent.trim()), (c) => c.charCodeAt(0));
+let cloud = null;
+async function loadWorld() {
+  world = await loadWorldBytes(v, base64Bytes('glb').buffer);
+  showClass(world, 'ceiling', $('ceiling').checked);
+  minimap = createMinimap(view, world);
+  const meta = JSON.parse($('cloud-meta').textContent);
+  if (meta) {
+    cloud = createCloudLayer(scene, world, meta, base64Bytes('cloud-bin').buffer);
+    $('cloud-section').hidden = false;
+    $('cloud-info').textContent = `${meta.info.source}: ${meta.info.points} of ${meta.info.points_in_file} points`;
+    cloud.setVisible($('cloud').checked);
+  }
+  showTime(track[Number(slider.value)].time_s);
+  $('status').textContent = `${track.length} trajectory points, ${run.events.length} events`;
+  window.report.ready = true;
 }
-$('ceiling').addEventListener('change', (e) => { for (const c of ceilings) c.visible = e.target.checked; });
+$('ceiling').addEventListener('change', (e) => world && showClass(world, 'ceiling', e.target.checked));
+$('cloud').addEventListener('change', (e) => cloud && cloud.setVisible(e.target.checked));
+$('cloud-mode').addEventListener('change', (e) => cloud && cloud.setMode(e.target.value));
 
 // For tests and the curious: the marker's scene position and a way to set the time.
 window.report = {
   markerPosition: () => marker.position.toArray(),
-  robotPosition: () => (robot ? robot.position.toArray() : null),
+  robotPosition: () => (world && world.robot ? world.robot.position.toArray() : null),
   jumpTo,
   ready: false,
 };
 
 showTime(track[0].time_s);
-loadWorld();
+loadWorld().catch((err) => {
+  $('status').textContent = `could not load the world: ${err && err.message ? err.message : err}`;
+  $('status').className = 'error';
+  console.error(err);
+});
 renderer.setAnimationLoop(() => {
   controls.update();
   renderer.render(scene, camera);

@@ -28,6 +28,13 @@ pub struct EvalConfig {
     pub stairs_max_distance_m: f64,
     /// Largest floor or ceiling height error of a match.
     pub max_height_error_m: f64,
+    /// Obstacles at most this tall are not scored (a robot's wheels or a bumper deal with
+    /// them; the "taller than 0.3 m").
+    pub obstacle_min_height_m: f64,
+    /// ... nor those at most this long across (a pole, a bollard: the 0.3 m).
+    pub obstacle_min_across_m: f64,
+    /// Least footprint intersection, as a fraction of the smaller footprint, of a match.
+    pub obstacle_min_overlap: f64,
 }
 
 impl Default for EvalConfig {
@@ -44,6 +51,9 @@ impl Default for EvalConfig {
             door_max_distance_m: 0.3,
             stairs_max_distance_m: 1.0,
             max_height_error_m: 0.05,
+            obstacle_min_height_m: 0.3,
+            obstacle_min_across_m: 0.3,
+            obstacle_min_overlap: 0.5,
         }
     }
 }

@@ -18,7 +18,10 @@
 //!   part that was seen;
 //! - a door opening is expected if its lintel and leaf together carry at least
 //!   `min_door_points` (20) points (the opening itself has no surface);
-//! - a staircase, the floor and the ceiling if they carry at least `min_points` points.
+//! - a staircase, the floor and the ceiling if they carry at least `min_points` points;
+//! - obstacles (boxes of class furniture, obstacle or column taller and longer than 0.3 m),
+//!   columns and beams if they carry at least `min_bin_points` points (see `obstacles.rs` for
+//!   their matching by footprint overlap, and the count of walls standing on beams or columns).
 //!
 //! # Matching
 //! Greedy one-to-one, best first. Walls: directions within `wall_max_angle_deg`, the detected
@@ -49,6 +52,7 @@ mod config;
 mod doors;
 mod ground_truth;
 mod labels;
+mod obstacles;
 mod report;
 mod score;
 mod slabs;
@@ -60,12 +64,14 @@ pub use config::EvalConfig;
 pub use doors::DoorMatch;
 pub use ground_truth::{check_ground_truth, EvalError};
 pub use labels::{evaluate_labels, LabelEvaluation};
+pub use obstacles::ObstacleMatch;
 pub use score::ClassScore;
 pub use stairs::StairsMatch;
 pub use walls::WallMatch;
 
 use cloud::PointCloud;
 use doors::evaluate_doors;
+use obstacles::evaluate_obstacles;
 use scanner::Building;
 use semantic::SemanticMap;
 use serde::{Deserialize, Serialize};
@@ -89,6 +95,19 @@ pub struct Evaluation {
     pub ceiling: ClassScore,
     /// Staircases.
     pub stairs: ClassScore,
+    /// Obstacles (truth: furniture, obstacles and columns over 0.3 m tall and across; map:
+    /// obstacles and columns).
+    #[serde(default)]
+    pub obstacles: ClassScore,
+    /// Columns.
+    #[serde(default)]
+    pub columns: ClassScore,
+    /// Beams.
+    #[serde(default)]
+    pub beams: ClassScore,
+    /// Map walls standing where only beams or columns stand (their centre line mostly on them).
+    #[serde(default)]
+    pub walls_on_beams_or_columns: usize,
     /// Mean distance of matched walls' ends from the observed ends.
     pub wall_endpoint_error_mean_m: f64,
     /// Largest such distance.
@@ -103,6 +122,9 @@ pub struct Evaluation {
     pub door_matches: Vec<DoorMatch>,
     /// Matched staircases.
     pub stairs_matches: Vec<StairsMatch>,
+    /// Matched obstacles, columns and beams.
+    #[serde(default)]
+    pub obstacle_matches: Vec<ObstacleMatch>,
     /// Expected elements not found (names, walls with their piece).
     pub missed: Vec<String>,
     /// Map entities matching nothing expected (ids).
@@ -131,5 +153,6 @@ pub fn evaluate_with(
     evaluate_doors(&mut ev, map, building, &t, c);
     evaluate_stairs(&mut ev, map, building, &t, c);
     evaluate_slabs(&mut ev, map, building, &t, c);
+    evaluate_obstacles(&mut ev, map, building, &t, c);
     ev
 }

@@ -19,6 +19,9 @@ impl fmt::Display for Evaluation {
             ("floor", &self.floor),
             ("ceiling", &self.ceiling),
             ("stairs", &self.stairs),
+            ("obstacles", &self.obstacles),
+            ("columns", &self.columns),
+            ("beams", &self.beams),
         ] {
             writeln!(
                 f,
@@ -30,6 +33,11 @@ impl fmt::Display for Evaluation {
             f,
             "wall endpoint error: mean {:.3} m, max {:.3} m",
             self.wall_endpoint_error_mean_m, self.wall_endpoint_error_max_m
+        )?;
+        write!(
+            f,
+            "\nwalls on beams or columns: {}",
+            self.walls_on_beams_or_columns
         )?;
         for s in &self.stairs_matches {
             write!(
@@ -65,6 +73,9 @@ mod tests {
             "stairs",
             "0.500",
             "wall endpoint error",
+            "obstacles",
+            "beams",
+            "walls on beams or columns: 0",
             "missed: walls[3]",
         ] {
             assert!(text.contains(want), "{want} in {text}");

@@ -9,10 +9,11 @@ use crate::map::{build_map, write_map};
 use crate::register::{open_registrar, register_scans, write_registration, Registration};
 use crate::scan_folder::SequenceInput;
 use crate::scans::place_and_merge;
-use crate::simulate::{simulate, write_simulation, ScenarioSource};
+use crate::simulate::{simulate, write_simulation, ScenarioChoice, ScenarioSource};
 use cloud::PointCloud;
+use glam::DVec3;
 use semantic::MapOutput;
-use sim::{Outcome, WorldSpec};
+use sim::{Outcome, StartPose, WorldSpec};
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 
@@ -34,6 +35,8 @@ pub trait Observer {
     fn simulating(&mut self, _sim_time_s: f64, _time_limit_s: f64) -> ControlFlow<()> {
         ControlFlow::Continue(())
     }
+    /// A scenario was planned in the map's world (no scenario was given).
+    fn planned(&mut self, _planned: &sim::PlannedScenario) {}
     /// The scenario ran and was judged; `report` is what `report.md` holds.
     fn simulated(&mut self, _outcome: &Outcome, _report: &str) {}
     /// Every stage's files are written into `dirs`.
@@ -76,6 +79,8 @@ pub struct ChainOutcome {
     pub cloud: PointCloud,
     /// The semantic map and its stage images.
     pub map: MapOutput,
+    /// The scenario that ran (given, or planned in the map's world).
+    pub scenario: ScenarioSource,
     /// The simulation, judged.
     pub simulation: Outcome,
 }
@@ -88,12 +93,13 @@ impl ChainOutcome {
 }
 
 /// Scans to verdict: registers the scans (already read, in `input`'s order) from their
-/// odometry, maps the registered scans, builds the map's world and judges the scenario in it,
-/// writing each stage into its folder under `out`.
+/// odometry, maps the registered scans, builds the map's world and judges the scenario in it
+/// (given, or planned in the map's world from where scan 0's sensor stood), writing each stage
+/// into its folder under `out`.
 pub fn scans_to_verdict(
     input: &SequenceInput,
     scans: Vec<PointCloud>,
-    scenario: &ScenarioSource,
+    scenario: &ScenarioChoice,
     cfg: &Config,
     out: &Path,
     observer: &mut dyn Observer,
@@ -124,33 +130,48 @@ pub fn scans_to_verdict(
     let map = build_map(&cloud, &cfg.semantic)?;
     observer.mapped(&map);
 
-    // 3. The map's world, the scenario run in it and judged.
+    // 3. The map's world, the scenario (given, or planned from scan 0's sensor position: free
+    //    space by construction) run in it and judged.
     observer.stage_started(
         3,
-        &format!(
-            "simulation of \"{}\" in the map's world",
-            scenario.scenario.name
-        ),
+        &format!("simulation of {} in the map's world", scenario.title()),
     );
     let world = WorldSpec::from_semantic_map(&map.map)?;
+    let start = first_sensor_in_map(&registration, &map);
+    let scenario = scenario.resolve(&world, start)?;
+    if let Some(p) = &scenario.planned {
+        observer.planned(p);
+    }
     let limit_s = scenario.scenario.time_limit_s;
-    let simulation = simulate(&world, scenario, &mut |t| observer.simulating(t, limit_s))?;
-    observer.simulated(
-        &simulation,
-        &sim::report_markdown(&simulation, &sim::ReportConfig::default()),
-    );
+    let simulation = simulate(&world, &scenario, &mut |t| observer.simulating(t, limit_s))?;
+    observer.simulated(&simulation, &scenario.report(&simulation));
 
     // 4. Every stage's files, now that the whole chain has run.
     let outcome = ChainOutcome {
         registration,
         cloud,
         map,
+        scenario,
         simulation,
     };
     let dirs = ChainDirs::under(out);
-    write_chain(&outcome, scenario, cfg, &dirs)?;
+    write_chain(&outcome, &outcome.scenario, cfg, &dirs)?;
     observer.written(&outcome, &dirs);
     Ok(outcome)
+}
+
+/// Where scan 0's sensor stood, in the map's frame (the registered world levelled), as a
+/// start on the map's floor; `None` without scans.
+fn first_sensor_in_map(registration: &Registration, map: &MapOutput) -> Option<StartPose> {
+    let world_from_scan = registration.poses.first()?.world_from_scan;
+    let map_from_input = map.map.input_from_map().inverse();
+    let p: DVec3 = map_from_input.transform_point3(world_from_scan.translation);
+    Some(StartPose {
+        x_m: p.x,
+        y_m: p.y,
+        yaw_deg: 0.0,
+        z_m: 0.0,
+    })
 }
 
 /// Writes each stage's files (and the configuration) into its folder.

@@ -21,6 +21,8 @@ pub struct Config {
     pub registration: SequenceConfig,
     /// The semantic map: one section per stage (`[semantic.projection]`, `[semantic.hough]`, ...).
     pub semantic: semantic::SemanticConfig,
+    /// The scenario planned in a world when none is given (`run`, `simulate --map`).
+    pub plan: sim::PlanConfig,
 }
 
 impl Config {
@@ -60,6 +62,7 @@ impl Config {
         self.semantic
             .validate()
             .map_err(|e| section("semantic", &e))?;
+        self.plan.validate().map_err(|e| section("plan", &e))?;
         Ok(())
     }
 
@@ -103,5 +106,33 @@ mod tests {
                 && msg.contains("max_iterations"),
             "{msg}"
         );
+    }
+
+    #[test]
+    fn the_laser_preset_is_named_in_the_laser_section_and_written_back_in_full() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let named = dir.path().join("real.toml");
+        std::fs::write(&named, "[laser]\nrealism = \"real\"\n").expect("write");
+        let c = Config::load(&named).expect("the real preset by name");
+        assert_eq!(c.laser.realism, scanner::Realism::real());
+        // Written beside a run as a full table, it reads back equal.
+        c.write_beside(dir.path()).expect("written");
+        let text = std::fs::read_to_string(dir.path().join("config.toml")).expect("read");
+        assert!(text.contains("[laser.realism.returns]"), "{text}");
+        let back = Config::load(&dir.path().join("config.toml")).expect("reads");
+        assert_eq!(back.laser, c.laser);
+        // A bad preset or value names the section.
+        for (body, what) in [
+            ("[laser]\nrealism = \"perfect\"\n", "perfect"),
+            (
+                "[laser.realism]\nno_echo_range_m = 10.0\n",
+                "no_echo_range_m",
+            ),
+        ] {
+            let bad = dir.path().join("bad.toml");
+            std::fs::write(&bad, body).expect("write");
+            let e = Config::load(&bad).expect_err(body).to_string();
+            assert!(e.contains("bad.toml") && e.contains(what), "{e}");
+        }
     }
 }

@@ -17,13 +17,14 @@
 //! - [`Config`]: one section per stage, as `--config` files hold it.
 //!
 //! ```no_run
-//! use pipeline::{read_scans, read_sequence, scans_to_verdict, Config, Quiet, ScenarioSource};
+//! use pipeline::{read_scans, read_sequence, scans_to_verdict, Config, Quiet, ScenarioChoice};
 //! use std::path::{Path, PathBuf};
 //!
 //! # fn main() -> pipeline::Result<()> {
 //! let input = read_sequence(&[PathBuf::from("semsim-demo")], None, None, &Default::default())?;
 //! let scans = read_scans(&input.scans, Some(30.0))?;
-//! let scenario = ScenarioSource::load(None)?;
+//! // No scenario file: one is planned in the map's world (`[plan]` of the configuration).
+//! let scenario = ScenarioChoice::from_file_or_plan(None, &Config::default().plan)?;
 //! let outcome = scans_to_verdict(&input, scans, &scenario, &Config::default(), Path::new("out"), &mut Quiet)?;
 //! println!("{} walls, verdict {}", outcome.map.map.of_class(cloud::EntityClass::Wall).count(), outcome.passed());
 //! # Ok(())
@@ -50,6 +51,7 @@ mod guard;
 mod guess;
 mod map;
 mod no_echo;
+mod outliers;
 mod plot;
 mod register;
 pub mod scan_folder;
@@ -72,6 +74,7 @@ pub use map::{build_map, map_summary, write_map, MAP_PICTURES};
 pub use no_echo::{
     drop_no_echo, find_no_echo, NoEcho, NO_ECHO_BAND_M, NO_ECHO_MIN_POINTS, NO_ECHO_MIN_SHARE,
 };
+pub use outliers::{find_outliers, remove_outliers, OutlierConfig, RANGE_GROUP_POINTS};
 pub use plot::{line_chart, plot_rmse, Series};
 pub use register::{
     open_registrar, register_scans, write_registration, PairReport, Registration, ScanRow,
@@ -81,5 +84,5 @@ pub use scan_folder::{
 };
 pub use scans::{merge_scan_files, place_and_merge, read_scans};
 pub use score::score_map_file;
-pub use simulate::{simulate, write_simulation, ScenarioSource};
+pub use simulate::{simulate, write_simulation, ScenarioChoice, ScenarioSource};
 pub use truth::{relative_pose_errors, worst_pose_error};

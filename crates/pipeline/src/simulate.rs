@@ -1,9 +1,12 @@
-//! The simulation stage of the chain: a scenario (from a file or the built-in one) run in
-//! the world of a semantic map or of a building, judged, and its files.
+//! The simulation stage of the chain: a scenario (from a file, the built-in one, or planned
+//! from the world when none is given) run in the world of a semantic map or of a building,
+//! judged, and its files.
 
 use crate::error::Result;
 use scanner::Building;
-use sim::{Outcome, ReportConfig, RobotModel, Scenario, WorldSpec};
+use sim::{
+    Outcome, PlanConfig, PlannedScenario, ReportConfig, RobotModel, Scenario, StartPose, WorldSpec,
+};
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 
@@ -19,6 +22,60 @@ pub struct ScenarioSource {
     pub base_dir: PathBuf,
     /// The robot it drives (loaded with the scenario, so a bad robot file fails before any work).
     pub robot: RobotModel,
+    /// The plan, when the scenario was planned from the world (its tour and what it could
+    /// not reach, for the report).
+    pub planned: Option<PlannedScenario>,
+}
+
+/// Where a run's scenario comes from: given (a file, or the built-in default scenario the
+/// demo uses), or planned from the world once the world is known.
+#[derive(Debug, Clone)]
+pub enum ScenarioChoice {
+    /// A scenario given up front.
+    Given(Box<ScenarioSource>),
+    /// No scenario given: plan one in the world (see [`sim::plan_scenario`]).
+    Planned {
+        /// The planner's settings (`[plan]` of the configuration).
+        cfg: PlanConfig,
+        /// The robot `cfg.robot` names (resolved up front, so a bad robot fails before any work).
+        robot: Box<RobotModel>,
+    },
+}
+
+impl ScenarioChoice {
+    /// The scenario file's, or, without one, a plan with `cfg` (its robot resolved from the
+    /// current folder).
+    pub fn from_file_or_plan(path: Option<&Path>, cfg: &PlanConfig) -> Result<ScenarioChoice> {
+        Ok(match path {
+            Some(p) => ScenarioChoice::Given(Box::new(ScenarioSource::load(Some(p))?)),
+            None => {
+                cfg.validate()?;
+                ScenarioChoice::Planned {
+                    cfg: cfg.clone(),
+                    robot: Box::new(RobotModel::resolve(&cfg.robot, Path::new("."))?),
+                }
+            }
+        })
+    }
+
+    /// The scenario to run in `world`: the given one, or one planned there from `start` (the
+    /// nearest free cell to it; `None`: the middle of the largest free region).
+    pub fn resolve(&self, world: &WorldSpec, start: Option<StartPose>) -> Result<ScenarioSource> {
+        match self {
+            ScenarioChoice::Given(s) => Ok(s.as_ref().clone()),
+            ScenarioChoice::Planned { cfg, robot } => {
+                ScenarioSource::plan(world, robot, start, cfg)
+            }
+        }
+    }
+
+    /// The scenario's name for progress lines (`a planned tour` before it is planned).
+    pub fn title(&self) -> String {
+        match self {
+            ScenarioChoice::Given(s) => format!("\"{}\"", s.scenario.name),
+            ScenarioChoice::Planned { .. } => "a planned tour".into(),
+        }
+    }
 }
 
 impl ScenarioSource {
@@ -42,7 +99,37 @@ impl ScenarioSource {
             text,
             base_dir,
             robot,
+            planned: None,
         })
+    }
+
+    /// A scenario planned in `world` for `robot` (see [`sim::plan_scenario`]); its text is the
+    /// planned scenario's TOML with a header saying so.
+    pub fn plan(
+        world: &WorldSpec,
+        robot: &RobotModel,
+        start: Option<StartPose>,
+        cfg: &PlanConfig,
+    ) -> Result<ScenarioSource> {
+        let planned = sim::plan_scenario(world, robot, start, cfg)?;
+        Ok(ScenarioSource {
+            scenario: planned.scenario.clone(),
+            text: planned.to_toml()?,
+            base_dir: PathBuf::from("."),
+            robot: robot.clone(),
+            planned: Some(planned),
+        })
+    }
+
+    /// The report of a run of this scenario: `report.md`'s text, with the section on what a
+    /// planned tour could not reach.
+    pub fn report(&self, outcome: &Outcome) -> String {
+        let mut report = sim::report_markdown(outcome, &ReportConfig::default());
+        if let Some(p) = &self.planned {
+            report.push('\n');
+            report.push_str(&p.report_section());
+        }
+        report
     }
 
     /// The building the scenario names (`building`, relative to its folder; "default" or
@@ -72,10 +159,15 @@ pub fn simulate(
     )?)
 }
 
-/// Writes `events.jsonl`, `trajectory.csv`, `report.md` and `scenario.toml` into `out`
-/// (which must exist); returns the report's text.
+/// Writes `sim::write_outputs`' files (`events.jsonl`, `trajectory.csv`, `report.md`, ...)
+/// and `scenario.toml` into `out` (which must exist); for a planned scenario `report.md` also
+/// lists what the tour could not reach. Returns the report's text.
 pub fn write_simulation(outcome: &Outcome, source: &ScenarioSource, out: &Path) -> Result<String> {
     sim::write_outputs(out, outcome, &ReportConfig::default())?;
+    let report = source.report(outcome);
+    if source.planned.is_some() {
+        cloud::write_bytes_atomically(&out.join("report.md"), report.as_bytes())?;
+    }
     cloud::write_bytes_atomically(&out.join("scenario.toml"), source.text.as_bytes())?;
-    Ok(sim::report_markdown(outcome, &ReportConfig::default()))
+    Ok(report)
 }

@@ -26,6 +26,9 @@ pub struct Building {
     /// Furniture and clutter.
     #[serde(default)]
     pub boxes: Vec<Furniture>,
+    /// Ramps: sloped slabs rising from the floor.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub ramps: Vec<Ramp>,
 }
 
 /// The floor slab: a rectangle in the XY plane, top at z = 0.
@@ -187,6 +190,47 @@ pub struct Staircase {
     /// Depth of the landing at the top (0 = none).
     #[serde(default)]
     pub landing_m: f64,
+}
+
+/// A ramp: a straight sloped slab whose top rises from the floor at `start_m` to `rise_m`
+/// over `length_m` (measured on the floor) in the direction `direction_deg`. Walkable: its
+/// ground-truth class is `floor` (see the README's building file section).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Ramp {
+    /// Optional name for people.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub name: String,
+    /// Centre of the ramp's foot (where its top meets the floor), XY.
+    pub start_m: [f64; 2],
+    /// Direction of ascent (0 = +x, 90 = +y).
+    pub direction_deg: f64,
+    /// Horizontal length from foot to head.
+    pub length_m: f64,
+    /// Width across the direction of ascent.
+    pub width_m: f64,
+    /// Height of the top at the head above the floor.
+    pub rise_m: f64,
+    /// Slab thickness, measured square to the slope.
+    #[serde(default = "default_ramp_thickness_m")]
+    pub thickness_m: f64,
+}
+
+fn default_ramp_thickness_m() -> f64 {
+    0.2
+}
+
+impl Ramp {
+    /// The slope's angle above the floor (radians).
+    pub fn pitch_rad(&self) -> f64 {
+        self.rise_m.atan2(self.length_m)
+    }
+
+    /// The unit direction of ascent in the floor plane.
+    pub fn direction(&self) -> [f64; 2] {
+        let a = self.direction_deg.to_radians();
+        [a.cos(), a.sin()]
+    }
 }
 
 /// A box standing anywhere: furniture or clutter (usually on the floor), or, by its `class`,

@@ -26,6 +26,14 @@ pub enum ScannerError {
         /// What is wrong.
         msg: String,
     },
+    /// No survey can be planned in the building (e.g. no free floor space for the tripod).
+    #[error("{building}: {msg}")]
+    Survey {
+        /// The building's name (or file).
+        building: String,
+        /// Why not.
+        msg: String,
+    },
     /// A parameter outside its sensible range.
     #[error(transparent)]
     InvalidParameter(#[from] cloud::InvalidParameter),
@@ -40,6 +48,7 @@ impl cloud::BadInput for ScannerError {
             ScannerError::Cloud(c) => c.is_bad_input(),
             ScannerError::Syntax { .. }
             | ScannerError::InvalidBuilding { .. }
+            | ScannerError::Survey { .. }
             | ScannerError::InvalidParameter(_) => true,
         }
     }

@@ -1,7 +1,8 @@
-//! The building as solid geometry: every element becomes one or more boxes rotated about z,
-//! each carrying the ground-truth label of its entity; a BVH (parry3d `Compound`) answers rays.
+//! The building as solid geometry: every element becomes one or more boxes rotated about z
+//! (a ramp's slab also pitched about its own y axis), each carrying the ground-truth label of
+//! its entity; a BVH (parry3d `Compound`) answers rays.
 
-use crate::building::{Building, Hinge, Material, Swing, Wall};
+use crate::building::{Building, Hinge, Material, Ramp, Swing, Wall};
 use cloud::{EntityClass, Label};
 use glam::{Quat, Vec3};
 use parry3d::math::Pose;
@@ -9,7 +10,9 @@ use parry3d::query::Ray;
 use parry3d::shape::{CompositeShapeRef, Compound, SharedShape};
 use serde::Serialize;
 
-/// One box of the building: centre, half extents along its own axes, yaw about z, label.
+/// One box of the building: centre, half extents along its own axes, yaw about z, pitch,
+/// label. Its rotation is `Rz(yaw_rad) * Ry(-pitch_rad)`: yawed, then its own +x end raised by
+/// `pitch_rad` (only ramps are pitched; every other box has `pitch_rad == 0`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct BoxPart {
     /// Centre in world coordinates (metres).
@@ -18,6 +21,9 @@ pub struct BoxPart {
     pub half_extents_m: Vec3,
     /// Rotation about z (radians).
     pub yaw_rad: f32,
+    /// How far the box's own +x end is raised (radians, about its own y axis after the yaw);
+    /// non-zero only for ramps.
+    pub pitch_rad: f32,
     /// The ground-truth label of every point on this box.
     pub label: Label,
     /// What its surface is made of.
@@ -96,6 +102,9 @@ impl BuildingGeometry {
             g.oriented(id, f.center_m, h, f.yaw_deg.to_radians());
             g.material = Material::Matte;
         }
+        for (i, r) in b.ramps.iter().enumerate() {
+            add_ramp(&mut g, r, i);
+        }
         g.finish()
     }
 
@@ -114,6 +123,35 @@ impl BuildingGeometry {
         let ray = Ray::new(origin, dir);
         let (part, toi) = CompositeShapeRef(&self.compound).cast_local_ray(&ray, max_toi, true)?;
         Some((toi, self.parts.get(part as usize)?.label))
+    }
+
+    /// The nearest hit like [`Self::cast_ray`], with the surface's outward unit normal and the
+    /// index of the box hit (into [`Self::parts`]: its label and material). With `solid` false
+    /// a ray starting inside a box hits that box's far side (a beam going on through glass).
+    pub fn cast_ray_with_normal(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        max_toi: f32,
+        solid: bool,
+    ) -> Option<(f32, Vec3, usize)> {
+        let ray = Ray::new(origin, dir);
+        let (part, toi) = CompositeShapeRef(&self.compound).cast_local_ray(&ray, max_toi, solid)?;
+        // The normal of the box's face nearest the hit, in the box's own frame (much cheaper
+        // than the BVH's normal query).
+        let p = self.parts.get(part as usize)?;
+        let rotation = p.rotation();
+        let local = rotation.inverse() * (origin + dir * toi - p.center_m);
+        let depth = p.half_extents_m - local.abs();
+        let axis = if depth.x <= depth.y && depth.x <= depth.z {
+            Vec3::X
+        } else if depth.y <= depth.z {
+            Vec3::Y
+        } else {
+            Vec3::Z
+        };
+        let normal = rotation * (axis * local.dot(axis).signum());
+        Some((toi, normal, part as usize))
     }
 
     /// The entity whose solid contains `point`, if any (e.g. a scan pose inside a wall).
@@ -135,6 +173,50 @@ impl BuildingGeometry {
             .filter(|(p, _)| p.label.entity == entity)
             .map(|(_, (pose, shape))| shape.distance_to_point(pose, point, true))
             .fold(f32::INFINITY, f32::min)
+    }
+}
+
+/// A ramp: one slab pitched so that its top runs from the foot on the floor to the head at
+/// `rise_m`. Class `floor`: a ramp is walked and driven on like the floor (a robot's wheels
+/// on it are on the floor), and it is neither an obstacle nor a staircase.
+fn add_ramp(g: &mut Builder, r: &Ramp, i: usize) {
+    let id = g.entity(EntityClass::Floor, format!("ramps[{i}]"));
+    let pitch = r.pitch_rad();
+    let dir = r.direction();
+    let slope_len = r.length_m.hypot(r.rise_m);
+    // The middle of the top face, then half the thickness down along the top's normal.
+    let (sp, cp) = pitch.sin_cos();
+    let normal = [-sp * dir[0], -sp * dir[1], cp];
+    let half_t = r.thickness_m / 2.0;
+    let top_mid = [
+        r.start_m[0] + dir[0] * r.length_m / 2.0,
+        r.start_m[1] + dir[1] * r.length_m / 2.0,
+        r.rise_m / 2.0,
+    ];
+    let center = [
+        top_mid[0] - normal[0] * half_t,
+        top_mid[1] - normal[1] * half_t,
+        top_mid[2] - normal[2] * half_t,
+    ];
+    let label = g.label(id);
+    g.parts.push(BoxPart {
+        center_m: Vec3::new(center[0] as f32, center[1] as f32, center[2] as f32),
+        half_extents_m: Vec3::new(
+            (slope_len / 2.0) as f32,
+            (r.width_m / 2.0) as f32,
+            half_t as f32,
+        ),
+        yaw_rad: r.direction_deg.to_radians() as f32,
+        pitch_rad: pitch as f32,
+        label,
+        material: Material::Matte,
+    });
+}
+
+impl BoxPart {
+    /// The box's rotation: yaw about z, then its own +x end raised by the pitch.
+    pub fn rotation(&self) -> Quat {
+        Quat::from_rotation_z(self.yaw_rad) * Quat::from_rotation_y(-self.pitch_rad)
     }
 }
 
@@ -255,6 +337,7 @@ impl Builder {
             center_m: Vec3::new(center[0] as f32, center[1] as f32, center[2] as f32),
             half_extents_m: Vec3::new(half[0] as f32, half[1] as f32, half[2] as f32),
             yaw_rad: yaw as f32,
+            pitch_rad: 0.0,
             label,
             material: self.material,
         });
@@ -265,7 +348,7 @@ impl Builder {
             .parts
             .iter()
             .map(|p| {
-                let pose = Pose::from_parts(p.center_m, Quat::from_rotation_z(p.yaw_rad));
+                let pose = Pose::from_parts(p.center_m, p.rotation());
                 (
                     pose,
                     SharedShape::cuboid(p.half_extents_m.x, p.half_extents_m.y, p.half_extents_m.z),

@@ -25,14 +25,19 @@ mod laser;
 mod odometry;
 mod pose;
 mod summary;
+mod survey;
 mod validate;
 
 pub use building::{
-    Building, Ceiling, Door, Floor, Furniture, Hinge, Leaf, Staircase, Swing, Wall,
+    Building, Ceiling, Door, Floor, Furniture, Hinge, Leaf, Material, Ramp, Staircase, Swing,
+    Wall,
 };
 pub use error::{Result, ScannerError};
-pub use generate::{generate_building, GeneratorConfig};
+pub use generate::{generate_building, resolve_style, GeneratorConfig, Style};
 pub use geometry::{BoxPart, BuildingGeometry, TruthEntity};
-pub use laser::{LaserConfig, VirtualLaser};
+pub use laser::{
+    LaserConfig, MixedPixels, Mount, People, RangeNoise, Realism, Returns, VirtualLaser, PRESETS,
+};
 pub use odometry::{odometry_from_truth, OdometryConfig};
 pub use pose::ScanPose;
+pub use survey::{room_of, survey_poses, SurveyConfig, BLOCKING_TOP_M};

@@ -1,5 +1,5 @@
 //! Validation of a building description: every number finite and sensible, every door
-//! inside its wall and clear of its neighbours, every staircase buildable.
+//! inside its wall and clear of its neighbours, every staircase and ramp buildable.
 
 use crate::building::{Building, Door, Wall};
 use crate::error::{Result, ScannerError};
@@ -10,6 +10,10 @@ const MAX_PARTS: usize = 200_000;
 /// How far outside the floor's rectangle an element may reach (walls stand on its edges,
 /// clutter may stand outside); anything farther is a mistake, not a building.
 const MAX_OUTSIDE_FLOOR_M: f64 = 100.0;
+/// The steepest ramp accepted (degrees): the steepest car-park ramps are about 20 % (11
+/// degrees) and wheelchair ramps 1:12 (5 degrees); beyond 20 degrees a slope is no longer
+/// something a wheeled robot drives up, it is a wall or a staircase.
+const MAX_RAMP_PITCH_DEG: f64 = 20.0;
 
 impl Building {
     /// Checks the description; the error names `path` and the offending element.
@@ -130,6 +134,14 @@ impl Building {
                     ),
                 ));
             }
+            parts += 1;
+        }
+        for (i, r) in self.ramps.iter().enumerate() {
+            let el = || format!("ramps[{i}]{}", named(&r.name));
+            check_ramp(r, c.height_m).map_err(|m| bad(el(), m))?;
+            reach
+                .points(&[r.start_m], r.length_m.max(r.width_m))
+                .map_err(|m| bad(el(), m))?;
             parts += 1;
         }
         if parts > MAX_PARTS {
@@ -257,6 +269,39 @@ fn check_door(w: &Wall, d: &Door, wall_h: f64, earlier: &[Door]) -> Result<(), S
     Ok(())
 }
 
+fn check_ramp(r: &crate::building::Ramp, ceiling_m: f64) -> Result<(), String> {
+    all_finite(&[
+        r.start_m[0],
+        r.start_m[1],
+        r.direction_deg,
+        r.length_m,
+        r.width_m,
+        r.rise_m,
+        r.thickness_m,
+    ])?;
+    positive("length_m", r.length_m)?;
+    positive("width_m", r.width_m)?;
+    positive("rise_m", r.rise_m)?;
+    if !(r.thickness_m > 0.0 && r.thickness_m <= 2.0) {
+        return Err(format!(
+            "thickness_m = {} must be within (0, 2]",
+            r.thickness_m
+        ));
+    }
+    let pitch_deg = r.pitch_rad().to_degrees();
+    if pitch_deg > MAX_RAMP_PITCH_DEG {
+        return Err(format!(
+            "a slope of {pitch_deg:.1} degrees (rise_m {} over length_m {}) is steeper than the \
+             {MAX_RAMP_PITCH_DEG} degrees a ramp may have",
+            r.rise_m, r.length_m
+        ));
+    }
+    if r.rise_m >= ceiling_m {
+        return Err("the ramp rises through the ceiling".into());
+    }
+    Ok(())
+}
+
 fn named(name: &str) -> String {
     if name.is_empty() {
         String::new()
@@ -367,6 +412,29 @@ mod tests {
         ] {
             let r = Building::from_toml_str(&with(from, to), Path::new("b.toml"));
             assert!(r.is_err(), "{from} -> {to} accepted");
+        }
+    }
+
+    #[test]
+    fn a_ramp_steeper_than_20_degrees_or_through_the_ceiling_is_rejected() {
+        let ramp = |length: &str, rise: &str| {
+            format!(
+                "{SMALL}\n[[ramps]]\nstart_m = [1.0, 2.0]\ndirection_deg = 0.0\n\
+                 length_m = {length}\nwidth_m = 1.5\nrise_m = {rise}\n"
+            )
+        };
+        let b = Building::from_toml_str(&ramp("3.0", "0.5"), Path::new("b.toml")).expect("9.5 deg");
+        assert_eq!(b.ramps.len(), 1);
+        for (length, rise, why) in [
+            ("1.0", "0.5", "steeper than"),
+            ("10.0", "2.6", "through the ceiling"),
+            ("3.0", "-0.5", "must be positive"),
+            ("3.0", "nan", "not a finite number"),
+        ] {
+            let e = Building::from_toml_str(&ramp(length, rise), Path::new("b.toml"))
+                .expect_err(why)
+                .to_string();
+            assert!(e.contains("ramps[0]") && e.contains(why), "{e}");
         }
     }
 

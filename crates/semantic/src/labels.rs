@@ -7,9 +7,11 @@
 //!    its extent and height; in an opening, points at or above the opening's top belong to its
 //!    wall above door, points below it to no wall;
 //! 3. doors: within `tolerance_m` of the leaf as it was seen (turned by its observed angle);
-//! 4. stairs: inside a step's or the landing's box (grown by `tolerance_m`).
+//! 4. stairs: inside a step's or the landing's box (grown by `tolerance_m`);
+//! 5. obstacles, columns and beams (found from the points the rules above leave unlabelled):
+//!    inside their box (grown by `tolerance_m`).
 //!
-//! Points on nothing identified (furniture, clutter) stay unknown (entity 0).
+//! Points on nothing identified (small clutter, noise) stay unknown (entity 0).
 
 use crate::error::Result;
 use crate::net::{Detections, Ids};
@@ -172,4 +174,34 @@ pub(crate) fn label_points(
         }
     }
     labels
+}
+
+/// Labels the points inside each obstacle's box (grown by `tolerance_m`) that no other entity
+/// labelled with the obstacle's id and class.
+pub(crate) fn label_obstacles(
+    points: &[Vec3],
+    index: &XyIndex,
+    obstacles: &[crate::obstacles::DetectedObstacle],
+    ids: &[u32],
+    labels: &mut [Label],
+    c: &LabelConfig,
+) {
+    let tol = c.tolerance_m;
+    for (o, &id) in obstacles.iter().zip(ids) {
+        let line = crate::points::Line2 {
+            origin: o.center,
+            dir: o.dir,
+        };
+        let (half_len, half_w) = (o.size[0] / 2.0 + tol, o.size[1] / 2.0 + tol);
+        index.for_each_near_line(points, &line, -half_len, half_len, half_w, |i, _, _| {
+            let z = points[i].z as f64;
+            let l = &mut labels[i];
+            if l.entity == 0 && z >= o.z_range.0 - tol && z <= o.z_range.1 + tol {
+                *l = Label {
+                    entity: id,
+                    class: o.class,
+                };
+            }
+        });
+    }
 }

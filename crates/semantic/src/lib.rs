@@ -15,7 +15,10 @@
 //!    staircases from level regions of a height map ([`StairsConfig`]); per-point labels.
 //! 4. The semantic net ([`NetConfig`]): entities with ids, oriented boxes, support, confidence
 //!    and rules; relations (parallel, orthogonal, above, under, equal height, available inside,
-//!    connected via joint) computed from the geometry.
+//!    connected via joint, near) computed from the geometry.
+//! 5. Obstacles, columns and beams ([`ObstacleConfig`]): what the points no entity labelled
+//!    occupy, clustered on an XY grid per height band (below and above head height), each an
+//!    oriented box; added to the net and the labels.
 //!
 //! [`build_semantic_map`] runs them all and returns a [`MapOutput`]: the [`SemanticMap`]
 //! (versioned JSON, `schema/semantic_map.schema.json`), per-point labels, the intermediate
@@ -26,7 +29,8 @@
 //! Walls: the fraction of their length with face points (x 0.85 if only one face was seen).
 //! Door openings and lintels: the fraction of the opening with a lintel above (times the
 //! see-through fraction for one-sided walls). Doors: the leaf's covered fraction. Stairs: found
-//! levels over steps. Floor and ceiling: 1.
+//! levels over steps. Floor and ceiling: 1. Obstacles, columns and beams: `n / (n + 50)` for
+//! `n` points.
 //!
 //! ```
 //! use cloud::PointCloud;
@@ -76,6 +80,7 @@ mod map;
 mod merge;
 mod net;
 mod noise_filter;
+mod obstacles;
 mod pipeline;
 mod points;
 mod projection;
@@ -94,12 +99,14 @@ pub use hough::{hough_lines_p, HoughConfig, HoughParams, PixelSegment, Unvote};
 pub use image_frame::ImageFrame;
 pub use labels::LabelConfig;
 pub use map::{
-    DoorInfo, Entity, HingeEdge, OpeningInfo, OrientedBox, Relation, RelationType, SemanticMap,
-    StairsInfo, SwingSide, WallInfo, MAP_CLASSES, MAP_FORMAT, MAP_VERSION,
+    DoorInfo, Entity, HingeEdge, ObstacleInfo, OpeningInfo, OrientedBox, Relation, RelationType,
+    SemanticMap, StairsInfo, SwingSide, WallInfo, MAP_CLASSES, MAP_CLASSES_V1, MAP_FORMAT,
+    MAP_VERSION, READ_VERSIONS,
 };
 pub use merge::{MergeConfig, Segment};
 pub use net::NetConfig;
 pub use noise_filter::{noise_filter, NoiseFilterConfig};
+pub use obstacles::ObstacleConfig;
 pub use pipeline::{build_semantic_map, MapOutput, SemanticConfig, StageTime};
 pub use points::{undirected_angle_deg, Line2};
 pub use projection::{HeightBand, ProjectionConfig, ProjectionValue};

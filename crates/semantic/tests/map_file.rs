@@ -3,6 +3,7 @@
 
 use semantic::{
     build_semantic_map, EntityClass, SemanticConfig, SemanticError, SemanticMap, MAP_CLASSES,
+    MAP_CLASSES_V1, MAP_VERSION,
 };
 use serde_json::Value;
 use std::path::Path;
@@ -135,7 +136,8 @@ fn schema() -> Value {
 #[test]
 fn output_validates_against_the_schema_and_holds_every_class() {
     let map = default_map();
-    for class in MAP_CLASSES {
+    // The default building has no columns or beams; its furniture is obstacles.
+    for class in MAP_CLASSES_V1.into_iter().chain([EntityClass::Obstacle]) {
         assert!(
             map.of_class(class).count() > 0,
             "no {} in the default building's map",
@@ -239,9 +241,9 @@ fn bad_files_give_typed_errors() {
     );
     let err = edit(&|v| v["format"] = Value::from("something else")).expect_err("format");
     assert!(matches!(err, SemanticError::WrongFormat { .. }), "{err}");
-    let err = edit(&|v| v["version"] = Value::from(2)).expect_err("version");
+    let err = edit(&|v| v["version"] = Value::from(3)).expect_err("version");
     assert!(
-        matches!(err, SemanticError::UnsupportedVersion { found: 2, .. }),
+        matches!(err, SemanticError::UnsupportedVersion { found: 3, .. }),
         "{err}"
     );
     let err = edit(&|v| v["entities"][1]["id"] = v["entities"][0]["id"].clone())
@@ -327,4 +329,68 @@ fn the_net_relates_doors_to_their_walls() {
             );
         }
     }
+}
+
+/// A version 1 file (written by the previous build, `tests/data/semantic_map_v1.json`: the
+/// default building's map) is read, as version 2, with every entity and relation.
+#[test]
+fn version_1_files_are_still_read() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/semantic_map_v1.json");
+    let text = std::fs::read_to_string(&path).expect("v1 file");
+    let raw: Value = serde_json::from_str(&text).expect("JSON");
+    assert_eq!(raw["version"], 1);
+    let map = SemanticMap::load(&path).expect("a version 1 map reads");
+    assert_eq!(map.version, MAP_VERSION);
+    assert_eq!(
+        map.entities.len(),
+        raw["entities"].as_array().expect("entities").len()
+    );
+    assert_eq!(
+        map.relations.len(),
+        raw["relations"].as_array().expect("relations").len()
+    );
+    assert!(map.of_class(EntityClass::Wall).count() >= 8);
+    assert_eq!(map.of_class(EntityClass::Stairs).count(), 1);
+    // Saved again, it is a version 2 file that reads back the same.
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("v2.json");
+    map.save(&out).expect("save");
+    let again: Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).expect("read")).expect("JSON");
+    assert_eq!(again["version"], 2);
+    assert_eq!(SemanticMap::load(&out).expect("v2"), map);
+    // Version 1 knew no obstacles: one in a version 1 file is an unknown class.
+    let mut bad = raw.clone();
+    bad["entities"][0]["class"] = Value::from("obstacle");
+    let err = SemanticMap::from_json_str(&bad.to_string(), Path::new("v1.json"))
+        .expect_err("an obstacle in version 1");
+    assert!(
+        matches!(err, SemanticError::UnknownClass { ref class, .. } if class == "obstacle"),
+        "{err}"
+    );
+}
+
+/// An obstacle, column or beam needs its `obstacle` section; with it, it round-trips.
+#[test]
+fn obstacles_need_their_section_and_round_trip() {
+    let map = default_map();
+    let o = map
+        .of_class(EntityClass::Obstacle)
+        .next()
+        .expect("the default building's furniture is obstacles");
+    assert!(o.obstacle.as_ref().is_some_and(|i| i.hull_m.len() >= 3));
+    let mut value: Value = serde_json::from_str(&map.to_json_string()).expect("JSON");
+    let i = value["entities"]
+        .as_array()
+        .expect("array")
+        .iter()
+        .position(|e| e["class"] == "obstacle")
+        .expect("an obstacle");
+    value["entities"][i]
+        .as_object_mut()
+        .expect("object")
+        .remove("obstacle");
+    let err = SemanticMap::from_json_str(&value.to_string(), Path::new("m.json"))
+        .expect_err("no obstacle section");
+    assert!(matches!(err, SemanticError::InvalidEntity { .. }), "{err}");
 }

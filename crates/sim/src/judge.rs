@@ -124,47 +124,27 @@ impl Judge {
                 result: None,
             })
         };
-        if let Some(r) = &rules.pass_through_door {
-            let el = "rules.pass_through_door";
-            let e = spec.resolve(r, el)?;
-            let free_space = match e.class {
-                EntityClass::FreeSpaceForDoor => e.id,
-                EntityClass::Door => spec
-                    .free_spaces
-                    .iter()
-                    .find(|f| f.door == Some(e.id))
-                    .map(|f| f.entity)
-                    .ok_or_else(|| SimError::Invalid {
-                        element: el.into(),
-                        msg: format!("door {} has no free space to pass through", e.name),
-                    })?,
-                c => return Err(wrong(el, r, c, "door or free_space_for_door")),
-            };
-            push(
-                format!("pass_through_door = {r}"),
-                Check::PassThrough {
-                    free_space,
-                    entered: 0,
-                },
-            );
+        let doors = rules
+            .pass_through_door
+            .iter()
+            .map(|r| ("pass_through_door", r));
+        let more_doors = rules
+            .pass_through_doors
+            .iter()
+            .map(|r| ("pass_through_doors", r));
+        for (key, r) in doors.chain(more_doors) {
+            push(format!("{key} = {r}"), pass_through(spec, key, r)?);
         }
-        if let Some(r) = &rules.reach_top_of_stairs {
-            let el = "rules.reach_top_of_stairs";
-            let e = spec.resolve(r, el)?;
-            let s = spec
-                .stairs
-                .iter()
-                .find(|s| s.entity == e.id)
-                .ok_or_else(|| wrong(el, r, e.class, "stairs"))?;
-            let steps = s.steps.len() as u32 + u32::from(s.landing.is_some());
-            push(
-                format!("reach_top_of_stairs = {r}"),
-                Check::ReachTop {
-                    stairs: e.id,
-                    steps,
-                    highest: -1,
-                },
-            );
+        let stairs = rules
+            .reach_top_of_stairs
+            .iter()
+            .map(|r| ("reach_top_of_stairs", r));
+        let more_stairs = rules
+            .reach_top_of_stairs_all
+            .iter()
+            .map(|r| ("reach_top_of_stairs_all", r));
+        for (key, r) in stairs.chain(more_stairs) {
+            push(format!("{key} = {r}"), reach_top(spec, key, r)?);
         }
         if let Some(r) = &rules.open_door {
             let el = "rules.open_door";
@@ -412,6 +392,46 @@ impl Judge {
             interrupted_at_s: interrupted.then_some(end_s),
         }
     }
+}
+
+/// The check of passing through a door (or an opening's free space) named `r` under `key`.
+fn pass_through(spec: &WorldSpec, key: &str, r: &str) -> Result<Check> {
+    let el = format!("rules.{key}");
+    let e = spec.resolve(r, &el)?;
+    let free_space = match e.class {
+        EntityClass::FreeSpaceForDoor => e.id,
+        EntityClass::Door => spec
+            .free_spaces
+            .iter()
+            .find(|f| f.door == Some(e.id))
+            .map(|f| f.entity)
+            .ok_or_else(|| SimError::Invalid {
+                element: el.clone(),
+                msg: format!("door {} has no free space to pass through", e.name),
+            })?,
+        c => return Err(wrong(&el, r, c, "door or free_space_for_door")),
+    };
+    Ok(Check::PassThrough {
+        free_space,
+        entered: 0,
+    })
+}
+
+/// The check of climbing to the top of the staircase named `r` under `key`.
+fn reach_top(spec: &WorldSpec, key: &str, r: &str) -> Result<Check> {
+    let el = format!("rules.{key}");
+    let e = spec.resolve(r, &el)?;
+    let s = spec
+        .stairs
+        .iter()
+        .find(|s| s.entity == e.id)
+        .ok_or_else(|| wrong(&el, r, e.class, "stairs"))?;
+    let steps = s.steps.len() as u32 + u32::from(s.landing.is_some());
+    Ok(Check::ReachTop {
+        stairs: e.id,
+        steps,
+        highest: -1,
+    })
 }
 
 fn wrong(element: &str, reference: &str, found: EntityClass, expected: &str) -> SimError {

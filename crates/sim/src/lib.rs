@@ -22,9 +22,12 @@
 //! * Errors name their file: [`Scenario::load`], [`RobotModel::load`],
 //!   [`WorldSpec::from_building_file`], `WorldSpec::from_semantic_map_file` (see
 //!   [`SimError::in_source`]).
+//! * Where no scenario is given, [`plan_scenario`] plans one from the world: a tour through
+//!   every reachable door opening and up every staircase the robot can climb, on a free-space
+//!   grid inflated by the robot's footprint, with what is unreachable listed and why.
 //! * A person can drive instead of the scenario ([`Simulation::set_operator_drive`]), and
 //!   viewers read the live state ([`Simulation::live_state`], [`Simulation::live_rules`]).
-//! * [`write_outputs`] writes `events.jsonl`, `trajectory.csv` and `report.md`.
+//! * [`write_outputs`] writes `events.jsonl`, `trajectory.csv`, `doors.csv` and `report.md`.
 //!
 //! ```
 //! use sim::{RobotModel, Scenario, Simulation, WorldSpec};
@@ -70,6 +73,7 @@ mod judge;
 mod live;
 mod model;
 mod operator;
+mod plan;
 mod report;
 mod scenario;
 mod simulation;
@@ -87,13 +91,15 @@ pub use live::{LiveDoor, LiveRobot, LiveRule, LiveState, RuleState};
 pub use model::{
     ArmAxis, ArmModel, ChassisModel, DriveModel, LinkModel, RobotModel, StartPose, WheelModel,
 };
+pub use plan::{plan_scenario, Footprint, Goal, PlanConfig, PlannedScenario, Unreachable};
 pub use report::{
-    report_markdown, trajectory_to_csv, write_events_jsonl, write_outputs, write_report_md,
-    write_trajectory_csv, ReportConfig,
+    doors_to_csv, report_markdown, trajectory_to_csv, write_doors_csv, write_events_jsonl,
+    write_outputs, write_report_md, write_trajectory_csv, ReportConfig, DOORS_CSV,
 };
 pub use scenario::{ReachGoal, Rules, Scenario};
 pub use simulation::{
-    run_scenario, run_scenario_with, Outcome, Simulation, TrajectoryPoint, PROGRESS_EVERY_STEPS,
+    run_scenario, run_scenario_with, DoorSample, DoorTrack, Outcome, Simulation, TrajectoryPoint,
+    PROGRESS_EVERY_STEPS,
 };
 pub use spec::{
     BoxSpec, DoorSpec, EntityInfo, FixedBox, FreeSpaceSpec, HingeEnd, OpeningSense, StairsSpec,

@@ -1,9 +1,10 @@
-//! Outputs of a run: `events.jsonl`, `trajectory.csv` and a Markdown `report.md` (the timeline
+//! Outputs of a run: `events.jsonl`, `trajectory.csv`, `doors.csv` (the doors' angles over
+//! time, so that a replay swings them as they moved) and a Markdown `report.md` (the timeline
 //! of significant events and the verdict), each written atomically.
 
 use crate::error::Result;
 use crate::events::{events_to_jsonl, fmt_f, EventKind};
-use crate::simulation::{Outcome, TrajectoryPoint};
+use crate::simulation::{DoorTrack, Outcome, TrajectoryPoint};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -41,6 +42,29 @@ pub fn trajectory_to_csv(trajectory: &[TrajectoryPoint]) -> String {
         ];
         let cells: Vec<String> = row.iter().map(|v| fmt_f(*v)).collect();
         s.push_str(&cells.join(","));
+        s.push('\n');
+    }
+    s
+}
+
+/// The name of a run's door-angle file.
+pub const DOORS_CSV: &str = "doors.csv";
+
+/// The doors' angles as CSV: `time_s` and one column `door_ID` (degrees, 0 = closed) per door,
+/// in the world's order, one row per trajectory sample, 4 decimals. A world without doors gives
+/// the `time_s` column alone.
+pub fn doors_to_csv(track: &DoorTrack) -> String {
+    let mut s = String::from("time_s");
+    for id in &track.doors {
+        let _ = write!(s, ",door_{id}");
+    }
+    s.push('\n');
+    for sample in &track.samples {
+        s.push_str(&fmt_f(sample.time_s));
+        for a in &sample.angles_deg {
+            s.push(',');
+            s.push_str(&fmt_f(*a));
+        }
         s.push('\n');
     }
     s
@@ -176,14 +200,21 @@ pub fn write_trajectory_csv(path: &Path, outcome: &Outcome) -> Result<()> {
     Ok(())
 }
 
+/// Writes `doors.csv` atomically.
+pub fn write_doors_csv(path: &Path, outcome: &Outcome) -> Result<()> {
+    cloud::write_bytes_atomically(path, doors_to_csv(&outcome.doors).as_bytes())?;
+    Ok(())
+}
+
 /// Writes `report.md` atomically.
 pub fn write_report_md(path: &Path, outcome: &Outcome, cfg: &ReportConfig) -> Result<()> {
     cloud::write_bytes_atomically(path, report_markdown(outcome, cfg).as_bytes())?;
     Ok(())
 }
 
-/// Writes `events.jsonl`, `trajectory.csv` and `report.md` into `dir` (which must exist);
-/// returns their paths in that order.
+/// Writes `events.jsonl`, `trajectory.csv`, `report.md` and `doors.csv` into `dir` (which must
+/// exist); returns the first three's paths in that order (`doors.csv` is [`DOORS_CSV`] beside
+/// them).
 pub fn write_outputs(dir: &Path, outcome: &Outcome, cfg: &ReportConfig) -> Result<[PathBuf; 3]> {
     let paths = [
         dir.join("events.jsonl"),
@@ -192,6 +223,37 @@ pub fn write_outputs(dir: &Path, outcome: &Outcome, cfg: &ReportConfig) -> Resul
     ];
     write_events_jsonl(&paths[0], outcome)?;
     write_trajectory_csv(&paths[1], outcome)?;
+    write_doors_csv(&dir.join(DOORS_CSV), outcome)?;
     write_report_md(&paths[2], outcome, cfg)?;
     Ok(paths)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::simulation::DoorSample;
+
+    #[test]
+    fn doors_csv_has_one_column_per_door_and_a_row_per_sample() {
+        let track = DoorTrack {
+            doors: vec![12, 15],
+            samples: vec![
+                DoorSample {
+                    time_s: 0.0,
+                    angles_deg: vec![0.0, 0.0],
+                },
+                DoorSample {
+                    time_s: 0.1,
+                    angles_deg: vec![12.5, -0.25],
+                },
+            ],
+        };
+        let csv = doors_to_csv(&track);
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(lines[0], "time_s,door_12,door_15");
+        assert_eq!(lines.len(), 3);
+        let last: Vec<f64> = lines[2].split(',').map(|c| c.parse().unwrap()).collect();
+        assert_eq!(last, vec![0.1, 12.5, -0.25]);
+        assert_eq!(doors_to_csv(&DoorTrack::default()), "time_s\n");
+    }
 }

@@ -100,8 +100,9 @@ pub struct ReachGoal {
 }
 
 /// The rules; entities are named by id, machine name (`walls[4].doors[2]`) or unique label.
-/// Goals (`pass_through_door`, `reach_top_of_stairs`, `open_door`, `reach`) pass when achieved
-/// and fail at the end otherwise; constraints (`max_wall_contact_s`, `no_broken_joint`,
+/// Goals (`pass_through_door`, `pass_through_doors`, `reach_top_of_stairs`,
+/// `reach_top_of_stairs_all`, `open_door`, `reach`) pass when achieved and fail at the end
+/// otherwise; constraints (`max_wall_contact_s`, `no_broken_joint`,
 /// `no_tipping`, `no_stuck`) fail when violated and pass at the end otherwise.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -109,8 +110,16 @@ pub struct Rules {
     /// The robot's chassis passes through this door's opening (enters its free space on one
     /// side and leaves on the other).
     pub pass_through_door: Option<String>,
+    /// More doors to pass through, each judged like `pass_through_door` (a planned scenario
+    /// lists its tour's doors here). Not written when empty.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub pass_through_doors: Vec<String>,
     /// The robot finishes climbing this staircase.
     pub reach_top_of_stairs: Option<String>,
+    /// More staircases to climb, each judged like `reach_top_of_stairs`. Not written when
+    /// empty.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub reach_top_of_stairs_all: Vec<String>,
     /// The robot opens this door: a "door opened" event, or the door opened at least
     /// `open_door_by_deg` wider than it started.
     pub open_door: Option<String>,
@@ -132,7 +141,9 @@ impl Default for Rules {
     fn default() -> Self {
         Rules {
             pass_through_door: None,
+            pass_through_doors: Vec::new(),
             reach_top_of_stairs: None,
+            reach_top_of_stairs_all: Vec::new(),
             open_door: None,
             open_door_by_deg: 20.0,
             reach: None,

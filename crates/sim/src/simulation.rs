@@ -27,6 +27,26 @@ pub struct TrajectoryPoint {
     pub pose: RobotPose,
 }
 
+/// The doors' opening angles over time, sampled with the trajectory (one sample per
+/// trajectory point, at the same times): what lets a replay swing the doors as they moved.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct DoorTrack {
+    /// The doors' entity ids, in the world's order: the columns of each sample.
+    pub doors: Vec<u32>,
+    /// The samples, in time order.
+    pub samples: Vec<DoorSample>,
+}
+
+/// The doors' angles at one moment.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DoorSample {
+    /// Simulated time (s).
+    pub time_s: f64,
+    /// Each door's opening angle (degrees, 0 = closed), in [`DoorTrack::doors`]' order (a
+    /// door whose hinge broke keeps its leaf's angle about the hinge's axis).
+    pub angles_deg: Vec<f64>,
+}
+
 /// What a finished run produced.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Outcome {
@@ -40,6 +60,10 @@ pub struct Outcome {
     pub scenario_name: String,
     /// The robot model's name.
     pub robot_model: String,
+    /// The doors' angles, sampled with the trajectory (empty in outcomes serialised before
+    /// doors were recorded).
+    #[serde(default)]
+    pub doors: DoorTrack,
 }
 
 /// A running simulation of one scenario.
@@ -57,6 +81,10 @@ pub struct Simulation {
     pub(crate) judge: Judge,
     pub(crate) events: Vec<Event>,
     pub(crate) trajectory: Vec<TrajectoryPoint>,
+    /// The doors' angles, sampled with the trajectory (empty in checkpoints from before doors
+    /// were recorded: their replays show the doors where they stand from then on).
+    #[serde(default)]
+    pub(crate) door_track: DoorTrack,
     pub(crate) next_sample_s: f64,
     pub(crate) step_limit: u64,
     /// Set when [`Simulation::run_with`] was stopped before the end; cleared by the next step.
@@ -92,6 +120,7 @@ impl Simulation {
             judge,
             events: vec![],
             trajectory: vec![],
+            door_track: DoorTrack::default(),
             next_sample_s: 0.0,
             step_limit,
             interrupted_at_s: None,
@@ -157,6 +186,25 @@ impl Simulation {
             self.next_sample_s = if rate > 0.0 { t + 1.0 / rate } else { t };
             let pose = self.robot_pose();
             self.trajectory.push(TrajectoryPoint { time_s: t, pose });
+            self.sample_doors(t);
+        }
+    }
+
+    /// Records the doors' angles at `t` (a simulation resumed from a checkpoint written
+    /// before doors were recorded starts its door track now).
+    fn sample_doors(&mut self, t: f64) {
+        let doors = &self.world.doors;
+        let track = &mut self.door_track;
+        if track.samples.is_empty() {
+            track.doors = doors.iter().map(|d| d.entity).collect();
+        }
+        if track.doors.len() == doors.len() {
+            let physics = &self.world.physics;
+            let angles_deg = doors.iter().map(|d| d.angle_deg(physics)).collect();
+            track.samples.push(DoorSample {
+                time_s: t,
+                angles_deg,
+            });
         }
     }
 
@@ -284,6 +332,7 @@ impl Simulation {
             verdict: self.verdict(),
             scenario_name: self.scenario.name.clone(),
             robot_model: self.model_name.clone(),
+            doors: self.door_track.clone(),
         }
     }
 }

@@ -61,6 +61,7 @@ pub fn setup(out: PathBuf, time_limit_s: f64) -> SessionSetup {
         scenario_toml: text,
         robot,
         out_dir: out,
+        cloud: None,
     }
 }
 

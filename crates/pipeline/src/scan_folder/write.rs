@@ -52,7 +52,8 @@ pub fn write_scan_folder(
         valid_points.push(scan.valid_count());
         truth.push(NamedPose {
             name: name.clone(),
-            world_from_scan: pose.world_from_scan(h),
+            // The sensor's true pose (tilted by its mount, if the laser's realism tilts it).
+            world_from_scan: laser.world_from_sensor(pose),
         });
         odo.push(NamedPose {
             name,

@@ -1,45 +1,13 @@
-//! Procedural buildings: a corridor with rooms on both sides, doors in every state (closed,
-//! half-open, open, no leaf), a staircase with a landing in the largest room, and clutter.
-//! The same seed always gives the same building.
+//! The `clean` style (the original generator): a corridor with rooms on both sides, doors in
+//! every state (closed, half-open, open, no leaf), a staircase with a landing in the largest
+//! room, and clutter boxes. Its buildings must never change for a given seed (the README's
+//! figures are measured on them; `tests/generate_styles.rs` pins a few).
 
+use super::GeneratorConfig;
 use crate::building::{
     Building, Ceiling, Door, Floor, Furniture, Hinge, Leaf, Staircase, Swing, Wall,
 };
-use crate::error::Result;
 use cloud::Rng;
-use serde::{Deserialize, Serialize};
-use std::path::Path;
-
-/// Ranges the generator draws from.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct GeneratorConfig {
-    /// Corridor length range.
-    pub corridor_length_m: [f64; 2],
-    /// Corridor clear width range.
-    pub corridor_width_m: [f64; 2],
-    /// Room depth range (across the corridor).
-    pub room_depth_m: [f64; 2],
-    /// Room width range (along the corridor).
-    pub room_width_m: [f64; 2],
-    /// Ceiling height range.
-    pub ceiling_height_m: [f64; 2],
-    /// Most clutter boxes per room.
-    pub max_boxes_per_room: u32,
-}
-
-impl Default for GeneratorConfig {
-    fn default() -> Self {
-        GeneratorConfig {
-            corridor_length_m: [14.0, 28.0],
-            corridor_width_m: [1.8, 3.0],
-            room_depth_m: [3.5, 6.0],
-            room_width_m: [3.5, 6.5],
-            ceiling_height_m: [2.5, 3.2],
-            max_boxes_per_room: 3,
-        }
-    }
-}
 
 /// A room beside the corridor: its span along x, its y range, and which side it is on.
 struct Room {
@@ -51,8 +19,8 @@ struct Room {
     door: Option<(f64, f64)>,
 }
 
-/// Generates a building from `seed`.
-pub fn generate_building(seed: u64, config: &GeneratorConfig) -> Result<Building> {
+/// Generates a clean-style building from `seed` (not yet validated).
+pub(super) fn generate(seed: u64, config: &GeneratorConfig) -> Building {
     let mut r = Rng::new(seed);
     let c = config;
     let len = r
@@ -168,7 +136,7 @@ pub fn generate_building(seed: u64, config: &GeneratorConfig) -> Result<Building
             }
         }
     }
-    let b = Building {
+    Building {
         name: format!("generated, seed {seed}"),
         floor: Floor {
             min_m: [-t - 0.1, ys_out - t - 0.1],
@@ -182,9 +150,8 @@ pub fn generate_building(seed: u64, config: &GeneratorConfig) -> Result<Building
         walls,
         stairs: stairs.into_iter().collect(),
         boxes,
-    };
-    b.validate(Path::new(&format!("<generated, seed {seed}>")))?;
-    Ok(b)
+        ramps: Vec::new(),
+    }
 }
 
 fn wall(name: &str, start_m: [f64; 2], end_m: [f64; 2], thickness_m: f64) -> Wall {
@@ -297,6 +264,7 @@ fn place_box(r: &mut Rng, room: &Room, t: f64, stairs: &Option<Zone>) -> Option<
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::generate::generate_building;
 
     #[test]
     fn same_seed_same_building_and_every_seed_is_valid_and_varied() {

@@ -2,7 +2,10 @@
 //! typed errors (unknown classes and relation types, dangling and duplicate ids, a wrong
 //! `format` or `version`, entities lacking their class's geometry).
 
-use super::{Entity, OrientedBox, RelationType, SemanticMap, MAP_CLASSES, MAP_FORMAT, MAP_VERSION};
+use super::{
+    Entity, OrientedBox, RelationType, SemanticMap, MAP_CLASSES, MAP_CLASSES_V1, MAP_FORMAT,
+    MAP_VERSION, READ_VERSIONS,
+};
 use crate::error::{Result, SemanticError};
 use cloud::EntityClass;
 use std::path::Path;
@@ -32,7 +35,8 @@ impl SemanticMap {
     /// Parses and validates map JSON; `path` only names the source in errors.
     ///
     /// Unknown classes and relation types, dangling or duplicate ids, a wrong `format` or
-    /// `version` and entities lacking their class's geometry are typed errors.
+    /// `version` and entities lacking their class's geometry are typed errors. A version 1 file
+    /// (a subset of version 2: no obstacles, columns, beams or `near`) is read as version 2.
     pub fn from_json_str(text: &str, path: &Path) -> Result<SemanticMap> {
         let syntax = |e: serde_json::Error| SemanticError::Syntax {
             path: path.to_path_buf(),
@@ -40,7 +44,9 @@ impl SemanticMap {
         };
         let value: serde_json::Value = serde_json::from_str(text).map_err(syntax)?;
         precheck(&value, path)?;
-        let map: SemanticMap = serde_json::from_value(value).map_err(syntax)?;
+        let mut map: SemanticMap = serde_json::from_value(value).map_err(syntax)?;
+        // Version 1 is read as the current version (its content is a subset).
+        map.version = MAP_VERSION;
         map.validate(path)?;
         Ok(map)
     }
@@ -118,19 +124,32 @@ fn precheck(value: &serde_json::Value, path: &Path) -> Result<()> {
         });
     }
     let version = value.get("version").and_then(|v| v.as_u64()).unwrap_or(0);
-    if version != u64::from(MAP_VERSION) {
+    if !READ_VERSIONS.iter().any(|&v| u64::from(v) == version) {
         return Err(SemanticError::UnsupportedVersion {
             path: path.into(),
             found: version,
             supported: MAP_VERSION,
         });
     }
+    // Version 1 knew fewer classes and relation types.
+    let v1 = version == 1;
+    let classes: &[EntityClass] = if v1 { &MAP_CLASSES_V1 } else { &MAP_CLASSES };
+    let kinds: &[RelationType] = if v1 {
+        &RelationType::ALL[..7]
+    } else {
+        &RelationType::ALL
+    };
     let names = |it: &mut dyn Iterator<Item = &'static str>| it.collect::<Vec<_>>().join(", ");
     if let Some(list) = value.get("entities").and_then(|v| v.as_array()) {
         for (index, e) in list.iter().enumerate() {
             if let Some(class) = e.get("class").and_then(|c| c.as_str()) {
-                if !MAP_CLASSES.iter().any(|c| c.name() == class) {
-                    return Err(unknown_class(path, index, class));
+                if !classes.iter().any(|c| c.name() == class) {
+                    return Err(SemanticError::UnknownClass {
+                        path: path.into(),
+                        index,
+                        class: class.into(),
+                        known: names(&mut classes.iter().map(|c| c.name())),
+                    });
                 }
             }
         }
@@ -138,12 +157,12 @@ fn precheck(value: &serde_json::Value, path: &Path) -> Result<()> {
     if let Some(list) = value.get("relations").and_then(|v| v.as_array()) {
         for (index, r) in list.iter().enumerate() {
             if let Some(kind) = r.get("type").and_then(|c| c.as_str()) {
-                if !RelationType::ALL.iter().any(|c| c.name() == kind) {
+                if !kinds.iter().any(|c| c.name() == kind) {
                     return Err(SemanticError::UnknownRelation {
                         path: path.into(),
                         index,
                         kind: kind.into(),
-                        known: names(&mut RelationType::ALL.iter().map(|c| c.name())),
+                        known: names(&mut kinds.iter().map(|c| c.name())),
                     });
                 }
             }
@@ -218,6 +237,19 @@ fn check_entity(e: &Entity) -> std::result::Result<(), String> {
             }
         }
         EntityClass::FreeSpaceForDoor => need(e.opening.is_some(), "opening")?,
+        EntityClass::Obstacle | EntityClass::Column | EntityClass::Beam => {
+            need(e.obstacle.is_some(), "obstacle")?;
+            if let Some(o) = &e.obstacle {
+                let ok = o.z_range_m.iter().all(|v| v.is_finite())
+                    && o.z_range_m[0] <= o.z_range_m[1]
+                    && o.clearance_m.is_finite()
+                    && (0.0..=1.0).contains(&o.fill)
+                    && o.hull_m.iter().flatten().all(|v| v.is_finite());
+                if !ok {
+                    return Err("obstacle z range, clearance, fill or hull is invalid".into());
+                }
+            }
+        }
         _ => {}
     }
     Ok(())

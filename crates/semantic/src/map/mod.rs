@@ -14,8 +14,13 @@ use serde::{Deserialize, Serialize};
 
 /// The `format` string of every semantic map file.
 pub const MAP_FORMAT: &str = "semsim.semantic_map";
-/// The map file version this build writes and reads.
-pub const MAP_VERSION: u32 = 1;
+/// The map file version this build writes. Version 2 added the classes `obstacle`, `column` and
+/// `beam` (with their `obstacle` section) and the relation `near`; version 1 files are still
+/// read (see [`READ_VERSIONS`]).
+pub const MAP_VERSION: u32 = 2;
+/// The map file versions this build reads: version 1 (walls, openings, doors, stairs, floor and
+/// ceiling only) is a subset of version 2 and is read as such.
+pub const READ_VERSIONS: [u32; 2] = [1, 2];
 
 /// An oriented box: centre, full size along its own axes (x along `yaw_deg`, y across, z up).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -80,10 +85,25 @@ impl OrientedBox {
     }
 }
 
-/// The classes a semantic map's entities may have (the paper's L_sm), in the order error
-/// messages list them. The other classes of [`EntityClass`] (`unknown`, `furniture`, `robot`)
-/// are point labels or simulation bodies, never map entities.
-pub const MAP_CLASSES: [EntityClass; 7] = [
+/// The classes a semantic map's entities may have (the paper's L_sm and, from version 2, what
+/// occupies space besides: obstacles, columns, beams), in the order error messages list them.
+/// The other classes of [`EntityClass`] (`unknown`, `furniture`, `robot`) are point labels or
+/// simulation bodies, never map entities.
+pub const MAP_CLASSES: [EntityClass; 10] = [
+    EntityClass::Wall,
+    EntityClass::WallAboveDoor,
+    EntityClass::Floor,
+    EntityClass::Ceiling,
+    EntityClass::Door,
+    EntityClass::FreeSpaceForDoor,
+    EntityClass::Stairs,
+    EntityClass::Obstacle,
+    EntityClass::Column,
+    EntityClass::Beam,
+];
+
+/// The classes a version 1 map file may hold (the first seven of [`MAP_CLASSES`]).
+pub const MAP_CLASSES_V1: [EntityClass; 7] = [
     EntityClass::Wall,
     EntityClass::WallAboveDoor,
     EntityClass::Floor,
@@ -113,11 +133,14 @@ pub enum RelationType {
     AvailableInside,
     /// `a` (a door) is hinged to `b` (its wall) by a revolute joint.
     ConnectedViaJoint,
+    /// `a` (an obstacle, column or beam) stands within a distance of `b` (a door's free space,
+    /// see `net.near_m`): it may narrow the way through (version 2).
+    Near,
 }
 
 impl RelationType {
     /// All relation types.
-    pub const ALL: [RelationType; 7] = [
+    pub const ALL: [RelationType; 8] = [
         RelationType::Parallel,
         RelationType::Orthogonal,
         RelationType::Above,
@@ -125,6 +148,7 @@ impl RelationType {
         RelationType::EqualHeight,
         RelationType::AvailableInside,
         RelationType::ConnectedViaJoint,
+        RelationType::Near,
     ];
 
     /// The name used in files.
@@ -137,6 +161,7 @@ impl RelationType {
             RelationType::EqualHeight => "equal_height",
             RelationType::AvailableInside => "available_inside",
             RelationType::ConnectedViaJoint => "connected_via_joint",
+            RelationType::Near => "near",
         }
     }
 }
@@ -246,6 +271,23 @@ pub struct OpeningInfo {
     pub height_m: f64,
 }
 
+/// Obstacle, column and beam geometry beyond the box (version 2). The entity's `geometry` is
+/// the oriented box fitted to the points (the smallest-area rectangle around their footprint,
+/// z from their heights); a simulation makes it a fixed body.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObstacleInfo {
+    /// Bottom and top of the points (for a beam, its underside and top).
+    pub z_range_m: [f64; 2],
+    /// Height of the bottom above the floor (a robot lower than this passes under a beam).
+    pub clearance_m: f64,
+    /// The convex hull of the footprint (XY, counter-clockwise).
+    pub hull_m: Vec<[f64; 2]>,
+    /// Fraction of the box's footprint covered by occupied cells (1 for a solid block, low for
+    /// a table with legs or an L-shaped heap).
+    pub fill: f64,
+}
+
 /// A semantic entity: a node of the semantic net.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -274,6 +316,9 @@ pub struct Entity {
     /// For stairs.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stairs: Option<StairsInfo>,
+    /// For obstacles, columns and beams (version 2).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub obstacle: Option<ObstacleInfo>,
 }
 
 /// The semantic map: entities, relations and the map frame.
@@ -282,7 +327,7 @@ pub struct Entity {
 pub struct SemanticMap {
     /// Always [`MAP_FORMAT`].
     pub format: String,
-    /// Always [`MAP_VERSION`] when written by this build.
+    /// Always [`MAP_VERSION`] when written by this build (a version 1 file is read as version 2).
     pub version: u32,
     /// The rotation from the map frame (floor levelled) to the input cloud's frame, row-major 4x4.
     pub input_from_map: [f64; 16],

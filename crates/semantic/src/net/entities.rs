@@ -33,6 +33,7 @@ fn blank(class: EntityClass, geometry: OrientedBox, confidence: f64, rules: Vec<
         door: None,
         opening: None,
         stairs: None,
+        obstacle: None,
     }
 }
 

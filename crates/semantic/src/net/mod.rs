@@ -9,9 +9,15 @@
 //! - per opening: `free_space_for_door available_inside wall`, `wall_above_door
 //!   available_inside wall`, `wall_above_door above free_space_for_door` (and `under`), and
 //!   for a leaf: `door available_inside free_space_for_door`, `door connected_via_joint wall`,
-//!   `wall_above_door above door` (and `under`).
+//!   `wall_above_door above door` (and `under`);
+//! - obstacles, columns and beams (added after the labelling, see [`obstacles`]):
+//!   `available_inside floor`, `above floor` (a beam: `under ceiling`), `near` a door's free
+//!   space within `near_m`.
 
 mod entities;
+mod obstacles;
+
+pub(crate) use obstacles::add_obstacles;
 
 use crate::doors::{Leaf, Opening};
 use crate::error::Result;
@@ -32,6 +38,10 @@ pub struct NetConfig {
     pub relation_angle_deg: f64,
     /// Walls whose bottoms and tops agree within this are of equal height.
     pub equal_height_m: f64,
+    /// An obstacle whose footprint lies within this of a door's free space is `near` it: the
+    /// manoeuvring space accessibility codes keep clear in front of a door is 1.5 m deep
+    /// (DIN 18040-1, ADA 404.2.4 ~1.5 m), so an obstacle within 1 m of the opening intrudes.
+    pub near_m: f64,
 }
 
 impl Default for NetConfig {
@@ -39,6 +49,7 @@ impl Default for NetConfig {
         NetConfig {
             relation_angle_deg: 3.0,
             equal_height_m: 0.05,
+            near_m: 1.0,
         }
     }
 }
@@ -59,6 +70,7 @@ impl NetConfig {
             10.0,
             "within 0..10 m",
         )?;
+        check_range("net.near_m", self.near_m, 0.0, 100.0, "within 0..100 m")?;
         Ok(())
     }
 }

@@ -11,11 +11,12 @@ use crate::error::{Result, SemanticError};
 use crate::floor_ceiling::{find_levels, level_transform, slab_extent, FloorCeilingConfig, Levels};
 use crate::hough::{ppht, HoughConfig};
 use crate::image_frame::{pixel_center, ImageFrame, Mask};
-use crate::labels::{label_points, LabelConfig};
+use crate::labels::{label_obstacles, label_points, LabelConfig};
 use crate::map::SemanticMap;
 use crate::merge::{merge_segments, MergeConfig, Segment};
-use crate::net::{assemble, Detections, Ids, NetConfig};
+use crate::net::{add_obstacles, assemble, Detections, NetConfig};
 use crate::noise_filter::{filter_mask, NoiseFilterConfig};
+use crate::obstacles::{find_obstacles, ObstacleConfig, ObstacleScene};
 use crate::points::MapPoints;
 use crate::projection::{frame_for, project, Projection, ProjectionConfig};
 use crate::scene::SceneIndexes;
@@ -58,6 +59,8 @@ pub struct SemanticConfig {
     pub net: NetConfig,
     /// Per-point labels.
     pub labels: LabelConfig,
+    /// Obstacles, columns and beams.
+    pub obstacles: ObstacleConfig,
 }
 
 impl SemanticConfig {
@@ -74,7 +77,8 @@ impl SemanticConfig {
         self.doors.validate()?;
         self.stairs.validate()?;
         self.net.validate()?;
-        self.labels.validate()
+        self.labels.validate()?;
+        self.obstacles.validate()
     }
 }
 
@@ -126,9 +130,39 @@ pub fn build_semantic_map(cloud: &PointCloud, config: &SemanticConfig) -> Result
     let det = detections(&mp.points, levels, doorways, stairs, config);
     let (mut map, ids) = assemble(&det, &config.net);
     clock.lap("net");
-    // 5. Per-point labels (input order), and each entity's support.
-    let labels = label_input(cloud, &mp, &indexes, &det, &ids, &mut map, &config.labels);
+    // 5. Per-point labels of those entities (map points).
+    let mut map_labels = label_points(&mp.points, &indexes.index, &det, &ids, &config.labels);
     clock.lap("labels");
+    // 6. Obstacles, columns and beams: what the points no entity labelled occupy; added to the
+    //    net (with their relations) and to the labels.
+    let explained: Vec<bool> = map_labels.iter().map(|l| l.entity != 0).collect();
+    let obstacle_scene = ObstacleScene {
+        points: &mp.points,
+        explained: &explained,
+        floor: det.levels.floor_ref_m,
+        ceiling: det.levels.ceiling_ref_m,
+        image: &loc.frame,
+        walls: &det.walls,
+    };
+    let obstacles = find_obstacles(&obstacle_scene, &config.obstacles, pc.max_pixels);
+    let obstacle_ids = add_obstacles(
+        &mut map,
+        &ids,
+        det.levels.floor_ref_m,
+        &obstacles,
+        &config.net,
+    );
+    label_obstacles(
+        &mp.points,
+        &indexes.index,
+        &obstacles,
+        &obstacle_ids,
+        &mut map_labels,
+        &config.labels,
+    );
+    clock.lap("obstacles");
+    // 7. Labels in input order, and each entity's support.
+    let labels = label_input(cloud, &mp, &map_labels, &mut map);
     Ok(MapOutput {
         map,
         labels,
@@ -273,18 +307,14 @@ fn detections(
     }
 }
 
-/// One label per input point (map points labelled, the rest `Label::default()`), and each
-/// entity's support: how many points carry its id.
+/// One label per input point (the map points' `map_labels`, the rest `Label::default()`), and
+/// each entity's support: how many points carry its id.
 fn label_input(
     cloud: &PointCloud,
     mp: &MapPoints,
-    indexes: &SceneIndexes,
-    det: &Detections,
-    ids: &Ids,
+    map_labels: &[Label],
     map: &mut SemanticMap,
-    c: &LabelConfig,
 ) -> Vec<Label> {
-    let map_labels = label_points(&mp.points, &indexes.index, det, ids, c);
     let mut labels = vec![Label::default(); cloud.len()];
     let mut support = std::collections::HashMap::<u32, u64>::new();
     for (l, &i) in map_labels.iter().zip(&mp.input_index) {

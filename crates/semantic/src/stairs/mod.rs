@@ -20,7 +20,14 @@
 //!   `min_width_m`, only a side face was seen and `default_width_m` is assumed, away from the
 //!   side with floor in front of the face; landing: the top level's depth beyond one run.
 //!
-//! The direction with the most levels supported (then the best fit) wins.
+//! The direction with the most levels supported (then the best fit) wins. A staircase must then
+//! be one people could climb (clutter of boxes of assorted heights steps up and down too):
+//! rise and run in the ranges of building codes, at least `min_steps` steps on the one rise,
+//! every step supported by `min_step_points` points on its tread, riser or side face (and by a
+//! `min_step_fill` fraction of what the local point density promises), at least
+//! `min_width_m` wide; one seen from its side only gets `default_width_m` only where the floor
+//! beside it is hidden (a staircase hides the floor under it; clutter beside a side face does
+//! not).
 
 use crate::error::Result;
 use crate::image_frame::ImageFrame;
@@ -31,6 +38,7 @@ use crate::scene::Scene;
 use crate::walls::WallFit;
 use glam::DVec2;
 use profile::{finish, profile};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// Configuration of staircase identification.
@@ -41,16 +49,28 @@ pub struct StairsConfig {
     pub cell_m: f64,
     /// Fewest steps of a staircase.
     pub min_steps: u32,
-    /// Plausible step heights.
+    /// Plausible step heights: 0.10-0.23 m spans the building codes' risers (IBC 1011.5.2
+    /// 102-178 mm, IRC R311.7.5.1 at most 196 mm, UK Approved Document K at most 220 mm,
+    /// DIN 18065 140-200 mm) with a margin for measurement.
     pub rise_m: [f64; 2],
-    /// Plausible tread depths.
+    /// Plausible tread depths: 0.20-0.45 m (IBC at least 279 mm, IRC 254 mm, UK 220 mm,
+    /// DIN 18065 210-370 mm; longer treads are landings or garden steps).
     pub run_m: [f64; 2],
     /// Highest tread above the floor.
     pub max_height_m: f64,
     /// Fewest pixels of a level.
     pub min_level_pixels: usize,
-    /// Narrowest staircase: a narrower one was seen from its side only.
+    /// Narrowest staircase (codes ask 0.8-1.1 m, DIN 18065 0.5 m for secondary stairs): a
+    /// narrower one was seen from its side only.
     pub min_width_m: f64,
+    /// Fewest points on each step between its height and the one below (its tread, riser or
+    /// side face): fewer are a glimpse of clutter, not a surface.
+    pub min_step_points: usize,
+    /// ... and at least this fraction of what the local density (the floor's around it)
+    /// promises on a rise x run of surface (a step's riser or side face): the lowest step
+    /// loses its bottom centimetres to the floor band and is seen at grazing angles from one
+    /// side only, which leaves a fifth of the promise; less is no surface of that size.
+    pub min_step_fill: f64,
     /// Width given to a staircase seen from its side only.
     pub default_width_m: f64,
     /// The direction of ascent snaps to a wall's (or its normal's) within this angle.
@@ -62,11 +82,13 @@ impl Default for StairsConfig {
         StairsConfig {
             cell_m: 0.05,
             min_steps: 3,
-            rise_m: [0.08, 0.25],
-            run_m: [0.15, 0.5],
+            rise_m: [0.10, 0.23],
+            run_m: [0.20, 0.45],
             max_height_m: 2.6,
             min_level_pixels: 3,
-            min_width_m: 0.4,
+            min_width_m: 0.6,
+            min_step_points: 8,
+            min_step_fill: 0.15,
             default_width_m: 1.0,
             snap_direction_deg: 10.0,
         }
@@ -137,6 +159,20 @@ impl StairsConfig {
             0.0,
             100.0,
             "within 0..100 m",
+        )?;
+        check_range(
+            "stairs.min_step_points",
+            self.min_step_points as f64,
+            0.0,
+            1e6,
+            "within 0..1e6",
+        )?;
+        check_range(
+            "stairs.min_step_fill",
+            self.min_step_fill,
+            0.0,
+            10.0,
+            "within 0..10",
         )?;
         check_range(
             "stairs.default_width_m",
@@ -301,38 +337,40 @@ pub(crate) fn find_stairs(
             }
         }
     }
-    let mut out = Vec::new();
-    for (pixels, members) in blobs.iter().zip(&blob_points) {
-        if pixels.len() < (c.min_steps as usize) * c.min_level_pixels || members.len() < 20 {
-            continue;
-        }
-        let xy: Vec<DVec2> = members
-            .iter()
-            .map(|&i| DVec2::new(sc.points[i].x as f64, sc.points[i].y as f64))
-            .collect();
-        let mut cands = directions.clone();
-        if let Some((_, d)) = crate::points::fit_line(&xy) {
-            for cand in [d, d.perp(), -d, -d.perp()] {
-                if !cands
-                    .iter()
-                    .any(|e| e.angle_to(cand).abs().to_degrees() < c.snap_direction_deg)
-                {
-                    cands.push(cand);
+    // Each blob on its own (in parallel): the best profile over the candidate directions, then
+    // the staircase if it is plausible.
+    blobs
+        .par_iter()
+        .zip(&blob_points)
+        .filter_map(|(pixels, members)| {
+            if pixels.len() < (c.min_steps as usize) * c.min_level_pixels || members.len() < 20 {
+                return None;
+            }
+            let xy: Vec<DVec2> = members
+                .iter()
+                .map(|&i| DVec2::new(sc.points[i].x as f64, sc.points[i].y as f64))
+                .collect();
+            let mut cands = directions.clone();
+            if let Some((_, d)) = crate::points::fit_line(&xy) {
+                for cand in [d, d.perp(), -d, -d.perp()] {
+                    if !cands
+                        .iter()
+                        .any(|e| e.angle_to(cand).abs().to_degrees() < c.snap_direction_deg)
+                    {
+                        cands.push(cand);
+                    }
                 }
             }
-        }
-        let pts: Vec<(DVec2, f64)> = members
-            .iter()
-            .zip(&xy)
-            .map(|(&i, q)| (*q, sc.points[i].z as f64 - sc.floor))
-            .collect();
-        let best = cands
-            .iter()
-            .filter_map(|&dir| profile(&pts, dir, c))
-            .max_by(|a, b| a.score.total_cmp(&b.score));
-        if let Some(p) = best {
-            out.push(finish(&pts, p, sc, c));
-        }
-    }
-    out
+            let pts: Vec<(DVec2, f64)> = members
+                .iter()
+                .zip(&xy)
+                .map(|(&i, q)| (*q, sc.points[i].z as f64 - sc.floor))
+                .collect();
+            let best = cands
+                .iter()
+                .filter_map(|&dir| profile(&pts, dir, c))
+                .max_by(|a, b| a.score.total_cmp(&b.score))?;
+            finish(&pts, best, sc, c)
+        })
+        .collect()
 }

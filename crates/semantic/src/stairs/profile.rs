@@ -206,13 +206,14 @@ fn level_grid(heights: &[f64], c: &StairsConfig) -> Option<(f64, f64)> {
     best.map(|b| (b.1, b.2))
 }
 
-/// The staircase of the best profile: its width, landing and start from the blob's points.
+/// The staircase of the best profile: its width, landing and start from the blob's points;
+/// `None` if it is no staircase people could climb (see the module docs).
 pub(crate) fn finish(
     pts: &[(DVec2, f64)],
     p: Profile,
     sc: &Scene,
     c: &StairsConfig,
-) -> DetectedStairs {
+) -> Option<DetectedStairs> {
     let dir = p.dir;
     let mut ts: Vec<f64> = pts.iter().map(|(q, _)| dir.perp_dot(*q)).collect();
     let mut t0 = quantile(&mut ts, 0.01).unwrap_or(0.0);
@@ -248,12 +249,62 @@ pub(crate) fn finish(
         } else {
             t1 = t0 + c.default_width_m;
         }
+        // A staircase hides the floor under it: floor seen where its assumed width would be
+        // (past the side face) means there is none.
+        let hidden_side = (t0 + t1) / 2.0;
+        let line = crate::points::Line2 {
+            origin: dir * (p.front1 + length / 2.0) + dir.perp() * hidden_side,
+            dir,
+        };
+        let mut floor_seen = 0usize;
+        let inner = c.default_width_m / 2.0 - 0.1;
+        sc.index.for_each_near_line(
+            sc.points,
+            &line,
+            -length / 2.0 + 0.05,
+            length / 2.0 - 0.05,
+            inner.max(0.0),
+            |i, _, _| {
+                floor_seen += usize::from((sc.points[i].z as f64 - sc.floor).abs() <= 0.03);
+            },
+        );
+        if floor_seen > c.min_step_points {
+            return None;
+        }
         width_rule = format!(
             "only a side face seen: width assumed {:.2} m, away from the floor seen in front of it",
             c.default_width_m
         );
     }
     let width = t1 - t0;
+    // Every step rests on points of its own: on its tread, its riser, or the side face between
+    // its height and the one below (a staircase seen from its side shows its steps so).
+    let mut per_step = vec![0usize; p.steps as usize];
+    for (q, z) in pts {
+        let (s, t) = (q.dot(dir) - p.front1, dir.perp_dot(*q));
+        if s < 0.0 || t < t0 - 0.05 || t > t1 + 0.05 {
+            continue;
+        }
+        let k = (s / p.run).floor() as usize;
+        if k >= per_step.len() {
+            continue;
+        }
+        let top = (k + 1) as f64 * p.rise;
+        per_step[k] += usize::from(*z > top - p.rise + 0.02 && *z <= top + 0.03);
+    }
+    let weakest = per_step.iter().copied().min().unwrap_or(0);
+    // ... as many as the local point density promises on that much surface: the floor's
+    // density around the staircase (points per m² of the 10 cm cells where it was seen).
+    let density = floor_density(
+        sc,
+        dir,
+        (p.front1, p.front1 + p.run * p.steps as f64),
+        (t0, t1),
+    );
+    let promised = c.min_step_fill * density * p.rise * p.run;
+    if weakest < c.min_step_points || (weakest as f64) < promised {
+        return None;
+    }
     let top_h = (p.steps as f64 - 0.5) * p.rise;
     let mut far: Vec<f64> = pts
         .iter()
@@ -278,8 +329,12 @@ pub(crate) fn finish(
             p.run
         ),
         format!("step count {} from the top level; {width_rule}", p.steps),
+        format!(
+            "every step supported: at least {weakest} points on its tread, riser or side (rise {:.3} m within {:.2}-{:.2}, run {:.3} m within {:.2}-{:.2}: building codes' ranges)",
+            p.rise, c.rise_m[0], c.rise_m[1], p.run, c.run_m[0], c.run_m[1]
+        ),
     ];
-    DetectedStairs {
+    Some(DetectedStairs {
         steps: p.steps,
         rise: p.rise,
         run: p.run,
@@ -290,5 +345,39 @@ pub(crate) fn finish(
         support: pts.len() as u64,
         confidence: (p.found as f64 / p.steps as f64).min(1.0),
         rules,
+    })
+}
+
+/// Points per m² of the floor seen in a ring 0.3-1.3 m around a footprint (`s` along `dir`,
+/// `t` across it): the local density of the scans, counted over the 10 cm cells where the
+/// floor was seen.
+fn floor_density(sc: &Scene, dir: DVec2, s: (f64, f64), t: (f64, f64)) -> f64 {
+    let (inner, outer) = (0.3, 1.3);
+    let line = crate::points::Line2 {
+        origin: dir.perp() * ((t.0 + t.1) / 2.0),
+        dir,
+    };
+    let half = (t.1 - t.0) / 2.0;
+    let mut cells = std::collections::HashSet::new();
+    let mut n = 0usize;
+    sc.index.for_each_near_line(
+        sc.points,
+        &line,
+        s.0 - outer,
+        s.1 + outer,
+        half + outer,
+        |i, a, d| {
+            let near = a > s.0 - inner && a < s.1 + inner && d.abs() < half + inner;
+            if near || (sc.points[i].z as f64 - sc.floor).abs() > 0.03 {
+                return;
+            }
+            n += 1;
+            cells.insert(((a / 0.1).floor() as i64, (d / 0.1).floor() as i64));
+        },
+    );
+    if cells.is_empty() {
+        0.0
+    } else {
+        n as f64 / (cells.len() as f64 * 0.01)
     }
 }

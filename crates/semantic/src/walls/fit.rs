@@ -3,6 +3,7 @@
 
 use super::extent::find_extent;
 use super::faces::refine_line;
+use super::support::{SupportProfile, BIN_M};
 use super::{WallConfig, WallFit};
 use crate::merge::Segment;
 use crate::points::{quantile, Line2};
@@ -46,9 +47,18 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
     let mut top_bins = vec![false; bins.len()];
     let mut front = vec![[0usize; 2]; faces.len()];
     let strip = (0.02, 0.10);
+    let mut profile = SupportProfile::new(
+        ((hi - lo) / BIN_M).ceil().max(1.0) as usize,
+        &faces,
+        sc.floor,
+    );
     sc.index
         .for_each_near_line(sc.points, &line, lo, hi, hw + strip.1, |i, s, d| {
             let z = sc.z(i);
+            if !crossed(s, z) {
+                let face = z >= z_lo && z <= z_hi && on_face(d, &faces);
+                profile.add(((s - lo) / BIN_M) as usize, d, z, face);
+            }
             if z >= z_lo && z <= z_hi && on_face(d, &faces) && !crossed(s, z) {
                 zs.push(z);
                 let b = (((s - lo) / 0.1) as usize).min(bins.len() - 1);
@@ -65,6 +75,12 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
             }
         });
     if zs.len() < c.min_face_points {
+        return None;
+    }
+    // A wall stands on the floor and hides what is behind it (see `support`): not a beam, a
+    // row of pillars or a beam over them.
+    let (standing, open) = profile.fractions();
+    if standing == 0.0 || open > standing {
         return None;
     }
     let support = zs.len() as u64;
@@ -96,6 +112,10 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
         "vertical plane through a {len0:.2} m projection segment; face points over {:.2} m ({:.0} % covered)",
         hi - lo,
         coverage * 100.0
+    ), format!(
+        "face seen below head height along {:.0} % of it, seen through below head height along {:.0} % (a beam or pillars would be open more than standing)",
+        standing * 100.0,
+        open * 100.0
     )];
     let mut fit = WallFit {
         line: Line2 {

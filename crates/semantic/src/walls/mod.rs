@@ -19,6 +19,9 @@
 //! 4. Height: robust z range of the face points, snapped to floor and ceiling; a prerequisite
 //!    that does not come down to the floor (`max_bottom_above_floor_m`) or up to the ceiling
 //!    (`max_top_below_ceiling_m`) is no wall (a beam, a pipe, a door leaf, a cupboard).
+//! 5. Support ([`support`]): a wall's face is seen below head height, and nothing is seen
+//!    through it there; a prerequisite open underneath along more of its length than it
+//!    stands (a beam, a row of pillars, a beam over pillars) is no wall.
 //!
 //! Duplicates (the same wall found twice) merge into the longer one. Collinear walls join
 //! across a stretch of up to `max_join_gap_m` through which nothing was seen: a wall runs on
@@ -32,6 +35,7 @@ mod faces;
 mod fit;
 mod glimpses;
 mod joins;
+mod support;
 
 use crate::error::Result;
 use crate::merge::Segment;

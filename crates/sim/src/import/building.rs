@@ -89,13 +89,17 @@ fn fixed_and_stairs(
             | EntityClass::Furniture
             | EntityClass::Obstacle
             | EntityClass::Column
-            | EntityClass::Beam => fixed.push(FixedBox {
-                entity: id,
-                class,
-                name: ent.name.clone(),
-                label: label(),
-                geometry: box_of(part),
-            }),
+            | EntityClass::Beam => {
+                for geometry in boxes_of(part) {
+                    fixed.push(FixedBox {
+                        entity: id,
+                        class,
+                        name: ent.name.clone(),
+                        label: label(),
+                        geometry,
+                    });
+                }
+            }
             EntityClass::Stairs => {
                 let s = stairs.entry(id).or_insert_with(|| StairsSpec {
                     entity: id,
@@ -271,6 +275,50 @@ fn free_space(d: &Door, w: &Wall, axis: &WallAxis, cfg: &ImportConfig) -> BoxSpe
     }
 }
 
+/// The most blocks a pitched part (a ramp's slab) becomes.
+const MAX_RAMP_BLOCKS: f64 = 2000.0;
+/// The height of one block's step along a ramp (m): a centimetre is below what a wheel of any
+/// robot feels (kerbs and door sills are 2 cm and more).
+const RAMP_STEP_M: f64 = 0.01;
+
+/// The boxes of part `p` for the world, whose boxes turn about z only: the part itself, or for
+/// a pitched one (a ramp's slab) a run of yawed blocks following its top within [`RAMP_STEP_M`]
+/// and as thick (vertically) as the slab.
+fn boxes_of(p: &scanner::BoxPart) -> Vec<BoxSpec> {
+    if p.pitch_rad == 0.0 {
+        return vec![box_of(p)];
+    }
+    let pitch = f64::from(p.pitch_rad);
+    let yaw = f64::from(p.yaw_rad);
+    let (sp, cp) = pitch.sin_cos();
+    let (dx, dy) = (yaw.cos(), yaw.sin());
+    let c = p.center_m.to_array().map(f64::from);
+    let h = p.half_extents_m.to_array().map(f64::from);
+    // The top face's edge `u` along the slope from the middle: (horizontal offset, z).
+    let top = |u: f64| (u * cp - h[2] * sp, c[2] + u * sp + h[2] * cp);
+    let n = ((2.0 * h[0] * sp).abs() / RAMP_STEP_M)
+        .ceil()
+        .clamp(1.0, MAX_RAMP_BLOCKS) as usize;
+    let vertical_thickness = 2.0 * h[2] / cp.abs().max(1e-6);
+    (0..n)
+        .map(|k| {
+            let u0 = -h[0] + 2.0 * h[0] * k as f64 / n as f64;
+            let u1 = -h[0] + 2.0 * h[0] * (k + 1) as f64 / n as f64;
+            let ((s0, z0), (s1, z1)) = (top(u0), top(u1));
+            let (s_mid, z_top) = ((s0 + s1) / 2.0, (z0 + z1) / 2.0);
+            BoxSpec {
+                center_m: [
+                    c[0] + dx * s_mid,
+                    c[1] + dy * s_mid,
+                    z_top - vertical_thickness / 2.0,
+                ],
+                half_extents_m: [(s1 - s0).abs() / 2.0, h[1], vertical_thickness / 2.0],
+                yaw_deg: yaw.to_degrees(),
+            }
+        })
+        .collect()
+}
+
 fn box_of(p: &scanner::BoxPart) -> BoxSpec {
     BoxSpec {
         center_m: p.center_m.to_array().map(f64::from),
@@ -308,4 +356,43 @@ fn labels(b: &Building) -> HashMap<String, String> {
         }
     }
     m
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_ramp_becomes_floor_blocks_following_its_slope_within_a_centimetre() {
+        let text = r#"
+            [floor]
+            min_m = [0.0, 0.0]
+            max_m = [12.0, 6.0]
+            [ceiling]
+            height_m = 3.0
+            [[ramps]]
+            start_m = [2.0, 3.0]
+            direction_deg = 0.0
+            length_m = 8.0
+            width_m = 3.0
+            rise_m = 1.0
+        "#;
+        let b = Building::from_toml_str(text, Path::new("ramp.toml")).expect("valid");
+        let spec = WorldSpec::from_building(&b).expect("world");
+        let blocks: Vec<&FixedBox> = spec.fixed.iter().filter(|f| f.name == "ramps[0]").collect();
+        assert!(blocks.len() >= 100, "{} blocks", blocks.len());
+        for f in blocks {
+            assert_eq!(f.class, EntityClass::Floor);
+            let g = &f.geometry;
+            let top = g.center_m[2] + g.half_extents_m[2];
+            // The slope's height at the block's middle (the foot is at x = 2).
+            let slope = (g.center_m[0] - 2.0) / 8.0;
+            assert!(
+                (top - slope).abs() < 0.011,
+                "block at x {}: top {top}, slope {slope}",
+                g.center_m[0]
+            );
+            assert!(g.yaw_deg.abs() < 1e-9 && (g.half_extents_m[1] - 1.5).abs() < 1e-6);
+        }
+    }
 }

@@ -168,3 +168,103 @@ impl WorldSpec {
         Ok(spec)
     }
 }
+
+#[cfg(test)]
+mod obstacle_tests {
+    use super::*;
+    use crate::{run_scenario, RobotModel, Scenario};
+
+    /// A version 2 map: the door map (version 1, read as 2) with an obstacle pushed into its
+    /// wall, a column and a beam above the robot's way.
+    fn map_with_obstacles() -> SemanticMap {
+        let mut map = SemanticMap::from_json_str(
+            &fixtures::door_wall_map_json("right", 0.0, fixtures::DOOR_RELATIONS),
+            Path::new("map.json"),
+        )
+        .expect("door map");
+        let info = |z: [f64; 2]| semantic::ObstacleInfo {
+            z_range_m: z,
+            clearance_m: z[0],
+            hull_m: Vec::new(),
+            fill: 1.0,
+        };
+        let entity = |id: u32, class: EntityClass, c: [f64; 3], s: [f64; 3]| semantic::Entity {
+            id,
+            class,
+            geometry: OrientedBox {
+                center_m: c,
+                size_m: s,
+                yaw_deg: 0.0,
+            },
+            support_points: 100,
+            confidence: 0.9,
+            rules: Vec::new(),
+            wall: None,
+            door: None,
+            opening: None,
+            stairs: None,
+            obstacle: Some(info([c[2] - s[2] / 2.0, c[2] + s[2] / 2.0])),
+        };
+        // Through the wall at x = 6 (y 1 .. 2), a column, and a beam over the way at 2.2 m.
+        map.entities.push(entity(
+            7,
+            EntityClass::Obstacle,
+            [6.0, 1.5, 0.75],
+            [1.0, 1.0, 1.5],
+        ));
+        map.entities.push(entity(
+            8,
+            EntityClass::Column,
+            [3.0, 1.8, 1.25],
+            [0.4, 0.4, 2.5],
+        ));
+        map.entities.push(entity(
+            9,
+            EntityClass::Beam,
+            [3.5, 0.0, 2.35],
+            [0.3, 4.4, 0.3],
+        ));
+        map
+    }
+
+    /// Regression (issue #15): a map whose obstacle overlaps a wall still builds a world, and
+    /// the robot drives under the beam into the door it pushes open.
+    #[test]
+    fn a_map_whose_obstacle_overlaps_a_wall_builds_a_world() {
+        let map = map_with_obstacles();
+        let text = map.to_json_string();
+        let map = SemanticMap::from_json_str(&text, Path::new("v2.json")).expect("v2 map");
+        let spec = WorldSpec::from_semantic_map(&map).expect("world");
+        for (id, class) in [
+            (7, EntityClass::Obstacle),
+            (8, EntityClass::Column),
+            (9, EntityClass::Beam),
+        ] {
+            assert!(
+                spec.fixed
+                    .iter()
+                    .any(|f| f.entity == id && f.class == class),
+                "{} {id} is a fixed body",
+                class.name()
+            );
+        }
+        let sc = Scenario::from_toml_str(
+            r#"
+            robot = "pioneer3at"
+            time_limit_s = 9.0
+            start = { x_m = 2.0, y_m = 0.05, yaw_deg = 0.0 }
+            [[velocity]]
+            from_s = 0.3
+            to_s = 9.0
+            linear_mps = 0.5
+            [rules]
+            open_door = "5"
+            "#,
+            "test scenario",
+        )
+        .expect("scenario");
+        let model = RobotModel::builtin(&sc.robot).expect("robot");
+        let o = run_scenario(&spec, &sc, &model).expect("runs");
+        assert!(o.verdict.passed, "{:?}", o.verdict);
+    }
+}

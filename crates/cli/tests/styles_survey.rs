@@ -1,0 +1,92 @@
+//! `semsim building generate --style` and `semsim scan --survey`: the real binary in a
+//! temporary folder.
+
+mod util;
+use util::Dir;
+
+#[test]
+fn a_generated_garage_is_scanned_along_surveyed_poses_with_odometry() {
+    let d = Dir::new();
+    let cfg = d.small_config();
+    let cfg = cfg.to_str().expect("utf-8");
+    d.run(&[
+        "building", "generate", "--style", "garage", "--seed", "3", "--out", "g.toml",
+    ])
+    .ok();
+    let text = std::fs::read_to_string(d.join("g.toml")).expect("written");
+    assert!(
+        text.contains("[[ramps]]") && text.contains("class = \"column\""),
+        "not a garage"
+    );
+    let stdout = d
+        .run(&[
+            "--config",
+            cfg,
+            "scan",
+            "--building",
+            "g.toml",
+            "--survey",
+            "--out",
+            "s",
+        ])
+        .ok();
+    let poses = std::fs::read_to_string(d.join("s/poses.txt")).expect("poses");
+    let odometry = std::fs::read_to_string(d.join("s/odometry.txt")).expect("odometry");
+    let n = poses.lines().filter(|l| l.starts_with("scan")).count();
+    assert!(n >= 5, "{n} surveyed poses");
+    assert_eq!(
+        odometry.lines().filter(|l| l.starts_with("scan")).count(),
+        n
+    );
+    assert!(stdout.contains(&format!("survey: {n} poses")), "{stdout}");
+    let scans = d
+        .listing("s")
+        .iter()
+        .filter(|f| f.ends_with(".pcd"))
+        .count();
+    assert_eq!(scans, n);
+}
+
+#[test]
+fn survey_and_explicit_poses_conflict_and_an_unknown_style_is_refused() {
+    let d = Dir::new();
+    d.run(&["building", "generate", "--seed", "1", "--out", "b.toml"])
+        .ok();
+    let r = d.run(&[
+        "scan",
+        "--building",
+        "b.toml",
+        "--survey",
+        "--pose",
+        "1,0,0",
+        "--out",
+        "s",
+    ]);
+    assert_eq!(r.code(), 2, "{}", r.stderr());
+    assert!(
+        r.stderr().contains("--survey") && r.stderr().contains("--pose"),
+        "{}",
+        r.stderr()
+    );
+    let r = d.run(&[
+        "building", "generate", "--style", "castle", "--out", "c.toml",
+    ]);
+    assert_eq!(r.code(), 2);
+    assert!(
+        r.stderr().contains("castle") && r.stderr().contains("garage"),
+        "{}",
+        r.stderr()
+    );
+}
+
+#[test]
+fn a_survey_of_a_building_without_free_floor_is_bad_input_naming_it() {
+    let d = Dir::new();
+    d.write(
+        "full.toml",
+        "name = \"storeroom\"\n[floor]\nmin_m = [0.0, 0.0]\nmax_m = [4.0, 4.0]\n[ceiling]\n\
+         height_m = 2.5\n[[boxes]]\ncenter_m = [2.0, 2.0, 1.0]\nsize_m = [4.0, 4.0, 2.0]\n",
+    );
+    d.run(&["scan", "--building", "full.toml", "--survey", "--out", "s"])
+        .bad_input(&["full.toml", "storeroom", "no free floor"]);
+}

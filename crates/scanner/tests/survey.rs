@@ -1,0 +1,79 @@
+//! Survey poses chosen from a building: reaching the rooms a hand-made survey reaches, every
+//! pose standing free and near an earlier one, and a clear error where nothing is free.
+
+use glam::Vec3;
+use scanner::{
+    generate_building, room_of, survey_poses, Building, BuildingGeometry, GeneratorConfig,
+    ScanPose, Style, SurveyConfig,
+};
+use std::path::Path;
+
+fn xy(p: &[ScanPose]) -> Vec<[f64; 2]> {
+    p.iter().map(|p| [p.x_m, p.y_m]).collect()
+}
+
+#[test]
+fn the_default_building_survey_reaches_every_room_of_the_hand_made_survey() {
+    let b = Building::default_building().expect("built in");
+    let cfg = SurveyConfig::default();
+    let poses = survey_poses(&b, &cfg).expect("survey");
+    let by_hand = room_of(&b, &cfg, &xy(&Building::default_survey_poses())).expect("rooms");
+    let ours = room_of(&b, &cfg, &xy(&poses)).expect("rooms");
+    for room in by_hand.iter().flatten() {
+        assert!(ours.contains(&Some(*room)), "room {room} not surveyed: {poses:?}");
+    }
+    // Comparable in number: a surveyor does not stop every metre.
+    let n = Building::default_survey_poses().len();
+    assert!(poses.len() >= n / 2 && poses.len() <= 3 * n, "{} poses", poses.len());
+}
+
+#[test]
+fn every_survey_pose_stands_free_and_near_an_earlier_one_in_every_style() {
+    let cfg = SurveyConfig::default();
+    for style in [Style::Clean, Style::Office, Style::Garage, Style::Hall] {
+        for seed in 1..=3u64 {
+            let gen = GeneratorConfig {
+                style,
+                ..Default::default()
+            };
+            let b = generate_building(seed, &gen).expect("valid");
+            let g = BuildingGeometry::new(&b);
+            let poses = survey_poses(&b, &cfg).expect("survey");
+            assert!(poses.len() >= 3, "{style} {seed}: {} poses", poses.len());
+            for (k, p) in poses.iter().enumerate() {
+                for z in [0.1, 0.5, 1.5] {
+                    let at = Vec3::new(p.x_m as f32, p.y_m as f32, z);
+                    assert!(
+                        g.entity_containing(at).is_none(),
+                        "{style} {seed}: pose {k} {p:?} inside {:?}",
+                        g.entity_containing(at)
+                    );
+                }
+                let near = poses[..k]
+                    .iter()
+                    .any(|q| (q.x_m - p.x_m).hypot(q.y_m - p.y_m) <= cfg.max_step_m + 0.15);
+                assert!(k == 0 || near, "{style} {seed}: pose {k} far from all earlier ones");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_building_without_free_floor_is_a_clear_error_naming_it() {
+    let text = r#"
+        name = "storeroom"
+        [floor]
+        min_m = [0.0, 0.0]
+        max_m = [4.0, 4.0]
+        [ceiling]
+        height_m = 2.5
+        [[boxes]]
+        center_m = [2.0, 2.0, 1.0]
+        size_m = [4.0, 4.0, 2.0]
+    "#;
+    let b = Building::from_toml_str(text, Path::new("s.toml")).expect("valid");
+    let e = survey_poses(&b, &SurveyConfig::default())
+        .expect_err("no free floor")
+        .to_string();
+    assert!(e.contains("storeroom") && e.contains("no free floor"), "{e}");
+}

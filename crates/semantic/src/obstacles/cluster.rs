@@ -1,0 +1,109 @@
+//! Clusters of unexplained points: an XY occupancy grid per height band, its 8-connected
+//! components (see the `obstacles` module).
+
+use crate::image_frame::ImageFrame;
+
+/// The points of one height band bucketed by grid cell (compressed rows), and which cells are
+/// occupied by enough of them.
+pub(crate) struct BandGrid {
+    pub width: usize,
+    pub height: usize,
+    start: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl BandGrid {
+    /// Buckets the points `members` (indices into `cells_of`, whose entries are the points'
+    /// cells, `u32::MAX` for none) by cell.
+    pub fn new(frame: &ImageFrame, members: &[u32], cell_of: &[u32]) -> BandGrid {
+        let (width, height) = (frame.width_px as usize, frame.height_px as usize);
+        let n = width * height;
+        let mut count = vec![0u32; n + 1];
+        for &i in members {
+            count[cell_of[i as usize] as usize + 1] += 1;
+        }
+        for k in 0..n {
+            count[k + 1] += count[k];
+        }
+        let mut fill = count.clone();
+        let mut items = vec![0u32; members.len()];
+        for &i in members {
+            let k = cell_of[i as usize] as usize;
+            items[fill[k] as usize] = i;
+            fill[k] += 1;
+        }
+        BandGrid {
+            width,
+            height,
+            start: count,
+            items,
+        }
+    }
+
+    /// The points in cell `k`.
+    pub fn points(&self, k: usize) -> &[u32] {
+        &self.items[self.start[k] as usize..self.start[k + 1] as usize]
+    }
+
+    /// How many points cell `k` holds.
+    pub fn count(&self, k: usize) -> usize {
+        (self.start[k + 1] - self.start[k]) as usize
+    }
+}
+
+/// The 8-connected components of the cells for which `occupied` holds, each a list of cell
+/// indices (row-major). Cells up to `reach` cells apart (Chebyshev) are connected, so that the
+/// gaps a sparse scan leaves in one surface do not split it.
+pub(crate) fn components(
+    width: usize,
+    height: usize,
+    reach: usize,
+    occupied: impl Fn(usize) -> bool,
+) -> Vec<Vec<usize>> {
+    let mut seen = vec![false; width * height];
+    let mut out = Vec::new();
+    let r = reach.max(1) as isize;
+    for first in 0..width * height {
+        if seen[first] || !occupied(first) {
+            continue;
+        }
+        seen[first] = true;
+        let mut stack = vec![first];
+        let mut cells = Vec::new();
+        while let Some(k) = stack.pop() {
+            cells.push(k);
+            let (x, y) = ((k % width) as isize, (k / width) as isize);
+            for dy in -r..=r {
+                for dx in -r..=r {
+                    let (nx, ny) = (x + dx, y + dy);
+                    if nx < 0 || ny < 0 || nx >= width as isize || ny >= height as isize {
+                        continue;
+                    }
+                    let n = ny as usize * width + nx as usize;
+                    if !seen[n] && occupied(n) {
+                        seen[n] = true;
+                        stack.push(n);
+                    }
+                }
+            }
+        }
+        out.push(cells);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn components_join_cells_within_reach_only() {
+        // Row 0: cells 0, 1 and 3 occupied (a one-cell gap), cell 7 far off.
+        let occ = [0usize, 1, 3, 7];
+        let one = components(8, 1, 1, |k| occ.contains(&k));
+        assert_eq!(one.len(), 3, "{one:?}");
+        let two = components(8, 1, 2, |k| occ.contains(&k));
+        assert_eq!(two.len(), 2, "{two:?}");
+        assert_eq!(two[0].len(), 3);
+    }
+}

@@ -1,0 +1,404 @@
+//! Obstacles, columns and beams: what occupies space and is none of the floor, ceiling, walls,
+//! doors or stairs (the "the robot collides with what the scans saw").
+//!
+//! 1. Unexplained points: those no other entity labels (see `labels`), above the floor by
+//!    `min_above_floor_m` and below the ceiling by `below_ceiling_m`, off the walls' slabs
+//!    (grown by `wall_margin_m`: the faces' noise).
+//! 2. Two height bands split at `head_height_m`: below it, what a person or robot runs into;
+//!    above it, what they pass under. Each band's points go into an XY grid (`cell_m`); a cell
+//!    with `min_cell_points` is occupied (one stray return is not), and occupied cells up to two
+//!    cells apart form a cluster ([`cluster`]).
+//! 3. A low cluster's top climbs through the points above head height in its cells while they
+//!    follow each other within `max_vertical_gap_m` (a shelf taller than head height, a column
+//!    up to the ceiling; not the beam over a car). The high points it climbed through are its
+//!    own; the rest cluster as the high band.
+//! 4. Each cluster's box: the smallest-area rectangle around its footprint's convex hull
+//!    ([`fit`]; along a wall instead if that is at most 15 % larger), z from its points; a
+//!    bottom near the floor stands on it.
+//! 5. Classes: a low cluster standing on the floor, reaching the ceiling and at most
+//!    `column_max_across_m` across is a `column`; a high cluster at least `beam_min_length_m`
+//!    long and twice as long as wide is a `beam` (its bottom is above head height by
+//!    construction: the robot passes under it); anything else is an `obstacle`.
+
+mod cluster;
+mod fit;
+
+use crate::error::Result;
+use crate::image_frame::{pixel_center, pixel_range, ImageFrame};
+use crate::points::quantile;
+use crate::walls::WallFit;
+use cloud::{check_range, EntityClass};
+use cluster::{components, BandGrid};
+use fit::{convex_hull, min_area_rect};
+use glam::{DVec2, Vec3};
+use serde::{Deserialize, Serialize};
+
+/// Configuration of the obstacle, column and beam stage.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ObstacleConfig {
+    /// Edge of the occupancy grid's cells. 10 cm: finer than any gap a robot passes through,
+    /// coarser than the spacing of a 0.25-0.5 degree laser's returns within ~10 m, so that one
+    /// surface fills its cells.
+    pub cell_m: f64,
+    /// Points this far above the floor at least: twice the floor's labelling tolerance
+    /// (4 cm), above the laser's range noise (1-2 cm) and a levelling residue.
+    pub min_above_floor_m: f64,
+    /// ... and this far under the ceiling at least (lamps and sprinklers flush with it).
+    pub below_ceiling_m: f64,
+    /// Bands split here: a beam's underside is above it. 1.95 m: above the stature of 99 % of
+    /// adults (~1.90 m) and under the 2.0-2.1 m door heights and 2.0 m minimum headroom of
+    /// building codes, so what is above passes over people and robots.
+    pub head_height_m: f64,
+    /// Points this far off a wall's slab still belong to the wall (face noise and roughness).
+    pub wall_margin_m: f64,
+    /// Fewest points in an occupied cell (a single return in a cell is a stray or mixed pixel).
+    pub min_cell_points: usize,
+    /// Fewest points of a cluster: an object of 0.1 m x 0.1 m seen within 10 m by a 0.5 degree
+    /// laser gets a few returns per line over several lines; fewer are noise.
+    pub min_points: usize,
+    /// A column is at most this across (pillars of buildings are 0.2-0.8 m).
+    pub column_max_across_m: f64,
+    /// A column's bottom and top within this of the floor and ceiling reach them (the bands
+    /// above are left out, and the ceiling's junction is often unseen).
+    pub full_height_margin_m: f64,
+    /// A beam is at least this long (and twice as long as wide).
+    pub beam_min_length_m: f64,
+    /// A low cluster's top climbs through points above head height with gaps up to this:
+    /// a few of a laser's line spacings at 10 m (0.5-1 degree, 9-17 cm).
+    pub max_vertical_gap_m: f64,
+}
+
+impl Default for ObstacleConfig {
+    fn default() -> Self {
+        ObstacleConfig {
+            cell_m: 0.1,
+            min_above_floor_m: 0.08,
+            below_ceiling_m: 0.1,
+            head_height_m: 1.95,
+            wall_margin_m: 0.1,
+            min_cell_points: 2,
+            min_points: 15,
+            column_max_across_m: 1.0,
+            full_height_margin_m: 0.35,
+            beam_min_length_m: 1.0,
+            max_vertical_gap_m: 0.3,
+        }
+    }
+}
+
+impl ObstacleConfig {
+    pub(crate) fn validate(&self) -> Result<()> {
+        check_range(
+            "obstacles.cell_m",
+            self.cell_m,
+            0.01,
+            1.0,
+            "within 0.01..1 m",
+        )?;
+        for (name, v) in [
+            ("obstacles.min_above_floor_m", self.min_above_floor_m),
+            ("obstacles.below_ceiling_m", self.below_ceiling_m),
+            ("obstacles.head_height_m", self.head_height_m),
+            ("obstacles.wall_margin_m", self.wall_margin_m),
+            ("obstacles.column_max_across_m", self.column_max_across_m),
+            ("obstacles.full_height_margin_m", self.full_height_margin_m),
+            ("obstacles.beam_min_length_m", self.beam_min_length_m),
+            ("obstacles.max_vertical_gap_m", self.max_vertical_gap_m),
+        ] {
+            check_range(name, v, 0.0, 100.0, "within 0..100 m")?;
+        }
+        check_range(
+            "obstacles.min_cell_points",
+            self.min_cell_points as f64,
+            1.0,
+            1e6,
+            "within 1..1e6",
+        )?;
+        check_range(
+            "obstacles.min_points",
+            self.min_points as f64,
+            1.0,
+            1e9,
+            "within 1..1e9",
+        )?;
+        Ok(())
+    }
+}
+
+/// An obstacle, column or beam found in the cloud.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct DetectedObstacle {
+    pub class: EntityClass,
+    /// Footprint centre, first axis (the longer side) and full size along and across it.
+    pub center: DVec2,
+    pub dir: DVec2,
+    pub size: [f64; 2],
+    pub z_range: (f64, f64),
+    pub hull: Vec<DVec2>,
+    pub fill: f64,
+    pub support: u64,
+    /// Found in the band above head height.
+    pub overhead: bool,
+    pub rules: Vec<String>,
+}
+
+/// Where the stage looks: floor and ceiling heights, the image's area and the walls.
+pub(crate) struct ObstacleScene<'a> {
+    pub points: &'a [Vec3],
+    /// Per point: labelled by another entity.
+    pub explained: &'a [bool],
+    pub floor: f64,
+    pub ceiling: f64,
+    pub image: &'a ImageFrame,
+    pub walls: &'a [WallFit],
+}
+
+/// Finds the obstacles, columns and beams (see the module docs).
+pub(crate) fn find_obstacles(
+    sc: &ObstacleScene,
+    c: &ObstacleConfig,
+    max_pixels: u64,
+) -> Vec<DetectedObstacle> {
+    // The grid covers the projection image's area at `cell_m` (or at the image's own
+    // resolution if that would exceed the pixel cap).
+    let scale = sc.image.resolution_m / c.cell_m;
+    let own = ImageFrame {
+        origin_m: sc.image.origin_m,
+        resolution_m: c.cell_m,
+        width_px: (sc.image.width_px as f64 * scale).ceil().max(1.0) as u32,
+        height_px: (sc.image.height_px as f64 * scale).ceil().max(1.0) as u32,
+    };
+    let frame = if (own.len() as u64) <= max_pixels {
+        own
+    } else {
+        *sc.image
+    };
+    // 1. The unexplained points of each band, by cell.
+    let excluded = wall_cells(&frame, sc.walls, c.wall_margin_m);
+    let (z_lo, z_head, z_hi) = (
+        sc.floor + c.min_above_floor_m,
+        sc.floor + c.head_height_m,
+        sc.ceiling - c.below_ceiling_m,
+    );
+    let mut cell_of = vec![u32::MAX; sc.points.len()];
+    let (mut low, mut high) = (Vec::new(), Vec::new());
+    for (i, p) in sc.points.iter().enumerate() {
+        let z = p.z as f64;
+        if sc.explained[i] || z < z_lo || z > z_hi {
+            continue;
+        }
+        let Some((col, row)) = frame.pixel_of(p.x as f64, p.y as f64) else {
+            continue;
+        };
+        let k = row as usize * frame.width_px as usize + col as usize;
+        if excluded[k] {
+            continue;
+        }
+        cell_of[i] = k as u32;
+        if z < z_head {
+            low.push(i as u32);
+        } else {
+            high.push(i as u32);
+        }
+    }
+    let low_grid = BandGrid::new(&frame, &low, &cell_of);
+    let high_grid = BandGrid::new(&frame, &high, &cell_of);
+    let (w, h) = (low_grid.width, low_grid.height);
+    let mut consumed = vec![false; sc.points.len()];
+    let mut out = Vec::new();
+    // 2-3. Low clusters, their tops climbing into the high band.
+    for cells in components(w, h, 2, |k| low_grid.count(k) >= c.min_cell_points) {
+        let members: Vec<u32> = cells
+            .iter()
+            .flat_map(|&k| low_grid.points(k).iter().copied())
+            .collect();
+        if members.len() < c.min_points {
+            continue;
+        }
+        let mut zs: Vec<f64> = members
+            .iter()
+            .map(|&i| sc.points[i as usize].z as f64)
+            .collect();
+        let mut top = zs.iter().copied().fold(f64::MIN, f64::max);
+        let mut above: Vec<(f64, u32)> = cells
+            .iter()
+            .flat_map(|&k| high_grid.points(k).iter())
+            .map(|&i| (sc.points[i as usize].z as f64, i))
+            .collect();
+        above.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for &(z, i) in &above {
+            if z - top > c.max_vertical_gap_m {
+                break;
+            }
+            top = top.max(z);
+            consumed[i as usize] = true;
+        }
+        // The footprint is the low points' (the cells of a column also hold the beam it
+        // carries); the climbed points are labelled by the box.
+        let bottom = quantile(&mut zs, 0.01).unwrap_or(top);
+        if let Some(o) = fit_cluster(sc, &members, cells.len(), (bottom, top), false, &frame, c) {
+            out.push(o);
+        }
+    }
+    // 3. High clusters: what is left above head height. Cells a column climbed through still
+    //    connect (a beam carried by pillars is one beam), but their points are the column's.
+    for cells in components(w, h, 2, |k| high_grid.count(k) >= c.min_cell_points) {
+        let members: Vec<u32> = cells
+            .iter()
+            .flat_map(|&k| high_grid.points(k).iter().copied())
+            .filter(|&i| !consumed[i as usize])
+            .collect();
+        if members.len() < c.min_points {
+            continue;
+        }
+        let mut zs: Vec<f64> = members
+            .iter()
+            .map(|&i| sc.points[i as usize].z as f64)
+            .collect();
+        let bottom = quantile(&mut zs, 0.02).unwrap_or(z_head);
+        let top = zs.iter().copied().fold(f64::MIN, f64::max);
+        if let Some(o) = fit_cluster(sc, &members, cells.len(), (bottom, top), true, &frame, c) {
+            out.push(o);
+        }
+    }
+    drop_parts(out)
+}
+
+/// The clusters, largest footprint first, without those lying mostly inside a larger one's box
+/// at its heights (a part of it that the grid split off: a car's far edge, a sliver).
+fn drop_parts(mut found: Vec<DetectedObstacle>) -> Vec<DetectedObstacle> {
+    found.sort_by(|a, b| (b.size[0] * b.size[1]).total_cmp(&(a.size[0] * a.size[1])));
+    let mut kept: Vec<DetectedObstacle> = Vec::new();
+    for o in found {
+        let within = |k: &DetectedObstacle, q: DVec2| {
+            let r = q - k.center;
+            let margin = 0.1;
+            r.dot(k.dir).abs() <= k.size[0] / 2.0 + margin
+                && r.dot(k.dir.perp()).abs() <= k.size[1] / 2.0 + margin
+        };
+        let part_of = kept.iter().any(|k| {
+            // A column under a beam is no part of it: only clusters of one band are compared.
+            if k.overhead != o.overhead {
+                return false;
+            }
+            let z_overlap = o.z_range.0 < k.z_range.1 && k.z_range.0 < o.z_range.1;
+            let inside = o.hull.iter().filter(|q| within(k, **q)).count();
+            z_overlap && 2 * inside >= o.hull.len().max(1)
+        });
+        if !part_of {
+            kept.push(o);
+        }
+    }
+    kept
+}
+
+/// The box and class of one cluster (see the module docs, steps 4 and 5).
+fn fit_cluster(
+    sc: &ObstacleScene,
+    members: &[u32],
+    cells: usize,
+    (bottom, top): (f64, f64),
+    overhead: bool,
+    frame: &ImageFrame,
+    c: &ObstacleConfig,
+) -> Option<DetectedObstacle> {
+    let xy: Vec<DVec2> = members
+        .iter()
+        .map(|&i| {
+            let p = sc.points[i as usize];
+            DVec2::new(p.x as f64, p.y as f64)
+        })
+        .collect();
+    let hull = convex_hull(&xy);
+    let preferred: Vec<DVec2> = sc.walls.iter().map(|w| w.line.dir).collect();
+    let (center, dir, mut size) = min_area_rect(&hull, &preferred)?;
+    // The points are samples of the surface: the box reaches half a cell beyond them at least.
+    let pad = frame.resolution_m / 2.0;
+    size = [size[0].max(pad), size[1].max(pad)];
+    let fill =
+        (cells as f64 * frame.resolution_m.powi(2) / ((size[0] + pad) * (size[1] + pad))).min(1.0);
+    let near = c.full_height_margin_m;
+    let on_floor = !overhead && bottom - sc.floor <= c.min_above_floor_m + near;
+    let to_ceiling = sc.ceiling - top <= near;
+    let z0 = if on_floor { sc.floor } else { bottom };
+    let z1 = if to_ceiling { sc.ceiling } else { top };
+    let (class, why) = if !overhead && on_floor && to_ceiling && size[0] <= c.column_max_across_m {
+        (
+            EntityClass::Column,
+            format!(
+                "stands from the floor to the ceiling, {:.2} m across at most (a column is at most {:.2} m)",
+                size[0], c.column_max_across_m
+            ),
+        )
+    } else if overhead && size[0] >= c.beam_min_length_m && size[0] >= 2.0 * size[1] {
+        (
+            EntityClass::Beam,
+            format!(
+                "{:.2} m long and {:.2} m wide above head height: its underside {:.2} m above the floor",
+                size[0],
+                size[1],
+                z0 - sc.floor
+            ),
+        )
+    } else {
+        (
+            EntityClass::Obstacle,
+            format!(
+                "occupies {:.2} x {:.2} m from {:.2} to {:.2} m above the floor",
+                size[0],
+                size[1],
+                z0 - sc.floor,
+                z1 - sc.floor
+            ),
+        )
+    };
+    let rules = vec![
+        format!(
+            "{} points explained by no floor, ceiling, wall, door or stairs, {} occupied {:.2} m cells {}",
+            members.len(),
+            cells,
+            frame.resolution_m,
+            if overhead { "above head height" } else { "below head height" }
+        ),
+        "box: the smallest-area rectangle around the footprint's convex hull".into(),
+        why,
+    ];
+    Some(DetectedObstacle {
+        class,
+        center,
+        dir,
+        size,
+        z_range: (z0, z1),
+        hull,
+        fill,
+        support: members.len() as u64,
+        overhead,
+        rules,
+    })
+}
+
+/// The grid cells within a wall's slab grown by `margin` (its points are the wall's).
+fn wall_cells(frame: &ImageFrame, walls: &[WallFit], margin: f64) -> Vec<bool> {
+    let w = frame.width_px as usize;
+    let mut excluded = vec![false; frame.len()];
+    for wall in walls {
+        let half = wall.thickness / 2.0 + margin;
+        let (a, b) = (wall.start(), wall.end());
+        let lo = a.min(b) - DVec2::splat(half);
+        let hi = a.max(b) + DVec2::splat(half);
+        let Some((c0, c1, r0, r1)) = pixel_range(frame, lo, hi) else {
+            continue;
+        };
+        for row in r0..=r1 {
+            for col in c0..=c1 {
+                let q = pixel_center(frame, col as f64, row as f64);
+                let (s, d) = wall.line.coords(q);
+                if d.abs() <= half && s >= -margin && s <= wall.length + margin {
+                    excluded[row * w + col] = true;
+                }
+            }
+        }
+    }
+    excluded
+}

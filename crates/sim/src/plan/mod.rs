@@ -1,0 +1,381 @@
+//! A scenario for any world: when no scenario is given, plan one from the world itself. A tour
+//! from the start through every reachable door opening and up every staircase the robot can
+//! climb, on a 2D free-space grid inflated by the robot's footprint ([`grid`]), found by
+//! Dijkstra searches from where the robot stands, greedy nearest goal next ([`tour`]); the
+//! rules follow from the tour (pass through each door on it, reach the top of each staircase
+//! on it, no wall contact over 0.5 s, no tipping). What cannot be reached is listed with the
+//! reason, never an error; a world with no free space for the robot is one.
+//!
+//! Door leaves do not block the grid: the robot may push a closed or ajar leaf (hinges turn
+//! freely up to their limit, as the demo's robot pushes the stair room's door open). Where
+//! both sides of an opening are reachable, the tour enters from the side the leaf swings away
+//! from (the push side). Staircases are climbed last (the tour ends on a landing; with
+//! several, the robot drives back down to each foot before the next).
+
+mod distance;
+mod footprint;
+mod goals;
+mod grid;
+mod search;
+mod tour;
+
+pub use footprint::Footprint;
+
+use crate::controller::Waypoint;
+use crate::error::{check_range, Result, SimError};
+use crate::model::{RobotModel, StartPose};
+use crate::scenario::{Rules, Scenario};
+use crate::spec::WorldSpec;
+use grid::FreeGrid;
+use serde::{Deserialize, Serialize};
+use std::fmt::Write as _;
+
+/// The planner's settings (`[plan]` of a run's configuration).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct PlanConfig {
+    /// The robot the planned scenario drives: a built-in model name or a model file.
+    pub robot: String,
+    /// Grid cell size (m). Grown automatically where the world would need more than
+    /// `max_cells` cells.
+    pub cell_m: f64,
+    /// The most grid cells (memory: about 40 bytes each while planning).
+    pub max_cells: usize,
+    /// Clearance kept beyond the robot's half width (m): the grid is inflated by half the
+    /// robot's width plus this.
+    pub margin_m: f64,
+    /// Cruise speed between goals (m/s; clamped to the robot's top speed).
+    pub cruise_speed_mps: f64,
+    /// Speed through door openings and on stairs (m/s; clamped to the robot's top speed).
+    pub careful_speed_mps: f64,
+    /// The time limit is the tour's driving time times this, plus `time_extra_s`.
+    pub time_slack: f64,
+    /// Added to the time limit (s): turning in place, pushing doors, settling.
+    pub time_extra_s: f64,
+    /// Waypoints stay within this of the searched path (m) when the path is simplified.
+    pub simplify_tolerance_m: f64,
+}
+
+impl Default for PlanConfig {
+    fn default() -> Self {
+        PlanConfig {
+            robot: "pioneer3at".into(),
+            // 5 cm: a fifth of the narrowest robot half-width we model (Pioneer 3-AT, 0.25 m),
+            // so inflation errs by at most a cell.
+            cell_m: 0.05,
+            max_cells: 4_000_000,
+            margin_m: 0.05,
+            cruise_speed_mps: 0.6,
+            careful_speed_mps: 0.4,
+            // Turning in place, slowing at the last waypoint and pushing doors take time that
+            // the path length does not show: twice the driving time plus 15 s.
+            time_slack: 2.0,
+            time_extra_s: 15.0,
+            simplify_tolerance_m: 0.1,
+        }
+    }
+}
+
+impl PlanConfig {
+    /// Checks every parameter.
+    pub fn validate(&self) -> Result<()> {
+        let el = "plan";
+        check_range(el, "cell_m", self.cell_m, 0.005, 1.0, "5 mm to 1 m")?;
+        check_range(
+            el,
+            "max_cells",
+            self.max_cells as f64,
+            1.0e3,
+            1.0e8,
+            "1e3 to 1e8 cells",
+        )?;
+        check_range(el, "margin_m", self.margin_m, 0.0, 2.0, "0 to 2 m")?;
+        check_range(
+            el,
+            "cruise_speed_mps",
+            self.cruise_speed_mps,
+            0.05,
+            20.0,
+            "0.05 to 20 m/s",
+        )?;
+        check_range(
+            el,
+            "careful_speed_mps",
+            self.careful_speed_mps,
+            0.05,
+            20.0,
+            "0.05 to 20 m/s",
+        )?;
+        check_range(el, "time_slack", self.time_slack, 1.0, 100.0, "1 to 100")?;
+        check_range(
+            el,
+            "time_extra_s",
+            self.time_extra_s,
+            0.0,
+            1.0e4,
+            "0 to 1e4 s",
+        )?;
+        check_range(
+            el,
+            "simplify_tolerance_m",
+            self.simplify_tolerance_m,
+            0.0,
+            10.0,
+            "0 to 10 m",
+        )?;
+        Ok(())
+    }
+}
+
+/// A goal of the tour.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Goal {
+    /// Pass through this opening (named by its door leaf, or its free space without a leaf).
+    Door(String),
+    /// Climb to the top of this staircase.
+    Stairs(String),
+}
+
+impl Goal {
+    /// The entity's name.
+    pub fn name(&self) -> &str {
+        match self {
+            Goal::Door(n) | Goal::Stairs(n) => n,
+        }
+    }
+}
+
+/// A goal the tour could not include, and why.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Unreachable {
+    /// What was not reached.
+    pub goal: Goal,
+    /// Why, in one line.
+    pub reason: String,
+}
+
+/// A planned scenario: the scenario, the goals in tour order and what is not reachable.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlannedScenario {
+    /// The scenario (its rules: the tour's goals, `max_wall_contact_s = 0.5`, `no_tipping`).
+    pub scenario: Scenario,
+    /// The goals on the tour, in order.
+    pub tour: Vec<Goal>,
+    /// The tour's length (m).
+    pub tour_length_m: f64,
+    /// What the tour leaves out, and why.
+    pub unreachable: Vec<Unreachable>,
+    /// The grid cell size used (m; larger than asked for in very large worlds).
+    pub cell_m: f64,
+}
+
+impl PlannedScenario {
+    /// Doors on the tour.
+    pub fn doors(&self) -> usize {
+        self.tour
+            .iter()
+            .filter(|g| matches!(g, Goal::Door(_)))
+            .count()
+    }
+
+    /// Staircases on the tour.
+    pub fn stairs(&self) -> usize {
+        self.tour
+            .iter()
+            .filter(|g| matches!(g, Goal::Stairs(_)))
+            .count()
+    }
+
+    /// One line: `planned tour: 3 doors, 1 stairs, 2 unreachable, 41.2 m`.
+    pub fn summary(&self) -> String {
+        format!(
+            "planned tour: {} doors, {} stairs, {} unreachable, {:.1} m",
+            self.doors(),
+            self.stairs(),
+            self.unreachable.len(),
+            self.tour_length_m
+        )
+    }
+
+    /// The scenario as TOML, with a header saying it was planned and what it left out.
+    pub fn to_toml(&self) -> Result<String> {
+        let body = toml::to_string(&self.scenario).map_err(|e| SimError::Invalid {
+            element: "planned scenario".into(),
+            msg: format!("could not be written as TOML: {e}"),
+        })?;
+        let mut s = String::from(
+            "# Planned by semsim from the world (no scenario was given): a tour through every\n\
+             # reachable door opening and up every staircase the robot can climb.\n",
+        );
+        let _ = writeln!(s, "# {}", self.summary());
+        for u in &self.unreachable {
+            let _ = writeln!(s, "# not reachable: {}: {}", u.goal.name(), u.reason);
+        }
+        s.push_str(&body);
+        Ok(s)
+    }
+
+    /// The report's section on what the tour left out (Markdown), or on everything reached.
+    pub fn report_section(&self) -> String {
+        let mut s = String::from("## Not reachable\n\n");
+        let stand = "the robot only had to stand without touching walls or tipping";
+        let intro = match (self.tour.is_empty(), self.unreachable.is_empty()) {
+            (true, true) => format!(
+                "The scenario was planned from the world, which has no door opening or \
+                 staircase: {stand}."
+            ),
+            (true, false) => format!(
+                "The scenario was planned from the world, and nothing was reachable: {stand}."
+            ),
+            (false, true) => {
+                "Every door opening and staircase of the world is on the planned tour.".into()
+            }
+            (false, false) => "The planned tour leaves out:".into(),
+        };
+        let _ = writeln!(s, "{intro}\n");
+        if self.unreachable.is_empty() {
+            return s;
+        }
+        let _ = writeln!(s, "| entity | kind | why |\n|---|---|---|");
+        for u in &self.unreachable {
+            let kind = match u.goal {
+                Goal::Door(_) => "door",
+                Goal::Stairs(_) => "stairs",
+            };
+            let _ = writeln!(
+                s,
+                "| `{}` | {kind} | {} |",
+                u.goal.name(),
+                u.reason.replace('|', "\\|")
+            );
+        }
+        s.push('\n');
+        s
+    }
+}
+
+/// Plans a scenario in `world` for `robot` (whose name or file the scenario records as
+/// `cfg.robot`): from `start` (moved to the nearest free cell), or else from the free cell
+/// nearest the centre of the largest free region. Errors: bad settings, and a world with no
+/// free space for the robot ([`SimError::Invalid`] naming the world).
+pub fn plan_scenario(
+    world: &WorldSpec,
+    robot: &RobotModel,
+    start: Option<StartPose>,
+    cfg: &PlanConfig,
+) -> Result<PlannedScenario> {
+    cfg.validate()?;
+    // 1. The robot's footprint, height and the step rise it climbs.
+    let fp = Footprint::of(robot);
+    // 2. The free-space grid: boxes in the robot's height band, inflated by its half width.
+    let grid = FreeGrid::build(world, &fp, cfg)?;
+    // 3. The start: the hint's nearest free cell, else the largest free region's centre.
+    let start_cell = match start {
+        Some(p) => grid.nearest_free([p.x_m, p.y_m]),
+        None => grid.centre_of_largest_region(),
+    }
+    .ok_or_else(|| no_free_space(world))?;
+    // 4. The tour and what it leaves out.
+    let t = tour::plan_tour(
+        world,
+        &grid,
+        &fp,
+        &robot.name,
+        robot.drive.max_speed_mps,
+        start_cell,
+        cfg,
+    );
+    // 5. The scenario: waypoints, a time limit from the tour, the rules.
+    let first = t.waypoints.first().map(|w| [w.x_m, w.y_m]);
+    let s = grid.centre(start_cell);
+    let yaw_deg = first.map_or(start.map_or(0.0, |p| p.yaw_deg), |f| {
+        (f[1] - s[1]).atan2(f[0] - s[0]).to_degrees()
+    });
+    let start = StartPose {
+        x_m: s[0],
+        y_m: s[1],
+        yaw_deg,
+        z_m: grid.floor_z_m(),
+    };
+    let scenario = scenario_of(world, robot, &t, start, cfg)?;
+    Ok(PlannedScenario {
+        scenario,
+        tour: t.goals,
+        tour_length_m: t.length_m,
+        unreachable: t.unreachable,
+        cell_m: grid.cell_m(),
+    })
+}
+
+fn no_free_space(world: &WorldSpec) -> SimError {
+    let name = if world.name.is_empty() {
+        "the world".to_string()
+    } else {
+        world.name.clone()
+    };
+    SimError::Invalid {
+        element: "plan".into(),
+        msg: format!("no free space for the robot in {name}"),
+    }
+}
+
+/// The scenario of a tour: its waypoints, a time limit from its length, and its rules.
+fn scenario_of(
+    world: &WorldSpec,
+    robot: &RobotModel,
+    t: &tour::Tour,
+    start: StartPose,
+    cfg: &PlanConfig,
+) -> Result<Scenario> {
+    let doors: Vec<String> = t
+        .goals
+        .iter()
+        .filter_map(|g| match g {
+            Goal::Door(n) => Some(n.clone()),
+            Goal::Stairs(_) => None,
+        })
+        .collect();
+    let stairs: Vec<String> = t
+        .goals
+        .iter()
+        .filter_map(|g| match g {
+            Goal::Stairs(n) => Some(n.clone()),
+            Goal::Door(_) => None,
+        })
+        .collect();
+    let rules = Rules {
+        pass_through_doors: doors,
+        reach_top_of_stairs_all: stairs,
+        // The issue's constraints: at most half a second against walls, never tipped.
+        max_wall_contact_s: Some(0.5),
+        no_tipping: true,
+        ..Rules::default()
+    };
+    let name = if world.name.is_empty() {
+        "planned tour".to_string()
+    } else {
+        format!("planned tour of {}", world.name)
+    };
+    let waypoints: Vec<Waypoint> = t.waypoints.clone();
+    let time_limit_s = (t.drive_time_s * cfg.time_slack + cfg.time_extra_s).min(1.0e5);
+    // Parsed from a minimal text so that every other field takes the file format's default.
+    let text = format!(
+        "time_limit_s = {time_limit_s:?}\nstart = {{ x_m = {:?}, y_m = {:?} }}\n",
+        start.x_m, start.y_m
+    );
+    let mut s = Scenario::from_toml_str(&text, "<planned scenario>")?;
+    s.name = name;
+    s.robot = cfg.robot.clone();
+    s.description = format!(
+        "Planned from the world for {}: {} doors, {} stairs on the tour",
+        robot.name,
+        rules.pass_through_doors.len(),
+        rules.reach_top_of_stairs_all.len()
+    );
+    s.start = start;
+    s.waypoints = waypoints;
+    s.rules = rules;
+    s.stop_when_goals_met = !t.goals.is_empty();
+    s.validate()?;
+    Ok(s)
+}

@@ -1,0 +1,262 @@
+//! The tour: from the start, repeatedly the nearest reachable goal next (a Dijkstra search
+//! from where the robot stands), doors first, staircases last. A door is passed as a straight
+//! leg from an approach point on one side of its free space to a point on the other side where
+//! the robot has left it; a staircase as a leg from a point before its foot, facing up the
+//! stairs, to the middle of its landing (or top step). Paths between goals are simplified into
+//! waypoints.
+
+use super::footprint::Footprint;
+use super::goals::{door_leg, stairs_leg, DoorLeg, StairsLeg};
+use super::grid::FreeGrid;
+use super::search::{length_m, simplify, Reach};
+use super::{Goal, PlanConfig, Unreachable};
+use crate::controller::Waypoint;
+use crate::spec::WorldSpec;
+
+/// Entering an opening from the side its leaf swings towards (pulling) counts as this much
+/// longer a path (m): pushing a leaf open is what the robot can do, pulling it is not.
+const PULL_PENALTY_M: f64 = 10.0;
+/// Waypoint tolerance at a staircase's top (m): the middle of the landing, not its edge.
+const TOP_TOLERANCE_M: f64 = 0.1;
+
+/// A planned tour.
+pub(crate) struct Tour {
+    pub goals: Vec<Goal>,
+    pub waypoints: Vec<Waypoint>,
+    pub length_m: f64,
+    pub drive_time_s: f64,
+    pub unreachable: Vec<Unreachable>,
+}
+
+/// At most this many openings are crossed on the way between two goals (each costs a search).
+const MAX_CROSSINGS: usize = 64;
+
+struct Builder<'a> {
+    grid: &'a FreeGrid,
+    doors: &'a [DoorLeg],
+    comfort_m: f64,
+    cfg: &'a PlanConfig,
+    max_speed_mps: f64,
+    tour: Tour,
+    pos: usize,
+}
+
+impl Builder<'_> {
+    fn speed(&self, asked: f64) -> f64 {
+        asked.min(self.max_speed_mps)
+    }
+
+    /// Drives the searched path to `goal`; false when unreachable. Where the path crosses a
+    /// door opening, the robot crosses it straight, along the opening's normal, from its
+    /// approach point to its exit point (a long robot turning inside an opening touches its
+    /// jambs); the rest is simplified into waypoints.
+    fn drive_to(&mut self, reach: &Reach, goal_m: [f64; 2]) -> bool {
+        let Some(goal) = self.grid.cell_of(goal_m) else {
+            return false;
+        };
+        let Some(cells) = reach.path(goal) else {
+            return false;
+        };
+        let mut crossings = 0;
+        let mut cells = cells;
+        loop {
+            let pts: Vec<[f64; 2]> = cells.iter().map(|&c| self.grid.centre(c)).collect();
+            let leg = (crossings < MAX_CROSSINGS)
+                .then(|| self.first_crossing(&pts))
+                .flatten();
+            let Some((a, e)) = leg else {
+                self.follow(&pts, goal_m);
+                return true;
+            };
+            crossings += 1;
+            // Up to the approach point, straight through, then on from the exit point.
+            let (Some(ca), Some(ce)) = (self.grid.cell_of(a), self.grid.cell_of(e)) else {
+                self.follow(&pts, goal_m);
+                return true;
+            };
+            let to_a = Reach::from(self.grid, self.pos, self.comfort_m).path(ca);
+            let from_e = Reach::from(self.grid, ce, self.comfort_m).path(goal);
+            let (Some(to_a), Some(from_e)) = (to_a, from_e) else {
+                self.follow(&pts, goal_m);
+                return true;
+            };
+            let to_a: Vec<[f64; 2]> = to_a.iter().map(|&c| self.grid.centre(c)).collect();
+            self.follow(&to_a, a);
+            self.leg(e, None);
+            cells = from_e;
+        }
+    }
+
+    /// The first opening the path crosses (in on one side, out on the other): its leg from
+    /// the side the path comes from.
+    fn first_crossing(&self, pts: &[[f64; 2]]) -> Option<([f64; 2], [f64; 2])> {
+        for (k, p) in pts.iter().enumerate().skip(1) {
+            for d in self
+                .doors
+                .iter()
+                .filter(|d| d.inside(*p) && !d.inside(pts[k - 1]))
+            {
+                let before = d.local(pts[k - 1]).1;
+                let after = pts[k..].iter().find(|q| !d.inside(**q));
+                if after.is_some_and(|q| d.local(*q).1 * before < 0.0) {
+                    return d.leg_from(pts[k - 1]);
+                }
+            }
+        }
+        None
+    }
+
+    /// Follows a path of cell centres (the first is where the robot stands), simplified,
+    /// ending exactly at `end_m` (a point in the path's last cell).
+    fn follow(&mut self, pts: &[[f64; 2]], end_m: [f64; 2]) {
+        let mut pts = simplify(self.grid, pts, self.cfg.simplify_tolerance_m);
+        if let Some(last) = pts.last_mut() {
+            *last = end_m;
+        }
+        let v = self.speed(self.cfg.cruise_speed_mps);
+        for p in pts.iter().skip(1) {
+            self.push(*p, v, None);
+        }
+        if let Some(c) = pts.last().and_then(|p| self.grid.cell_of(*p)) {
+            self.pos = c;
+        }
+    }
+
+    /// A straight leg to `p` at the careful speed.
+    fn leg(&mut self, p: [f64; 2], tolerance_m: Option<f64>) {
+        let v = self.speed(self.cfg.careful_speed_mps);
+        self.push(p, v, tolerance_m);
+        if let Some(c) = self.grid.cell_of(p) {
+            self.pos = c;
+        }
+    }
+
+    fn push(&mut self, p: [f64; 2], speed_mps: f64, tolerance_m: Option<f64>) {
+        let from = self
+            .tour
+            .waypoints
+            .last()
+            .map_or(self.grid.centre(self.pos), |w| [w.x_m, w.y_m]);
+        let d = length_m(&[from, p]);
+        self.tour.length_m += d;
+        self.tour.drive_time_s += d / speed_mps;
+        self.tour.waypoints.push(Waypoint {
+            x_m: p[0],
+            y_m: p[1],
+            speed_mps: Some(speed_mps),
+            tolerance_m,
+        });
+    }
+}
+
+/// Plans the tour from `start` (a free cell).
+pub(crate) fn plan_tour(
+    world: &WorldSpec,
+    grid: &FreeGrid,
+    fp: &Footprint,
+    robot_name: &str,
+    max_speed_mps: f64,
+    start: usize,
+    cfg: &PlanConfig,
+) -> Tour {
+    let mut unreachable = vec![];
+    // 1. The goals the robot fits: door openings wide enough with room on a side, staircases
+    //    with steps it climbs and treads wide enough.
+    let mut all_doors: Vec<DoorLeg> = vec![];
+    for fs in &world.free_spaces {
+        match door_leg(world, grid, fp, cfg, fs) {
+            Ok(d) => all_doors.push(d),
+            Err(u) => unreachable.push(u),
+        }
+    }
+    let mut doors: Vec<usize> = (0..all_doors.len()).collect();
+    let mut stairs: Vec<StairsLeg> = vec![];
+    for s in &world.stairs {
+        match stairs_leg(grid, fp, robot_name, cfg, s) {
+            Ok(l) => stairs.push(l),
+            Err(u) => unreachable.push(u),
+        }
+    }
+    let mut b = Builder {
+        grid,
+        doors: &all_doors,
+        comfort_m: fp.turn_radius_m() + cfg.margin_m,
+        cfg,
+        max_speed_mps,
+        tour: Tour {
+            goals: vec![],
+            waypoints: vec![],
+            length_m: 0.0,
+            drive_time_s: 0.0,
+            unreachable: vec![],
+        },
+        pos: start,
+    };
+    // 2. Doors, nearest first, each entered from the side that pushes its leaf where possible.
+    while !doors.is_empty() {
+        let reach = Reach::from(grid, b.pos, b.comfort_m);
+        let best = doors
+            .iter()
+            .enumerate()
+            .flat_map(|(i, &d)| all_doors[d].sides.iter().map(move |s| (i, s)))
+            .filter_map(|(i, &(a, e, push))| {
+                let cost = reach.cost(grid.cell_of(a)?);
+                let cost = cost + if push { 0.0 } else { PULL_PENALTY_M };
+                cost.is_finite().then_some((cost, i, a, e))
+            })
+            .min_by(|x, y| x.0.total_cmp(&y.0));
+        let Some((_, i, a, e)) = best else { break };
+        let d = doors.remove(i);
+        if !b.drive_to(&reach, a) {
+            doors.push(d);
+            break;
+        }
+        b.leg(e, None);
+        b.tour.goals.push(Goal::Door(all_doors[d].name.clone()));
+    }
+    for d in doors {
+        unreachable.push(Unreachable {
+            goal: Goal::Door(all_doors[d].name.clone()),
+            reason: "no free path from the start to either side of the opening".into(),
+        });
+    }
+    // 3. Staircases, nearest first; between two, the robot drives back down to the foot of
+    //    the one it climbed (the tour goes on from its run-up point).
+    let mut from = b.pos;
+    let mut climbed: Option<StairsLeg> = None;
+    loop {
+        let reach = Reach::from(grid, from, b.comfort_m);
+        let best = stairs
+            .iter()
+            .enumerate()
+            .filter_map(|(i, s)| Some((reach.cost(grid.cell_of(s.run_up)?), i)))
+            .filter(|(c, _)| c.is_finite())
+            .min_by(|x, y| x.0.total_cmp(&y.0));
+        let Some((_, i)) = best else { break };
+        let Some(cell) = grid.cell_of(stairs[i].run_up) else {
+            break;
+        };
+        if let Some(prev) = climbed.take() {
+            b.leg(prev.foot, None);
+            b.leg(prev.run_up, None);
+        }
+        let s = stairs.remove(i);
+        if !b.drive_to(&reach, s.run_up) {
+            stairs.push(s);
+            break;
+        }
+        b.leg(s.foot, None);
+        b.leg(s.top, Some(TOP_TOLERANCE_M));
+        b.tour.goals.push(Goal::Stairs(s.name.clone()));
+        from = cell;
+        climbed = Some(s);
+    }
+    for s in stairs {
+        unreachable.push(Unreachable {
+            goal: Goal::Stairs(s.name),
+            reason: "no free path from the start to the foot of the stairs".into(),
+        });
+    }
+    b.tour.unreachable = unreachable;
+    b.tour
+}

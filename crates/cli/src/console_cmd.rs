@@ -109,13 +109,30 @@ pub fn run(a: ConsoleArgs) -> anyhow::Result<()> {
 
 /// The world: --map, --building, or the scenario's building.
 fn world(a: &ConsoleArgs, source: &ScenarioSource) -> anyhow::Result<ConsoleWorld> {
-    world_from(map_file(a).as_deref(), a.building.as_deref(), source)
+    let map = map_file(a);
+    if let (None, Some(m)) = (&a.map, &map) {
+        eprintln!(
+            "world: {} (the map beside the run; --map or --building to choose another)",
+            m.display()
+        );
+    }
+    world_from(map.as_deref(), a.building.as_deref(), source)
 }
 
 /// --map as a file: a folder means its `map/semantic_map.json` (a demo's or run's output), or
-/// its `semantic_map.json`.
+/// its `semantic_map.json`. Without --map and --building, a --run folder that `semsim run` or
+/// `semsim demo` wrote (`OUT/simulation`) is replayed in the map beside it (`OUT/map`), the
+/// world it ran in.
 fn map_file(a: &ConsoleArgs) -> Option<PathBuf> {
-    let m = a.map.as_ref()?;
+    let Some(m) = a.map.as_ref() else {
+        let beside = a
+            .run
+            .as_ref()
+            .filter(|_| a.building.is_none())
+            .map(|run| run.join("../map/semantic_map.json"))
+            .filter(|m| m.is_file())?;
+        return Some(beside);
+    };
     if !m.is_dir() {
         return Some(m.clone());
     }

@@ -247,4 +247,11 @@ fn console_refuses_a_bad_cloud_before_listening_and_picks_up_the_one_beside_a_ru
     let r = d.run(&["console", "--run", "out/simulation", "--port", "0"]);
     assert_eq!(r.code(), 2, "{}", r.stderr());
     assert!(r.stderr().contains("map.pcd"), "{}", r.stderr());
+    // And the semantic map beside it is the world the run is replayed in (a broken one here,
+    // named before listening); --building overrides it.
+    std::fs::create_dir_all(d.join("out/map")).expect("mkdir");
+    d.write("out/map/semantic_map.json", "{ not json");
+    let r = d.run(&["console", "--run", "out/simulation", "--port", "0"]);
+    assert_eq!(r.code(), 2, "{}", r.stderr());
+    assert!(r.stderr().contains("semantic_map.json"), "{}", r.stderr());
 }

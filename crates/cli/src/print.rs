@@ -62,7 +62,7 @@ pub fn map_written(dir: &Path) {
 /// Prints what `write_simulation` wrote.
 pub fn simulation_written(dir: &Path) {
     println!(
-        "wrote {}/events.jsonl, trajectory.csv, report.md, scenario.toml",
+        "wrote {}/events.jsonl, trajectory.csv, doors.csv, report.md, scenario.toml",
         dir.display()
     );
 }

@@ -30,7 +30,7 @@ pub struct SimulateArgs {
     /// the events are the session's, bit for bit.
     #[arg(long, value_name = "FILE")]
     replay: Option<PathBuf>,
-    /// Output folder for events.jsonl, trajectory.csv, report.md and scenario.toml.
+    /// Output folder for events.jsonl, trajectory.csv, doors.csv, report.md and scenario.toml.
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
 }

@@ -2,8 +2,9 @@
 //! doors or stairs (the "the robot collides with what the scans saw").
 //!
 //! 1. Unexplained points: those no other entity labels (see `labels`), above the floor by
-//!    `min_above_floor_m` and below the ceiling by `below_ceiling_m`, off the walls' slabs
-//!    (grown by `wall_margin_m`: the faces' noise).
+//!    `min_above_floor_m` and below the ceiling by `below_ceiling_m`, off the walls' slabs and
+//!    the door leaves' and staircases' boxes (grown by `wall_margin_m`: the faces' noise; a
+//!    leaf's free edge is the leaf, not a post in its doorway).
 //! 2. Two height bands split at `head_height_m`: below it, what a person or robot runs into;
 //!    above it, what they pass under. Each band's points go into an XY grid (`cell_m`); a cell
 //!    with `min_cell_points` is occupied (one stray return is not), and occupied cells up to two
@@ -25,6 +26,7 @@ mod fit;
 
 use crate::error::Result;
 use crate::image_frame::{pixel_center, pixel_range, ImageFrame};
+use crate::map::OrientedBox;
 use crate::points::quantile;
 use crate::walls::WallFit;
 use cloud::{check_range, EntityClass};
@@ -152,6 +154,8 @@ pub(crate) struct ObstacleScene<'a> {
     pub ceiling: f64,
     pub image: &'a ImageFrame,
     pub walls: &'a [WallFit],
+    /// Boxes of entities that are no obstacle: door leaves and staircases.
+    pub keep_out: &'a [OrientedBox],
 }
 
 /// Finds the obstacles, columns and beams (see the module docs).
@@ -175,7 +179,8 @@ pub(crate) fn find_obstacles(
         *sc.image
     };
     // 1. The unexplained points of each band, by cell.
-    let excluded = wall_cells(&frame, sc.walls, c.wall_margin_m);
+    let mut excluded = wall_cells(&frame, sc.walls, c.wall_margin_m);
+    exclude_boxes(&frame, sc.keep_out, c.wall_margin_m, &mut excluded);
     let (z_lo, z_head, z_hi) = (
         sc.floor + c.min_above_floor_m,
         sc.floor + c.head_height_m,
@@ -379,6 +384,28 @@ fn fit_cluster(
 }
 
 /// The grid cells within a wall's slab grown by `margin` (its points are the wall's).
+/// Marks the cells whose centres lie in a box's footprint grown by `margin`.
+fn exclude_boxes(frame: &ImageFrame, boxes: &[OrientedBox], margin: f64, excluded: &mut [bool]) {
+    let w = frame.width_px as usize;
+    for b in boxes {
+        let (s, co) = b.yaw_deg.to_radians().sin_cos();
+        let (axis, centre) = (DVec2::new(co, s), DVec2::new(b.center_m[0], b.center_m[1]));
+        let half = DVec2::new(b.size_m[0] / 2.0 + margin, b.size_m[1] / 2.0 + margin);
+        let reach = DVec2::splat(half.length());
+        let Some((c0, c1, r0, r1)) = pixel_range(frame, centre - reach, centre + reach) else {
+            continue;
+        };
+        for row in r0..=r1 {
+            for col in c0..=c1 {
+                let r = pixel_center(frame, col as f64, row as f64) - centre;
+                if r.dot(axis).abs() <= half.x && r.dot(axis.perp()).abs() <= half.y {
+                    excluded[row * w + col] = true;
+                }
+            }
+        }
+    }
+}
+
 fn wall_cells(frame: &ImageFrame, walls: &[WallFit], margin: f64) -> Vec<bool> {
     let w = frame.width_px as usize;
     let mut excluded = vec![false; frame.len()];

@@ -136,6 +136,15 @@ pub fn build_semantic_map(cloud: &PointCloud, config: &SemanticConfig) -> Result
     // 6. Obstacles, columns and beams: what the points no entity labelled occupy; added to the
     //    net (with their relations) and to the labels.
     let explained: Vec<bool> = map_labels.iter().map(|l| l.entity != 0).collect();
+    let keep_out: Vec<_> = map
+        .entities
+        .iter()
+        .filter_map(|e| match (&e.class, &e.door) {
+            (cloud::EntityClass::Door, Some(d)) => Some(swing_square(&e.geometry, d)),
+            (cloud::EntityClass::Stairs, _) => Some(e.geometry),
+            _ => None,
+        })
+        .collect();
     let obstacle_scene = ObstacleScene {
         points: &mp.points,
         explained: &explained,
@@ -143,6 +152,7 @@ pub fn build_semantic_map(cloud: &PointCloud, config: &SemanticConfig) -> Result
         ceiling: det.levels.ceiling_ref_m,
         image: &loc.frame,
         walls: &det.walls,
+        keep_out: &keep_out,
     };
     let obstacles = find_obstacles(&obstacle_scene, &config.obstacles, pc.max_pixels);
     let obstacle_ids = add_obstacles(
@@ -327,4 +337,28 @@ fn label_input(
         e.support_points = support.get(&e.id).copied().unwrap_or(0);
     }
     labels
+}
+
+/// The square a door leaf sweeps opening up to 90 degrees (its side's quarter circle's bounding
+/// box): whatever the scans saw of the leaf, at any angle, is the door's, not an obstacle.
+fn swing_square(
+    closed: &crate::map::OrientedBox,
+    d: &crate::map::DoorInfo,
+) -> crate::map::OrientedBox {
+    let (s, c) = closed.yaw_deg.to_radians().sin_cos();
+    let (u, w) = (glam::DVec2::new(c, s), closed.size_m[0]);
+    let along = match d.hinge_edge {
+        crate::map::HingeEdge::Start => u,
+        crate::map::HingeEdge::End => -u,
+    };
+    let side = match d.swing {
+        crate::map::SwingSide::Left => u.perp(),
+        crate::map::SwingSide::Right => -u.perp(),
+    };
+    let centre = glam::DVec2::new(d.hinge_m[0], d.hinge_m[1]) + (along + side) * (w / 2.0);
+    crate::map::OrientedBox {
+        center_m: [centre.x, centre.y, closed.center_m[2]],
+        size_m: [w, w, closed.size_m[2]],
+        yaw_deg: closed.yaw_deg,
+    }
 }

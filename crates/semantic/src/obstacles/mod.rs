@@ -327,7 +327,8 @@ fn fit_cluster(
     let on_floor = !overhead && bottom - sc.floor <= c.min_above_floor_m + near;
     let to_ceiling = sc.ceiling - top <= near;
     let z0 = if on_floor { sc.floor } else { bottom };
-    let z1 = if to_ceiling { sc.ceiling } else { top };
+    // A cluster of one height (a ledge seen edge-on) still has a box: half a cell tall at least.
+    let z1 = if to_ceiling { sc.ceiling } else { top }.max(z0 + pad);
     let (class, why) = if !overhead && on_floor && to_ceiling && size[0] <= c.column_max_across_m {
         (
             EntityClass::Column,
@@ -428,4 +429,47 @@ fn wall_cells(frame: &ImageFrame, walls: &[WallFit], margin: f64) -> Vec<bool> {
         }
     }
     excluded
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Regression: a cluster whose points all lie at one height got a box of zero height, which
+    /// the simulation refuses (`semsim run` on small_gicp's outdoor pair exited 2).
+    #[test]
+    fn a_cluster_at_one_height_gets_a_box_with_height() {
+        let points: Vec<Vec3> = (0..40)
+            .map(|i| Vec3::new(2.0 + 0.01 * i as f32, 3.0 + 0.005 * (i % 7) as f32, 1.2))
+            .collect();
+        let explained = vec![false; points.len()];
+        let image = ImageFrame {
+            origin_m: [0.0, 10.0],
+            resolution_m: 0.05,
+            width_px: 200,
+            height_px: 200,
+        };
+        let scene = ObstacleScene {
+            points: &points,
+            explained: &explained,
+            floor: 0.0,
+            ceiling: 3.0,
+            image: &image,
+            walls: &[],
+            keep_out: &[],
+        };
+        let members: Vec<u32> = (0..points.len() as u32).collect();
+        let o = fit_cluster(
+            &scene,
+            &members,
+            8,
+            (1.2, 1.2),
+            false,
+            &image,
+            &ObstacleConfig::default(),
+        )
+        .expect("a box");
+        assert!(o.z_range.1 - o.z_range.0 >= 0.02, "{:?}", o.z_range);
+        assert!(o.size.iter().all(|s| *s > 0.0), "{:?}", o.size);
+    }
 }

@@ -168,8 +168,14 @@ fn a_report_embeds_a_small_downsampled_cloud() {
     let bin = script_text(&html, "cloud-bin").trim();
     assert_eq!(bin.len(), (points as usize * 13).div_ceil(3) * 4);
     // The cloud adds at most 30,000 x 13 bytes in base64 (520 kB) to the file.
-    let plain = std::fs::metadata(d.join("plain.html")).expect("plain").len() as usize;
-    assert!(html.len() - plain <= 530_000, "{} bytes more", html.len() - plain);
+    let plain = std::fs::metadata(d.join("plain.html"))
+        .expect("plain")
+        .len() as usize;
+    assert!(
+        html.len() - plain <= 530_000,
+        "{} bytes more",
+        html.len() - plain
+    );
 }
 
 #[test]

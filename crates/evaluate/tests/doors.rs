@@ -54,7 +54,10 @@ fn no_obstacle_stands_where_a_leaf_swings() {
         let wall = &mut b.walls[4];
         let (start, end) = (wall.start_m, wall.end_m);
         let door = &mut wall.doors[2];
-        let leaf = door.leaf.as_mut().expect("the stair room's door has a leaf");
+        let leaf = door
+            .leaf
+            .as_mut()
+            .expect("the stair room's door has a leaf");
         leaf.open_deg = open_deg;
         let (hinge_offset, width) = (door.offset_m, door.width_m);
         let poses = Building::default_survey_poses();
@@ -64,7 +67,10 @@ fn no_obstacle_stands_where_a_leaf_swings() {
         // swinging left of the wall's direction), in the truth's frame (the map's, here).
         let len = ((end[0] - start[0]).powi(2) + (end[1] - start[1]).powi(2)).sqrt();
         let u = [(end[0] - start[0]) / len, (end[1] - start[1]) / len];
-        let hinge = [start[0] + u[0] * hinge_offset, start[1] + u[1] * hinge_offset];
+        let hinge = [
+            start[0] + u[0] * hinge_offset,
+            start[1] + u[1] * hinge_offset,
+        ];
         for e in &out.map.entities {
             if !matches!(
                 e.class,
@@ -72,7 +78,10 @@ fn no_obstacle_stands_where_a_leaf_swings() {
             ) {
                 continue;
             }
-            let r = [e.geometry.center_m[0] - hinge[0], e.geometry.center_m[1] - hinge[1]];
+            let r = [
+                e.geometry.center_m[0] - hinge[0],
+                e.geometry.center_m[1] - hinge[1],
+            ];
             let (along, left) = (r[0] * u[0] + r[1] * u[1], -r[0] * u[1] + r[1] * u[0]);
             let in_swing = (r[0].hypot(r[1]) < width + 0.1) && along > -0.1 && left > -0.1;
             assert!(

@@ -29,8 +29,7 @@ mod survey;
 mod validate;
 
 pub use building::{
-    Building, Ceiling, Door, Floor, Furniture, Hinge, Leaf, Material, Ramp, Staircase, Swing,
-    Wall,
+    Building, Ceiling, Door, Floor, Furniture, Hinge, Leaf, Material, Ramp, Staircase, Swing, Wall,
 };
 pub use error::{Result, ScannerError};
 pub use generate::{generate_building, resolve_style, GeneratorConfig, Style};

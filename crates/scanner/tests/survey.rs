@@ -20,11 +20,18 @@ fn the_default_building_survey_reaches_every_room_of_the_hand_made_survey() {
     let by_hand = room_of(&b, &cfg, &xy(&Building::default_survey_poses())).expect("rooms");
     let ours = room_of(&b, &cfg, &xy(&poses)).expect("rooms");
     for room in by_hand.iter().flatten() {
-        assert!(ours.contains(&Some(*room)), "room {room} not surveyed: {poses:?}");
+        assert!(
+            ours.contains(&Some(*room)),
+            "room {room} not surveyed: {poses:?}"
+        );
     }
     // Comparable in number: a surveyor does not stop every metre.
     let n = Building::default_survey_poses().len();
-    assert!(poses.len() >= n / 2 && poses.len() <= 3 * n, "{} poses", poses.len());
+    assert!(
+        poses.len() >= n / 2 && poses.len() <= 3 * n,
+        "{} poses",
+        poses.len()
+    );
 }
 
 #[test]
@@ -52,7 +59,10 @@ fn every_survey_pose_stands_free_and_near_an_earlier_one_in_every_style() {
                 let near = poses[..k]
                     .iter()
                     .any(|q| (q.x_m - p.x_m).hypot(q.y_m - p.y_m) <= cfg.max_step_m + 0.15);
-                assert!(k == 0 || near, "{style} {seed}: pose {k} far from all earlier ones");
+                assert!(
+                    k == 0 || near,
+                    "{style} {seed}: pose {k} far from all earlier ones"
+                );
             }
         }
     }
@@ -75,5 +85,8 @@ fn a_building_without_free_floor_is_a_clear_error_naming_it() {
     let e = survey_poses(&b, &SurveyConfig::default())
         .expect_err("no free floor")
         .to_string();
-    assert!(e.contains("storeroom") && e.contains("no free floor"), "{e}");
+    assert!(
+        e.contains("storeroom") && e.contains("no free floor"),
+        "{e}"
+    );
 }

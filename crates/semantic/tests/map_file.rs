@@ -339,6 +339,11 @@ fn version_1_files_are_still_read() {
     let text = std::fs::read_to_string(&path).expect("v1 file");
     let raw: Value = serde_json::from_str(&text).expect("JSON");
     assert_eq!(raw["version"], 1);
+    // Version 2 knows every class version 1 knew, and obstacles, columns and beams.
+    assert!(MAP_CLASSES_V1.iter().all(|c| MAP_CLASSES.contains(c)));
+    for c in [EntityClass::Obstacle, EntityClass::Column, EntityClass::Beam] {
+        assert!(MAP_CLASSES.contains(&c) && !MAP_CLASSES_V1.contains(&c));
+    }
     let map = SemanticMap::load(&path).expect("a version 1 map reads");
     assert_eq!(map.version, MAP_VERSION);
     assert_eq!(

@@ -168,7 +168,7 @@ fn bad_values_in_pcd_data_name_the_point() {
         "FIELDS x y z label class\nSIZE 4 4 4 4 1\nTYPE F F F U U\nWIDTH 2\nHEIGHT 1\nDATA ascii\n";
     let (dir, path) = file(
         "class.pcd",
-        format!("{head}0 0 0 1 1\n0 0 0 2 10\n").as_bytes(),
+        format!("{head}0 0 0 1 1\n0 0 0 2 200\n").as_bytes(),
     );
     let e = read_err(&dir, &path);
     assert!(

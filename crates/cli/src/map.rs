@@ -81,6 +81,7 @@ pub fn run(a: MapArgs, cfg: &Config) -> anyhow::Result<()> {
         a.poses.as_deref(),
         a.max_range_m,
         &a.read.options(),
+        &cfg.outliers,
     )?;
     if let Some(v) = a.voxel_m {
         cloud = cloud::voxel_downsample(&cloud, v)?;

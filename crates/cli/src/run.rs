@@ -3,7 +3,7 @@
 
 use crate::scan_input::ScanReadArgs;
 use clap::Args;
-use pipeline::{read_scans, read_sequence, scans_to_verdict, Config, ScenarioChoice};
+use pipeline::{read_sequence, scans_to_verdict, Config, ScenarioChoice};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -41,7 +41,7 @@ pub fn run(a: RunArgs, cfg: &Config) -> anyhow::Result<()> {
     pipeline::check_output_dir(&a.out)?;
     let scenario = ScenarioChoice::from_file_or_plan(a.scenario.as_deref(), &cfg.plan)?;
     let input = read_sequence(&a.inputs, a.odometry.as_deref(), None, &a.read.options())?;
-    let scans = read_scans(&input.scans, a.max_range_m)?;
+    let scans = pipeline::read_scans_with(&input.scans, a.max_range_m, &cfg.outliers)?;
     crate::interrupt::install();
     let mut printer = crate::print::Printer::default();
     let outcome = scans_to_verdict(&input, scans, &scenario, cfg, &a.out, &mut printer)?;

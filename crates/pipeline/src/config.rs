@@ -23,6 +23,8 @@ pub struct Config {
     pub semantic: semantic::SemanticConfig,
     /// The scenario planned in a world when none is given (`run`, `simulate --map`).
     pub plan: sim::PlanConfig,
+    /// Statistical outlier removal of every scan read (isolated returns in mid-air).
+    pub outliers: crate::OutlierConfig,
 }
 
 impl Config {
@@ -63,6 +65,9 @@ impl Config {
             .validate()
             .map_err(|e| section("semantic", &e))?;
         self.plan.validate().map_err(|e| section("plan", &e))?;
+        self.outliers
+            .validate()
+            .map_err(|e| section("outliers", &e))?;
         Ok(())
     }
 
@@ -128,6 +133,31 @@ mod tests {
                 "[laser.realism]\nno_echo_range_m = 10.0\n",
                 "no_echo_range_m",
             ),
+        ] {
+            let bad = dir.path().join("bad.toml");
+            std::fs::write(&bad, body).expect("write");
+            let e = Config::load(&bad).expect_err(body).to_string();
+            assert!(e.contains("bad.toml") && e.contains(what), "{e}");
+        }
+    }
+
+    #[test]
+    fn the_outliers_section_is_read_checked_and_written_back() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        // On by default, and written beside a run.
+        assert!(Config::default().outliers.enabled);
+        let off = dir.path().join("off.toml");
+        std::fs::write(&off, "[outliers]\nenabled = false\nneighbours_k = 10\n").expect("write");
+        let c = Config::load(&off).expect("reads");
+        assert!(!c.outliers.enabled);
+        assert_eq!(c.outliers.neighbours_k, 10);
+        c.write_beside(dir.path()).expect("written");
+        let back = Config::load(&dir.path().join("config.toml")).expect("reads back");
+        assert_eq!(back.outliers, c.outliers);
+        for (body, what) in [
+            ("[outliers]\nneighbours_k = 0\n", "neighbours_k"),
+            ("[outliers]\nmin_ratio = 0.5\n", "min_ratio"),
+            ("[outliers]\nsigma = 3.0\n", "sigma"),
         ] {
             let bad = dir.path().join("bad.toml");
             std::fs::write(&bad, body).expect("write");

@@ -4,8 +4,9 @@
 //!   `odometry.txt` + `entities.json`), written by [`write_scan_folder`] and read as a
 //!   sequence by [`read_sequence`] (real sequences too: 3DTK `.pose` files, `--odometry`, a
 //!   multi-scan E57 or a ROS 2 bag, read by the `interop` crate with [`ReadOptions`]).
-//! - [`read_scans`], [`place_and_merge`]: scans read with a range limit, placed by their poses
-//!   and merged.
+//! - [`read_scans`], [`place_and_merge`]: scans read with a range limit, without no-echo
+//!   readings ([`find_no_echo`]) and isolated points ([`find_outliers`], [`OutlierConfig`]),
+//!   placed by their poses and merged.
 //! - The stages: [`register_scans`], [`build_map`], [`simulate`], each with a writer of its
 //!   files; [`scans_to_verdict`] runs all three in memory (no stage reads what the one before
 //!   wrote) and reports to an [`Observer`] as it goes.
@@ -74,7 +75,7 @@ pub use map::{build_map, map_summary, write_map, MAP_PICTURES};
 pub use no_echo::{
     drop_no_echo, find_no_echo, NoEcho, NO_ECHO_BAND_M, NO_ECHO_MIN_POINTS, NO_ECHO_MIN_SHARE,
 };
-pub use outliers::{find_outliers, remove_outliers, OutlierConfig, RANGE_GROUP_POINTS};
+pub use outliers::{find_outliers, remove_outliers, OutlierConfig, OUTLIER_MIN_POINTS};
 pub use plot::{line_chart, plot_rmse, Series};
 pub use register::{
     open_registrar, register_scans, write_registration, PairReport, Registration, ScanRow,
@@ -82,7 +83,7 @@ pub use register::{
 pub use scan_folder::{
     read_sequence, write_scan_folder, ScanFolderSummary, ScanSource, SequenceInput,
 };
-pub use scans::{merge_scan_files, place_and_merge, read_scans};
+pub use scans::{merge_scan_files, place_and_merge, read_scans, read_scans_with};
 pub use score::score_map_file;
 pub use simulate::{simulate, write_simulation, ScenarioChoice, ScenarioSource};
 pub use truth::{relative_pose_errors, worst_pose_error};

@@ -1,18 +1,32 @@
-//! Scans read for mapping: missing returns and far points dropped, each placed by its pose
+//! Scans read for mapping: missing returns, no-echo readings, isolated points and far points dropped, each placed by its pose
 //! and all merged into one cloud in the world frame.
 
 use crate::error::{PipelineError, Result};
+use crate::outliers::OutlierConfig;
 use crate::scan_folder::{expand_files, ScanSource};
 use cloud::{NamedPose, PointCloud};
 use glam::{DAffine3, DVec3};
 use std::path::{Path, PathBuf};
 
 /// Reads scans, dropping missing returns, no-echo readings (a sensor's fixed range for "no
-/// echo", found by [`crate::find_no_echo`]; reported on standard error with their count) and
+/// echo", found by [`crate::find_no_echo`]; reported on standard error with their count),
+/// statistical outliers with the default [`OutlierConfig`] (see [`read_scans_with`]) and
 /// points farther than `max_range_m` from their scan's sensor. Files read in a local frame (georeferenced LAS/LAZ: see
 /// [`interop::ScanSet::local_origin_m`]) are moved into the first such file's frame, which is
 /// reported on standard error.
 pub fn read_scans(sources: &[ScanSource], max_range_m: Option<f64>) -> Result<Vec<PointCloud>> {
+    read_scans_with(sources, max_range_m, &OutlierConfig::default())
+}
+
+/// [`read_scans`] with the run's outlier removal (`[outliers]` of the configuration): after
+/// the no-echo readings, each scan loses its isolated points ([`crate::remove_outliers`]; an
+/// organised scan keeps its shape, with NaN for them), reported on standard error with their
+/// count when there are any.
+pub fn read_scans_with(
+    sources: &[ScanSource],
+    max_range_m: Option<f64>,
+    outliers: &OutlierConfig,
+) -> Result<Vec<PointCloud>> {
     if let Some(r) = max_range_m {
         if !(r.is_finite() && r > 0.0) {
             return Err(PipelineError::bad_input(format!(
@@ -38,6 +52,17 @@ pub fn read_scans(sources: &[ScanSource], max_range_m: Option<f64>) -> Result<Ve
                     found.count,
                     found.range_m,
                     100.0 * found.count as f64 / (scan.len() + found.count).max(1) as f64
+                );
+            }
+            let before = scan.valid_count();
+            let (scan, removed) = crate::outliers::remove_outliers(&scan, outliers);
+            if removed > 0 {
+                eprintln!(
+                    "note: {} ({}): {} isolated points (statistical outliers, {:.2} % of the points) removed",
+                    source.file.display(),
+                    source.name,
+                    removed,
+                    100.0 * removed as f64 / before.max(1) as f64
                 );
             }
             Ok(match max_range_m {
@@ -136,20 +161,22 @@ pub fn place_and_merge(
     Ok(merged)
 }
 
-/// Reads the scans, places each by the pose file `poses` (if given; else by the poses the
-/// files record, as E57 scans do) and merges them.
+/// Reads the scans (as [`read_scans_with`] does, with `outliers`), places each by the pose
+/// file `poses` (if given; else by the poses the files record, as E57 scans do) and merges
+/// them.
 pub fn merge_scan_files(
     files: &[PathBuf],
     poses: Option<&Path>,
     max_range_m: Option<f64>,
     options: &interop::ReadOptions,
+    outliers: &OutlierConfig,
 ) -> Result<PointCloud> {
     let expanded = expand_files(files, options)?;
     let named = match poses {
         Some(p) => Some(cloud::read_poses(p)?),
         None => recorded_poses(&expanded.scans, &expanded.own_poses),
     };
-    let scans = read_scans(&expanded.scans, max_range_m)?;
+    let scans = read_scans_with(&expanded.scans, max_range_m, outliers)?;
     place_and_merge(&expanded.scans, scans, named.as_deref()).map_err(|e| match (e, poses) {
         (PipelineError::BadInput(msg), Some(p)) => {
             PipelineError::BadInput(format!("{}: {msg}", p.display()))

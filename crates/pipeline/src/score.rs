@@ -26,7 +26,8 @@ pub fn score_map_file(
     let observed = if scans.is_empty() {
         None
     } else {
-        let merged = merge_scan_files(scans, poses, None, &Default::default())?;
+        let merged =
+            merge_scan_files(scans, poses, None, &Default::default(), &Default::default())?;
         evaluate::check_ground_truth(&merged, &building)?;
         Some(merged)
     };

@@ -5,7 +5,9 @@
 //! - [`register`] registers a source cloud to a target cloud from a guess of
 //!   `target_from_source`; [`Target`] + [`register_to`] reuse a prepared target.
 //! - [`register_sequence`] registers scans one after another against the growing map, starting
-//!   each from the odometry.
+//!   each from the odometry; without odometry (and where ICP from the odometry fails) the
+//!   initial alignment searches each scan's yaw and position against the map first
+//!   ([`InitialAlignment`], `SequenceConfig::initial_alignment`).
 //! - [`IcpConfig`] holds every setting; its defaults are GICP on 10 cm voxels with a 1 m
 //!   correspondence gate that adapts to 3 x RMSE (never below 0.15 m), and
 //!   [`IcpConfig::point_to_point`] is the paper's method at full resolution.
@@ -43,7 +45,10 @@
 //! - Point-to-point ICP cannot pin the axis of a corridor (as the 2009 paper's method, Open3D's and
 //!   small_gicp's): use point-to-plane or GICP there.
 //! - Every method is local: from a guess farther off than the gate (or rotated so far that
-//!   distant points move beyond it) it converges to a wrong pose with a good fitness.
+//!   distant points move beyond it) it converges to a wrong pose with a good fitness. The
+//!   initial alignment of sequences is global within the scan's reach of the previous scan's
+//!   sensor, assuming levelled scans on one floor: a scan taken farther away than it sees, or
+//!   one of several rooms that look alike from the same distance, can land in the wrong place.
 //! - On the 2009 3DTK corridor scans, GICP and point-to-plane on 5 cm voxels land 1-1.5 degrees
 //!   (pitch) from the 2009 registration, point-to-point on 2 cm voxels within 0.35 degrees.
 //! - Max-range returns (e.g. 3DTK's 32.76 m "no echo" points) are not filtered here.
@@ -77,6 +82,7 @@ mod covariance;
 mod downsample;
 mod error;
 mod icp;
+mod initial;
 mod linalg;
 mod nearest;
 mod registrar;
@@ -88,6 +94,7 @@ pub use config::{
     Device, IcpConfig, Method, NnBackend, ParseDeviceError, ParseMethodError, RobustKernel,
 };
 pub use error::{RegistrationError, Result};
+pub use initial::{InitialAlignment, InitialAlignmentReport};
 pub use nearest::grid::BucketGrid;
 pub use nearest::kdtree::KdTree;
 pub use nearest::NearestNeighbors;

@@ -4,15 +4,18 @@
 //!
 //! The guess for scan `k` applies the odometry's relative motion to the last registered pose:
 //! `world_from_scan[k-1] * odom[k-1]^-1 * odom[k]`. Scan 0 defines the world and keeps its
-//! odometry pose.
+//! odometry pose. Without odometry (or where its ICP fails), the initial alignment
+//! ([`crate::initial`], [`SequenceConfig::initial_alignment`]) searches the scan's yaw and
+//! position against the map first.
 
 use crate::config::IcpConfig;
 use crate::downsample::{finite_points, voxel_downsample, voxel_downsample_with};
 use crate::error::{RegistrationError, Result};
+use crate::initial::{self, InitialAlignment, InitialAlignmentReport};
 use crate::registrar::Registrar;
 use crate::result::IcpResult;
 use crate::target::Target;
-use cloud::PointCloud;
+use cloud::{check_range, PointCloud};
 use glam::{DAffine3, Vec3};
 use serde::{Deserialize, Serialize};
 
@@ -32,6 +35,19 @@ pub struct SequenceConfig {
     pub scan_voxel_m: f64,
     /// The map is kept downsampled to this voxel edge.
     pub map_voxel_m: f64,
+    /// When a scan's yaw and position are searched against the map before its ICP (`auto`:
+    /// every scan of a sequence without odometry, and with odometry only a scan whose ICP
+    /// from the odometry fails; `always`; `off`: the previous behaviour, every scan from its
+    /// guess). See [`InitialAlignment`]. ICP alone is local: without odometry each scan
+    /// starts from the previous scan's pose, and a turn of more than about 20 degrees or a
+    /// move of more than the gate lands it in a wrong minimum.
+    pub initial_alignment: InitialAlignment,
+    /// The initial alignment's resolution: the cell of its search from above, the voxel and
+    /// the final gate of its coarse ICPs. 0.25 m: coarse enough to search a room in tens of
+    /// milliseconds and to average a scan's noise, fine enough that a 0.5 m tall piece of
+    /// furniture or a door jamb is structure and that the coarse ICP starts within its gate
+    /// (three cells) of the solution.
+    pub initial_cell_m: f64,
 }
 
 impl Default for SequenceConfig {
@@ -41,7 +57,41 @@ impl Default for SequenceConfig {
             range_knee_m: 1.0,
             scan_voxel_m: 0.05,
             map_voxel_m: 0.05,
+            initial_alignment: InitialAlignment::Auto,
+            initial_cell_m: 0.25,
         }
+    }
+}
+
+impl SequenceConfig {
+    /// Checks every value for a meaningful range (the ICP's settings with the sequence's
+    /// range weighting, the voxels, the initial alignment's cell).
+    pub fn validate(&self) -> Result<()> {
+        IcpConfig {
+            range_knee_m: self.range_knee_m,
+            ..self.icp.clone()
+        }
+        .validate()?;
+        check_range(
+            "initial_cell_m",
+            self.initial_cell_m,
+            0.05,
+            5.0,
+            "must be a finite length within [0.05, 5] m (the initial alignment's cell)",
+        )?;
+        for (name, v) in [
+            ("scan_voxel_m", self.scan_voxel_m),
+            ("map_voxel_m", self.map_voxel_m),
+        ] {
+            if !(v.is_finite() && (1e-4..=100.0).contains(&v)) {
+                return Err(RegistrationError::invalid(
+                    name,
+                    v,
+                    "must be a finite length within [1e-4, 100] m",
+                ));
+            }
+        }
+        Ok(())
     }
 }
 
@@ -54,12 +104,16 @@ pub struct SequenceResult {
     pub map: PointCloud,
     /// Each scan's registration; `None` for scan 0, which defines the world.
     pub results: Vec<Option<IcpResult>>,
+    /// Each scan's initial alignment; `None` where there was none (scan 0, and every scan
+    /// that registered from its guess).
+    pub initial: Vec<Option<InitialAlignmentReport>>,
 }
 
 /// Registers `scans` one after another against the growing map.
 ///
 /// `world_from_scan_guess` is the odometry, one pose per scan, or empty for none (every
-/// relative motion is then the identity). `progress(done, total)` is called after each scan.
+/// relative motion is then the identity, and with [`InitialAlignment::Auto`] each scan's yaw
+/// and position are searched against the map). `progress(done, total)` is called after each scan.
 /// A scan that fails to register stops the sequence with its error (for
 /// [`RegistrationError::NotConverged`] the reason names the scan).
 ///
@@ -90,24 +144,11 @@ pub fn register_sequence_with(
     config: &SequenceConfig,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<SequenceResult> {
-    config.icp.validate()?;
+    config.validate()?;
     let icp = IcpConfig {
         range_knee_m: config.range_knee_m,
         ..config.icp.clone()
     };
-    icp.validate()?;
-    for (name, v) in [
-        ("scan_voxel_m", config.scan_voxel_m),
-        ("map_voxel_m", config.map_voxel_m),
-    ] {
-        if !(v.is_finite() && (1e-4..=100.0).contains(&v)) {
-            return Err(RegistrationError::invalid(
-                name,
-                v,
-                "must be a finite length within [1e-4, 100] m",
-            ));
-        }
-    }
     if scans.is_empty() {
         return Err(RegistrationError::EmptyCloud {
             which: "scan sequence".into(),
@@ -136,6 +177,16 @@ pub fn register_sequence_with(
         });
     }
     let total = scans.len();
+    let has_odometry = !world_from_scan_guess.is_empty();
+    let search_first = match config.initial_alignment {
+        InitialAlignment::Off => false,
+        InitialAlignment::Auto => !has_odometry,
+        InitialAlignment::Always => true,
+    };
+    let settings = initial::Settings {
+        cell_m: config.initial_cell_m,
+        range_knee_m: config.range_knee_m,
+    };
     let scan_points = |k: usize| -> Result<Vec<Vec3>> {
         let p = finite_points(&scans[k], &format!("scan {k}"))?;
         voxel_downsample(&p, config.scan_voxel_m, "scan_voxel_m")
@@ -146,6 +197,7 @@ pub fn register_sequence_with(
     let sensor = |k: usize| scans[k].sensor_origin;
     let mut world_from_scan = vec![odom(0)];
     let mut results = vec![None];
+    let mut reports = vec![None];
     let mut map = scan_points(0)?;
     move_points(&mut map, &odom(0));
     let views = vec![odom(0).transform_point3(sensor(0).as_dvec3()).as_vec3(); map.len()];
@@ -160,13 +212,39 @@ pub fn register_sequence_with(
         let guess = world_from_scan[k - 1] * odom(k - 1).inverse() * odom(k);
         let mut source = PointCloud::from_points(points);
         source.sensor_origin = sensor(k);
-        let result = match registrar.register_to(&target, &source, guess, &icp) {
+        // The initial alignment: first where configured, else where the guess fails.
+        let align = |map: &[Vec3], views: &[Vec3]| {
+            let previous = (&world_from_scan[k - 1], sensor(k - 1));
+            initial::align(map, views, &source, previous, &guess, settings)
+        };
+        let (outcome, report) = if search_first {
+            let (start, report) = align(&map, &views)?;
+            let outcome = registrar.register_to(&target, &source, start, &icp);
+            (outcome, Some(report))
+        } else {
+            match registrar.register_to(&target, &source, guess, &icp) {
+                Err(
+                    RegistrationError::NotConverged { .. } | RegistrationError::NoOverlap { .. },
+                ) if config.initial_alignment == InitialAlignment::Auto => {
+                    let (start, report) = align(&map, &views)?;
+                    let outcome = registrar.register_to(&target, &source, start, &icp);
+                    (outcome, Some(report))
+                }
+                outcome => (outcome, None),
+            }
+        };
+        let result = match outcome {
             Ok(r) => r,
             Err(RegistrationError::NotConverged { result, reason }) => {
+                let after = if report.is_some() {
+                    " (after the initial alignment)"
+                } else {
+                    ""
+                };
                 return Err(RegistrationError::NotConverged {
                     result,
-                    reason: format!("scan {k}: {reason}"),
-                })
+                    reason: format!("scan {k}{after}: {reason}"),
+                });
             }
             Err(e) => return Err(e),
         };
@@ -179,12 +257,14 @@ pub fn register_sequence_with(
         (map, views) = voxel_downsample_with(&map, &views, config.map_voxel_m, "map_voxel_m")?;
         world_from_scan.push(pose);
         results.push(Some(result));
+        reports.push(report);
         progress(k + 1, total);
     }
     Ok(SequenceResult {
         world_from_scan,
         map: PointCloud::from_points(map),
         results,
+        initial: reports,
     })
 }
 

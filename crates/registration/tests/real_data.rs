@@ -80,6 +80,7 @@ fn threedtk_corridor_sequence_matches_the_2009_registration() {
         range_knee_m: 0.0,
         scan_voxel_m: 0.02,
         map_voxel_m: 0.02,
+        ..SequenceConfig::default()
     };
     let mut calls = Vec::new();
     let result = register_sequence(&scans, &odometry, &config, &mut |done, total| {

@@ -341,7 +341,11 @@ fn version_1_files_are_still_read() {
     assert_eq!(raw["version"], 1);
     // Version 2 knows every class version 1 knew, and obstacles, columns and beams.
     assert!(MAP_CLASSES_V1.iter().all(|c| MAP_CLASSES.contains(c)));
-    for c in [EntityClass::Obstacle, EntityClass::Column, EntityClass::Beam] {
+    for c in [
+        EntityClass::Obstacle,
+        EntityClass::Column,
+        EntityClass::Beam,
+    ] {
         assert!(MAP_CLASSES.contains(&c) && !MAP_CLASSES_V1.contains(&c));
     }
     let map = SemanticMap::load(&path).expect("a version 1 map reads");

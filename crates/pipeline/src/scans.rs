@@ -19,9 +19,9 @@ pub fn read_scans(sources: &[ScanSource], max_range_m: Option<f64>) -> Result<Ve
 }
 
 /// [`read_scans`] with the run's outlier removal (`[outliers]` of the configuration): after
-/// the no-echo readings, each scan loses its isolated points ([`crate::remove_outliers`]; an
-/// organised scan keeps its shape, with NaN for them), reported on standard error with their
-/// count when there are any.
+/// the no-echo readings, each scan loses its isolated points ([`crate::remove_outliers`]),
+/// reported on standard error with their count when there are any; every point returned is
+/// finite (a scan that lost points also loses its organised shape, as `without_invalid` does).
 pub fn read_scans_with(
     sources: &[ScanSource],
     max_range_m: Option<f64>,
@@ -65,6 +65,13 @@ pub fn read_scans_with(
                     100.0 * removed as f64 / before.max(1) as f64
                 );
             }
+            // The chain takes finite points only (as `without_invalid` leaves them): an
+            // organised scan whose isolated points became NaN loses them here, and its shape.
+            let scan = if removed > 0 {
+                scan.without_invalid()
+            } else {
+                scan
+            };
             Ok(match max_range_m {
                 Some(r) => within_range(&scan, r as f32),
                 None => scan,

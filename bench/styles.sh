@@ -9,16 +9,19 @@
 #   bash bench/styles.sh                      # styles office garage hall mixed, seeds 1-10
 #   STYLES="garage" SEEDS="1 2" bash bench/styles.sh
 #   LASER=ideal bash bench/styles.sh          # the ideal laser instead
+#   REUSE=1 bash bench/styles.sh              # keep the scans and registrations already in
+#                                             # $WORK; only map and score again (semantic work)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 STYLES=${STYLES:-"office garage hall mixed"}
 SEEDS=${SEEDS:-"1 2 3 4 5 6 7 8 9 10"}
 LASER=${LASER:-real}
 OUT=${OUT:-bench/results/styles.md}
-WORK=bench/work/styles
+WORK=${WORK:-bench/work/styles}
+REUSE=${REUSE:-0}
 cargo build --release -q -p semsim
 S=target/release/semsim
-rm -rf "$WORK"
+[ "$REUSE" = 1 ] || rm -rf "$WORK"
 mkdir -p "$WORK"
 for style in $STYLES; do
   for seed in $SEEDS; do
@@ -27,13 +30,21 @@ for style in $STYLES; do
     echo "== $style seed $seed"
     # A building whose registration (or any step) fails is recorded as failed, not dropped.
     step() { local what=$1; shift; "$@" >>"$d/log.txt" 2>&1 || { echo "$what" >"$d/failed.txt"; return 1; }; }
-    step generate "$S" building generate --style "$style" --seed "$seed" --out "$d/building.toml" &&
-    step scan "$S" scan --building "$d/building.toml" --survey --laser "$LASER" --out "$d/scans" &&
-    step register "$S" register --sequence "$d/scans" --out "$d/reg" &&
-    step map "$S" map "$d/reg/map.pcd" --out "$d/map" &&
-    "$S" eval map "$d/map/semantic_map.json" --building "$d/building.toml" \
-      --cloud "$d"/scans/scan*.pcd --poses "$d/reg/poses.txt" --json >"$d/eval.json" 2>>"$d/log.txt" ||
-      { [ -f "$d/failed.txt" ] || echo eval >"$d/failed.txt"; }
+    if [ "$REUSE" = 1 ] && [ -f "$d/reg/map.pcd" ]; then
+      # (log.txt too: a copy made with `cp -al` shares its files with the original)
+      rm -rf "$d/failed.txt" "$d/map" "$d/eval.json" "$d/log.txt"
+    else
+      rm -rf "$d" && mkdir -p "$d"
+      step generate "$S" building generate --style "$style" --seed "$seed" --out "$d/building.toml" &&
+        step scan "$S" scan --building "$d/building.toml" --survey --laser "$LASER" --out "$d/scans" &&
+        step register "$S" register --sequence "$d/scans" --out "$d/reg" || true
+    fi
+    if [ ! -f "$d/failed.txt" ]; then
+      step map "$S" map "$d/reg/map.pcd" --out "$d/map" &&
+        "$S" eval map "$d/map/semantic_map.json" --building "$d/building.toml" \
+          --cloud "$d"/scans/scan*.pcd --poses "$d/reg/poses.txt" --json >"$d/eval.json" 2>>"$d/log.txt" ||
+        { [ -f "$d/failed.txt" ] || echo eval >"$d/failed.txt"; }
+    fi
     if [ -f "$d/failed.txt" ]; then echo "   failed at: $(cat "$d/failed.txt")"; fi
   done
 done

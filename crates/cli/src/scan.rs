@@ -58,7 +58,7 @@ pub fn run(a: ScanArgs, cfg: &Config) -> anyhow::Result<()> {
     pipeline::check_output_dir(&a.out)?;
     let building = Building::load(&a.building)?;
     let poses = if a.survey {
-        let poses = scanner::survey_poses(&building, &scanner::SurveyConfig::default())
+        let poses = scanner::survey_poses(&building, &cfg.survey)
             .map_err(|e| anyhow::Error::from(e).context(a.building.display().to_string()))?;
         println!("survey: {} poses", poses.len());
         poses

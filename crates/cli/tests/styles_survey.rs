@@ -90,3 +90,60 @@ fn a_survey_of_a_building_without_free_floor_is_bad_input_naming_it() {
     d.run(&["scan", "--building", "full.toml", "--survey", "--out", "s"])
         .bad_input(&["full.toml", "storeroom", "no free floor"]);
 }
+
+#[test]
+fn the_survey_section_of_the_config_sets_the_poses_and_is_checked() {
+    let d = Dir::new();
+    d.run(&["building", "generate", "--seed", "2", "--out", "b.toml"])
+        .ok();
+    let count = |cfg: &str, out: &str| {
+        d.run(&[
+            "--config",
+            cfg,
+            "scan",
+            "--building",
+            "b.toml",
+            "--survey",
+            "--out",
+            out,
+        ])
+        .ok();
+        std::fs::read_to_string(d.join(&format!("{out}/poses.txt")))
+            .expect("poses")
+            .lines()
+            .filter(|l| l.starts_with("scan"))
+            .count()
+    };
+    let near = d.write(
+        "near.toml",
+        "[laser]\nbeams = 61\nrotation_steps = 31\n[survey]\ncover_radius_m = 3.0\n",
+    );
+    let far = d.write(
+        "far.toml",
+        "[laser]\nbeams = 61\nrotation_steps = 31\n[survey]\ncover_radius_m = 8.0\n",
+    );
+    let (n_near, n_far) = (
+        count(near.to_str().expect("utf-8"), "near"),
+        count(far.to_str().expect("utf-8"), "far"),
+    );
+    // Each scan covering more floor needs fewer stops.
+    assert!(
+        n_far < n_near,
+        "{n_far} poses covering 8 m, {n_near} covering 3 m"
+    );
+    // The config written beside the scans is the one used.
+    let written = std::fs::read_to_string(d.join("far/config.toml")).expect("config");
+    assert!(written.contains("[survey]") && written.contains("cover_radius_m = 8.0"));
+    let bad = d.write("bad.toml", "[survey]\nclearance_m = -1.0\n");
+    d.run(&[
+        "--config",
+        bad.to_str().expect("utf-8"),
+        "scan",
+        "--building",
+        "b.toml",
+        "--survey",
+        "--out",
+        "x",
+    ])
+    .bad_input(&["bad.toml", "[survey]", "clearance_m"]);
+}

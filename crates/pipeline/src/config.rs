@@ -25,6 +25,8 @@ pub struct Config {
     pub plan: sim::PlanConfig,
     /// Statistical outlier removal of every scan read (isolated returns in mid-air).
     pub outliers: crate::OutlierConfig,
+    /// How `semsim scan --survey` chooses the stop-and-scan poses.
+    pub survey: scanner::SurveyConfig,
 }
 
 impl Config {
@@ -68,6 +70,7 @@ impl Config {
         self.outliers
             .validate()
             .map_err(|e| section("outliers", &e))?;
+        self.survey.validate().map_err(|e| section("survey", &e))?;
         Ok(())
     }
 

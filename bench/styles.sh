@@ -42,7 +42,8 @@ for style in $STYLES; do
     if [ ! -f "$d/failed.txt" ]; then
       step map "$S" map "$d/reg/map.pcd" --out "$d/map" &&
         "$S" eval map "$d/map/semantic_map.json" --building "$d/building.toml" \
-          --cloud "$d"/scans/scan*.pcd --poses "$d/reg/poses.txt" --json >"$d/eval.json" 2>>"$d/log.txt" ||
+          --cloud "$d"/scans/scan*.pcd --poses "$d/reg/poses.txt" \
+          --true-poses "$d/scans/poses.txt" --json >"$d/eval.json" 2>>"$d/log.txt" ||
         { [ -f "$d/failed.txt" ] || echo eval >"$d/failed.txt"; }
     fi
     if [ -f "$d/failed.txt" ]; then echo "   failed at: $(cat "$d/failed.txt")"; fi

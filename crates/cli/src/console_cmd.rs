@@ -5,12 +5,10 @@
 use crate::exit::bad_input;
 use clap::Args;
 use console::{
-    CloudLayer, Console, ConsoleConfig, ConsoleWorld, RecordedRun, RunConsole, RunSetup,
-    SessionSetup, MAX_CLOUD_POINTS,
+    CloudLayer, Console, ConsoleConfig, ConsoleInputs, ConsoleWorld, RecordedRun, RunConsole,
+    RunSetup, SessionSetup, WorldFile, MAX_CLOUD_POINTS,
 };
 use pipeline::ScenarioSource;
-use scanner::Building;
-use sim::RobotModel;
 use std::io::Write as _;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::path::{Path, PathBuf};
@@ -71,7 +69,7 @@ pub fn run(a: ConsoleArgs) -> anyhow::Result<()> {
     pipeline::check_output_dir(&a.out)?;
     let mut source = ScenarioSource::load(a.scenario.as_deref())?;
     if let Some(robot) = &a.robot {
-        use_robot(&mut source, robot)?;
+        source = source.with_robot(robot)?;
     }
     let world = world(&a, &source)?;
     let config = config(&a)?;
@@ -81,7 +79,7 @@ pub fn run(a: ConsoleArgs) -> anyhow::Result<()> {
         scenario_toml: source.text,
         robot: source.robot,
         out_dir: a.out.clone(),
-        cloud: cloud_layer(&a, MAX_CLOUD_POINTS)?,
+        cloud: cloud_layer(&a)?,
     };
     crate::interrupt::install();
     let saved = console::serve_blocking::<Console>(
@@ -107,91 +105,44 @@ pub fn run(a: ConsoleArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The world: --map, --building, or the scenario's building.
+/// What the command line names, for the console crate to find the world and cloud from.
+fn inputs(a: &ConsoleArgs) -> ConsoleInputs {
+    ConsoleInputs {
+        map: a.map.clone(),
+        building: a.building.clone(),
+        run: a.run.clone(),
+        cloud: a.cloud.clone(),
+    }
+}
+
+/// The world (see [`ConsoleInputs::world_source`]); says which map it is when it was found
+/// beside the run rather than named.
 fn world(a: &ConsoleArgs, source: &ScenarioSource) -> anyhow::Result<ConsoleWorld> {
-    let map = map_file(a);
-    if let (None, Some(m)) = (&a.map, &map) {
+    let file = inputs(a).world_source(&source.scenario.building, &source.base_dir);
+    if let WorldFile::Map(m) = &file {
+        if m.was_found() {
+            eprintln!(
+                "world: {} (the map beside the run; --map or --building to choose another)",
+                m.path().display()
+            );
+        }
+    }
+    Ok(file.load()?)
+}
+
+/// The cloud layer (see [`ConsoleInputs::cloud_file`]), downsampled to at most
+/// [`MAX_CLOUD_POINTS`]; says which file it is when it was found rather than named.
+fn cloud_layer(a: &ConsoleArgs) -> anyhow::Result<Option<CloudLayer>> {
+    let Some(file) = inputs(a).cloud_file() else {
+        return Ok(None);
+    };
+    if file.was_found() {
         eprintln!(
-            "world: {} (the map beside the run; --map or --building to choose another)",
-            m.display()
+            "cloud layer: {} (found beside the map or run; --cloud FILE to choose another)",
+            file.path().display()
         );
     }
-    world_from(map.as_deref(), a.building.as_deref(), source)
-}
-
-/// --map as a file: a folder means its `map/semantic_map.json` (a demo's or run's output), or
-/// its `semantic_map.json`. Without --map and --building, a --run folder that `semsim run` or
-/// `semsim demo` wrote (`OUT/simulation`) is replayed in the map beside it (`OUT/map`), the
-/// world it ran in.
-fn map_file(a: &ConsoleArgs) -> Option<PathBuf> {
-    let Some(m) = a.map.as_ref() else {
-        let beside = a
-            .run
-            .as_ref()
-            .filter(|_| a.building.is_none())
-            .map(|run| run.join("../map/semantic_map.json"))
-            .filter(|m| m.is_file())?;
-        return Some(beside);
-    };
-    if !m.is_dir() {
-        return Some(m.clone());
-    }
-    let nested = m.join("map/semantic_map.json");
-    Some(if nested.is_file() {
-        nested
-    } else {
-        m.join("semantic_map.json")
-    })
-}
-
-/// The cloud layer: --cloud, else the registered cloud found beside --map or --run (see
-/// [`found_cloud`]), downsampled to `max_points`.
-pub(crate) fn cloud_layer(
-    a: &ConsoleArgs,
-    max_points: usize,
-) -> anyhow::Result<Option<CloudLayer>> {
-    let path = match &a.cloud {
-        Some(c) => c.clone(),
-        None => {
-            let beside = map_file(a)
-                .and_then(|m| found_cloud(m.parent()?, &["labels.pcd", "../registration/map.pcd"]))
-                .or_else(|| {
-                    let run = a.run.as_ref()?;
-                    found_cloud(run, &["../map/labels.pcd", "../registration/map.pcd"])
-                });
-            match beside {
-                Some(p) => {
-                    eprintln!("cloud layer: {} (found beside the map or run; --cloud FILE to choose another)", p.display());
-                    p
-                }
-                None => return Ok(None),
-            }
-        }
-    };
-    Ok(Some(CloudLayer::from_file(&path, max_points)?))
-}
-
-/// The first of `names` (relative to `dir`) that is a file: where `semsim demo` and
-/// `semsim run` leave the registered cloud (`map/labels.pcd`, labelled by the map, and
-/// `registration/map.pcd`).
-fn found_cloud(dir: &Path, names: &[&str]) -> Option<PathBuf> {
-    names.iter().map(|n| dir.join(n)).find(|p| p.is_file())
-}
-
-/// The world of `--map M | --building B|default`, else the building `source` names (shared by
-/// `console` and `report`).
-pub(crate) fn world_from(
-    map: Option<&Path>,
-    building: Option<&Path>,
-    source: &ScenarioSource,
-) -> anyhow::Result<ConsoleWorld> {
-    Ok(match (map, building) {
-        (Some(m), _) => ConsoleWorld::from_semantic_map_file(m)?,
-        (None, Some(b)) if b.as_os_str() == "default" => {
-            ConsoleWorld::from_building(&Building::default_building()?)?
-        }
-        (None, b) => ConsoleWorld::from_building(&source.building(b)?)?,
-    })
+    Ok(Some(CloudLayer::from_file(file.path(), MAX_CLOUD_POINTS)?))
 }
 
 /// The server's configuration, checked; warns when it listens beyond this machine.
@@ -228,7 +179,7 @@ fn replay_run(a: &ConsoleArgs, dir: &Path) -> anyhow::Result<()> {
         start: source.scenario.start,
         robot: source.robot,
         run,
-        cloud: cloud_layer(a, MAX_CLOUD_POINTS)?,
+        cloud: cloud_layer(a)?,
     };
     let config = config(a)?;
     crate::interrupt::install();
@@ -242,29 +193,5 @@ fn replay_run(a: &ConsoleArgs, dir: &Path) -> anyhow::Result<()> {
         },
         crate::interrupt::requested,
     )?;
-    Ok(())
-}
-
-/// Makes the scenario drive `robot` (a built-in name or a file), and its saved `scenario.toml`
-/// name it (a file by its absolute path), so a replay uses the same robot.
-fn use_robot(source: &mut ScenarioSource, robot: &str) -> anyhow::Result<()> {
-    let model = RobotModel::resolve(robot, Path::new("."))?;
-    let name = if Path::new(robot).is_file() {
-        std::fs::canonicalize(robot)
-            .map_err(|e| cloud::CloudError::io(robot, e))?
-            .display()
-            .to_string()
-    } else {
-        robot.to_string()
-    };
-    let mut table: toml::Table =
-        toml::from_str(&source.text).map_err(|e| bad_input(format!("the scenario: {e}")))?;
-    table.insert("robot".into(), toml::Value::String(name.clone()));
-    source.text = format!(
-        "# semsim console --robot {robot}: the scenario with this robot\n{}",
-        toml::to_string(&table).map_err(|e| bad_input(format!("the scenario: {e}")))?
-    );
-    source.scenario.robot = name;
-    source.robot = model;
     Ok(())
 }

@@ -60,6 +60,12 @@ pub struct EvalMapArgs {
     /// given (already in the world frame).
     #[arg(long, value_name = "FILE", requires = "cloud")]
     poses: Option<PathBuf>,
+    /// The scans' true poses (`poses.txt` as `semsim scan` wrote it) when --poses are a
+    /// registration's: the registration's frame (turned by the laser mount's tilt, which
+    /// odometry does not know) is related to the building's before scoring, as trajectory
+    /// evaluations align trajectories first.
+    #[arg(long, value_name = "FILE", requires = "poses")]
+    true_poses: Option<PathBuf>,
     /// Print the full evaluation as JSON instead of the table.
     #[arg(long)]
     json: bool,
@@ -104,7 +110,13 @@ pub fn run(a: MapArgs, cfg: &Config) -> anyhow::Result<()> {
 /// Runs `semsim eval ...`.
 pub fn run_eval(c: EvalCommand) -> anyhow::Result<()> {
     let EvalCommand::Map(a) = c;
-    let ev = pipeline::score_map_file(&a.map, &a.building, &a.cloud, a.poses.as_deref())?;
+    let ev = pipeline::score_map_file(
+        &a.map,
+        &a.building,
+        &a.cloud,
+        a.poses.as_deref(),
+        a.true_poses.as_deref(),
+    )?;
     if a.json {
         let text = serde_json::to_string_pretty(&ev).context("serialising the evaluation")?;
         println!("{text}");

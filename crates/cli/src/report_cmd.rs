@@ -37,7 +37,14 @@ pub struct ReportArgs {
 pub fn run(a: ReportArgs) -> anyhow::Result<()> {
     let recorded = RecordedRun::load(&a.run_dir)?;
     let source = ScenarioSource::load(Some(&a.run_dir.join("scenario.toml")))?;
-    let world = crate::console_cmd::world_from(a.map.as_deref(), a.building.as_deref(), &source)?;
+    let inputs = console::ConsoleInputs {
+        map: a.map.clone(),
+        building: a.building.clone(),
+        ..console::ConsoleInputs::default()
+    };
+    let world = inputs
+        .world_source(&source.scenario.building, &source.base_dir)
+        .load()?;
     if let Some(parent) = a.html.parent().filter(|p| !p.as_os_str().is_empty()) {
         if !parent.is_dir() {
             return Err(bad_input(format!(

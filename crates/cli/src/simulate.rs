@@ -4,8 +4,7 @@
 //! is run again from its command log.
 
 use clap::Args;
-use pipeline::{simulate, write_simulation, Config, Observer, ScenarioSource};
-use sim::WorldSpec;
+use pipeline::{simulate, write_simulation, Config, Observer};
 use std::path::PathBuf;
 
 /// Arguments of `semsim simulate`.
@@ -38,26 +37,12 @@ pub struct SimulateArgs {
 /// Runs `semsim simulate`; exit 0 on a passed verdict, 1 on a failed one.
 pub fn run(a: SimulateArgs, cfg: &Config) -> anyhow::Result<()> {
     pipeline::check_output_dir(&a.out)?;
-    let (world, source) = match (&a.map, &a.scenario) {
-        // A map and no scenario: plan one in the map's world.
-        (Some(m), None) => {
-            let mut world = WorldSpec::from_semantic_map_file(m)?;
-            // Named by its file, so that "no free space for the robot in <map>" names it.
-            world.name = m.display().to_string();
-            let robot = sim::RobotModel::resolve(&cfg.plan.robot, std::path::Path::new("."))?;
-            let source = ScenarioSource::plan(&world, &robot, None, &cfg.plan)?;
-            (world, source)
-        }
-        (Some(m), Some(_)) => (
-            WorldSpec::from_semantic_map_file(m)?,
-            ScenarioSource::load(a.scenario.as_deref())?,
-        ),
-        (None, _) => {
-            let source = ScenarioSource::load(a.scenario.as_deref())?;
-            let world = WorldSpec::from_building(&source.building(a.building.as_deref())?)?;
-            (world, source)
-        }
-    };
+    let (world, source) = pipeline::world_and_scenario(
+        a.map.as_deref(),
+        a.scenario.as_deref(),
+        a.building.as_deref(),
+        &cfg.plan,
+    )?;
     if let Some(p) = &source.planned {
         println!("{}", p.summary());
     }

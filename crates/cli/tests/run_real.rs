@@ -6,7 +6,82 @@
 
 mod util;
 
+use std::path::Path;
 use util::{real_data, Dir};
+
+/// The least share of the floor's points (those within 4 cm of its top, map frame) that the
+/// floor entity's parts must hold: the parts cover the seen floor's cells with gaps under
+/// 0.5 m closed, so only stray returns and the edges of the floor's cloud may fall outside.
+const MIN_FLOOR_COVERAGE: f64 = 0.9;
+
+/// The share of the floor's points inside the floor entity's parts, and the parts' area (m2).
+fn floor_coverage(map_dir: &Path) -> (f64, f64) {
+    let map = semantic::SemanticMap::load(&map_dir.join("semantic_map.json")).expect("map");
+    let floor = map
+        .of_class(cloud::EntityClass::Floor)
+        .next()
+        .expect("a floor entity");
+    let parts = floor
+        .floor
+        .as_ref()
+        .map_or_else(|| vec![floor.geometry], |f| f.parts.clone());
+    let top_m = floor.geometry.z_range_m()[1];
+    let map_from_input = map.input_from_map().inverse();
+    let labelled = cloud::read_cloud(&map_dir.join("labels.pcd")).expect("labels.pcd");
+    let near: Vec<glam::DVec3> = labelled
+        .points
+        .iter()
+        .filter(|p| p.is_finite())
+        .map(|p| map_from_input.transform_point3(p.as_dvec3()))
+        .filter(|p| (p.z - top_m).abs() < 0.04)
+        .collect();
+    let inside = |p: &glam::DVec3, b: &semantic::OrientedBox| {
+        let (sin, cos) = b.yaw_deg.to_radians().sin_cos();
+        let (dx, dy) = (p.x - b.center_m[0], p.y - b.center_m[1]);
+        let (u, v) = (dx * cos + dy * sin, -dx * sin + dy * cos);
+        u.abs() <= b.size_m[0] / 2.0 && v.abs() <= b.size_m[1] / 2.0
+    };
+    let covered = near
+        .iter()
+        .filter(|p| parts.iter().any(|b| inside(p, b)))
+        .count();
+    let area: f64 = parts.iter().map(|b| b.size_m[0] * b.size_m[1]).sum();
+    (covered as f64 / near.len().max(1) as f64, area)
+}
+
+/// The length of the planned tour from `semsim run`'s line `planned tour: ..., 11.1 m[ sweep]`.
+fn tour_length_m(stdout: &str) -> Option<f64> {
+    let line = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("planned tour: "))?;
+    let last = line.split(", ").last()?;
+    last.split(' ').next()?.parse().ok()
+}
+
+/// The largest XY distance between two scan positions of a `poses.txt` (name, then the
+/// row-major 4x4 `world_from_scan`).
+fn scan_span_m(path: &Path) -> f64 {
+    let text = std::fs::read_to_string(path).expect("poses.txt");
+    let xy: Vec<[f64; 2]> = text
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .filter_map(|l| {
+            let v: Vec<f64> = l
+                .split_whitespace()
+                .skip(1)
+                .filter_map(|t| t.parse().ok())
+                .collect();
+            (v.len() == 16).then(|| [v[3], v[7]])
+        })
+        .collect();
+    let mut span: f64 = 0.0;
+    for a in &xy {
+        for b in &xy {
+            span = span.max((a[0] - b[0]).hypot(a[1] - b[1]));
+        }
+    }
+    span
+}
 
 /// Runs one dataset and checks what every run must show; returns (exit code, stdout, stderr).
 fn run_dataset(name: &str) -> Option<(i32, String, String)> {
@@ -25,6 +100,17 @@ fn run_dataset(name: &str) -> Option<(i32, String, String)> {
         "{name}: exit {code} (never 2)\nstdout: {stdout}\nstderr: {stderr}"
     );
     assert!(!stderr.contains("panicked"), "{name}: {stderr}");
+    if out.join("map/semantic_map.json").is_file() {
+        let (coverage, area) = floor_coverage(&out.join("map"));
+        eprintln!(
+            "{name}: the floor's parts ({area:.1} m2) cover {:.1} % of its points",
+            100.0 * coverage
+        );
+        assert!(
+            coverage >= MIN_FLOOR_COVERAGE,
+            "{name}: floor coverage {coverage:.3}"
+        );
+    }
     if stdout.contains("verdict: PASSED") || stderr.contains("verdict: FAILED") {
         // A verdict: the planned scenario and the report are written beside the outputs.
         assert!(stdout.contains("planned tour: "), "{name}: {stdout}");
@@ -35,9 +121,28 @@ fn run_dataset(name: &str) -> Option<(i32, String, String)> {
         assert!(scenario.rules.no_tipping, "{name}");
         let text = std::fs::read_to_string(sim.join("scenario.toml")).expect("scenario.toml");
         assert!(text.starts_with("# Planned by semsim"), "{name}: {text}");
+        // It names the world it was planned in, the map's, not the built-in building.
+        assert_eq!(scenario.building, "semantic map", "{name}: {text}");
+        // The tour drives: through doors, or, with none reachable, a sweep of the free region
+        // to a goal the robot must reach.
+        assert!(
+            !scenario.waypoints.is_empty()
+                && (scenario.rules.reach.is_some()
+                    || !scenario.rules.pass_through_doors.is_empty()),
+            "{name}: {text}"
+        );
         let report = std::fs::read_to_string(sim.join("report.md")).expect("report.md");
         assert!(report.contains("## Verdict: "), "{name}: {report}");
         assert!(report.contains("## Not reachable"), "{name}: {report}");
+        // The tour covers the space the scans were taken in: the sensor stood at each scan's
+        // position, so the free space holds the way between them, and a tour of it drives
+        // at least as far as the scan positions lie apart (a tour of a corridor its length).
+        let tour_m = tour_length_m(&stdout).expect("the tour's length");
+        let span_m = scan_span_m(&out.join("registration/poses.txt"));
+        assert!(
+            tour_m >= span_m,
+            "{name}: tour {tour_m} m, scans {span_m} m apart"
+        );
     }
     Some((code, stdout, stderr))
 }

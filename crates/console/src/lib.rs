@@ -39,6 +39,10 @@
 //!   session (`semsim console --run RUN_DIR`): the page gets it from `/api/run.json` and
 //!   replays it with a time slider, play/pause and speed; every WebSocket message is refused.
 //!   Both consoles run from a program without a runtime through [`serve_blocking`].
+//! * **Inputs** ([`ConsoleInputs`]): which world and cloud a console or report shows, from what
+//!   the user named (`--map` as a file or an output folder, `--building`, `--run`, `--cloud`)
+//!   or, where nothing is named, from what lies beside the map or run folder ([`Located`],
+//!   [`WorldFile`]).
 //!
 //! ```
 //! use console::protocol::ClientMessage;
@@ -61,6 +65,7 @@ mod config;
 mod error;
 mod http;
 mod hub;
+mod inputs;
 mod log;
 pub mod protocol;
 mod rate;
@@ -78,14 +83,61 @@ pub use blocking::{serve_blocking, Serve};
 pub use cloud_layer::{CloudInfo, CloudLayer, MAX_CLOUD_POINTS};
 pub use config::ConsoleConfig;
 pub use error::{ConsoleError, Result};
+pub use inputs::{ConsoleInputs, Located, WorldFile};
 pub use log::{CommandLog, RunEnd};
 pub use replay::replay;
 pub use report::{base64, report_html, write_report, REPORT_CLOUD_POINTS};
 pub use run::{
-    parse_doors, parse_events, parse_trajectory, RecordedRun, RuleRow, TrackPoint,
+    doors_from_text, events_from_text, parse_doors, parse_events, parse_trajectory,
+    report_from_text, trajectory_from_text, RecordedRun, ReportSummary, RuleRow, TrackPoint,
     TRAJECTORY_HEADER,
 };
 pub use run_server::{RunConsole, RunSetup, REPLAY_REFUSAL};
 pub use server::Console;
 pub use session::{first_free_session, session_dir_name, Session, SessionSetup, RUN_FILES};
 pub use world::ConsoleWorld;
+
+/// Byte-slice entry points of the console's readers for the fuzz targets (`fuzz/formats/`):
+/// what the path readers run after reading the file. Bytes that are not UTF-8 are refused as
+/// the path readers refuse them.
+#[doc(hidden)]
+pub mod fuzzing {
+    use crate::error::{ConsoleError, Result};
+    use crate::{CommandLog, ReportSummary, TrackPoint};
+    use serde_json::{Map, Value};
+    use sim::DoorTrack;
+    use std::path::Path;
+
+    fn text<'a>(path: &Path, bytes: &'a [u8]) -> Result<&'a str> {
+        std::str::from_utf8(bytes).map_err(|e| ConsoleError::RunFolder {
+            path: path.to_path_buf(),
+            line: None,
+            msg: e.to_string(),
+        })
+    }
+
+    /// A run folder's `doors.csv`.
+    pub fn read_doors_bytes(path: &Path, bytes: &[u8]) -> Result<DoorTrack> {
+        crate::doors_from_text(path, text(path, bytes)?)
+    }
+
+    /// A run folder's `trajectory.csv`.
+    pub fn read_trajectory_bytes(path: &Path, bytes: &[u8]) -> Result<Vec<TrackPoint>> {
+        crate::trajectory_from_text(path, text(path, bytes)?)
+    }
+
+    /// A run folder's `events.jsonl`.
+    pub fn read_events_bytes(path: &Path, bytes: &[u8]) -> Result<Vec<Map<String, Value>>> {
+        crate::events_from_text(path, text(path, bytes)?)
+    }
+
+    /// A run folder's `report.md`.
+    pub fn read_report_bytes(path: &Path, bytes: &[u8]) -> Result<ReportSummary> {
+        crate::report_from_text(path, text(path, bytes)?)
+    }
+
+    /// A session's `commands.jsonl`.
+    pub fn read_command_log_bytes(path: &Path, bytes: &[u8]) -> Result<CommandLog> {
+        CommandLog::parse(text(path, bytes)?, path)
+    }
+}

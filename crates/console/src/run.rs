@@ -97,28 +97,18 @@ impl RecordedRun {
         };
         let events = parse_events(&file("events.jsonl"))?;
         let report_path = file("report.md");
-        let report = read(&report_path)?;
+        let report = report_from_text(&report_path, &read(&report_path)?)?;
         let scenario_toml = read(&file("scenario.toml"))?;
-        let verdict = report
-            .lines()
-            .find_map(|l| l.strip_prefix("## Verdict: "))
-            .ok_or_else(|| bad(&report_path, None, "no `## Verdict:` line"))?
-            .trim()
-            .to_string();
-        let title = report
-            .lines()
-            .find_map(|l| l.strip_prefix("# Simulation report: "))
-            .map(str::to_string)
-            .unwrap_or_else(|| {
-                dir.file_name()
-                    .map(|n| n.to_string_lossy().into_owned())
-                    .unwrap_or_default()
-            });
+        let title = report.title.unwrap_or_else(|| {
+            dir.file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default()
+        });
         Ok(RecordedRun {
             title,
-            passed: verdict.starts_with("PASSED"),
-            verdict,
-            rules: parse_rules(&report),
+            passed: report.verdict.starts_with("PASSED"),
+            verdict: report.verdict,
+            rules: report.rules,
             trajectory,
             doors,
             events,
@@ -136,7 +126,11 @@ impl RecordedRun {
 
 /// Parses `trajectory.csv`: its header, then rows of 8 finite numbers in time order.
 pub fn parse_trajectory(path: &Path) -> Result<Vec<TrackPoint>> {
-    let text = read(path)?;
+    trajectory_from_text(path, &read(path)?)
+}
+
+/// [`parse_trajectory`] of a file's text; `path` names it in errors.
+pub fn trajectory_from_text(path: &Path, text: &str) -> Result<Vec<TrackPoint>> {
     let mut lines = text.lines().enumerate();
     match lines.next() {
         Some((_, h)) if h.trim() == TRAJECTORY_HEADER => {}
@@ -185,7 +179,11 @@ pub fn parse_trajectory(path: &Path) -> Result<Vec<TrackPoint>> {
 /// Parses `doors.csv`: `time_s` and columns `door_ID`, then rows of as many finite numbers
 /// (degrees) in time order.
 pub fn parse_doors(path: &Path) -> Result<DoorTrack> {
-    let text = read(path)?;
+    doors_from_text(path, &read(path)?)
+}
+
+/// [`parse_doors`] of a file's text; `path` names it in errors.
+pub fn doors_from_text(path: &Path, text: &str) -> Result<DoorTrack> {
     let mut lines = text.lines().enumerate();
     let header = lines.next().map(|(_, h)| h.trim()).unwrap_or("");
     let mut columns = header.split(',');
@@ -228,7 +226,11 @@ pub fn parse_doors(path: &Path) -> Result<DoorTrack> {
 
 /// Parses `events.jsonl`: one JSON object a line, each with a finite `time_s` and a `kind`.
 pub fn parse_events(path: &Path) -> Result<Vec<Map<String, Value>>> {
-    let text = read(path)?;
+    events_from_text(path, &read(path)?)
+}
+
+/// [`parse_events`] of a file's text; `path` names it in errors.
+pub fn events_from_text(path: &Path, text: &str) -> Result<Vec<Map<String, Value>>> {
     let mut out = Vec::new();
     for (i, line) in text.lines().enumerate() {
         if line.trim().is_empty() {
@@ -247,6 +249,36 @@ pub fn parse_events(path: &Path) -> Result<Vec<Map<String, Value>>> {
         out.push(e);
     }
     Ok(out)
+}
+
+/// What a run folder's `report.md` tells: its title, verdict and rules.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ReportSummary {
+    /// The title (`# Simulation report: NAME`), if there is one.
+    pub title: Option<String>,
+    /// The verdict line (`## Verdict: ...`).
+    pub verdict: String,
+    /// The rules table.
+    pub rules: Vec<RuleRow>,
+}
+
+/// Reads a `report.md`'s text: its `## Verdict:` line must be there; `path` names it in errors.
+pub fn report_from_text(path: &Path, report: &str) -> Result<ReportSummary> {
+    let verdict = report
+        .lines()
+        .find_map(|l| l.strip_prefix("## Verdict: "))
+        .ok_or_else(|| bad(path, None, "no `## Verdict:` line"))?
+        .trim()
+        .to_string();
+    let title = report
+        .lines()
+        .find_map(|l| l.strip_prefix("# Simulation report: "))
+        .map(str::to_string);
+    Ok(ReportSummary {
+        title,
+        verdict,
+        rules: parse_rules(report),
+    })
 }
 
 /// The rules table of a `report.md`: rows `| \`rule\` | result | decided | reason |`.
@@ -281,6 +313,20 @@ mod tests {
         assert_eq!(rules[0].result, "passed");
         assert_eq!(rules[0].decided_s, "3.5");
         assert_eq!(rules[0].reason, "reached | ok");
+    }
+
+    #[test]
+    fn a_report_without_a_verdict_is_refused_and_a_title_is_optional() {
+        let p = Path::new("run/report.md");
+        let e = report_from_text(p, "# Simulation report: x\n").expect_err("no verdict");
+        assert!(
+            e.to_string().starts_with("run/report.md: no `## Verdict:`"),
+            "{e}"
+        );
+        let r = report_from_text(p, "## Verdict: FAILED (interrupted at 3 s)  \n").expect("read");
+        assert_eq!(r.title, None);
+        assert_eq!(r.verdict, "FAILED (interrupted at 3 s)");
+        assert!(r.rules.is_empty());
     }
 
     #[test]

@@ -2,6 +2,7 @@
 //! laser gave its points, with the points placed in the building's frame.
 
 use cloud::PointCloud;
+use glam::DAffine3;
 use scanner::{Building, BuildingGeometry};
 
 /// At most this many labelled points are sampled.
@@ -43,6 +44,16 @@ impl cloud::BadInput for EvalError {
 /// points, evenly sampled, lie within 10 cm of the building's entity of their label, 90 % of
 /// them at least.
 pub fn check_ground_truth(cloud: &PointCloud, building: &Building) -> Result<(), EvalError> {
+    check_ground_truth_in_frame(cloud, building, DAffine3::IDENTITY)
+}
+
+/// As [`check_ground_truth`] for a cloud in a frame `building_from_input` away from the
+/// building's (a registration's frame: see [`crate::registration_frame`]).
+pub fn check_ground_truth_in_frame(
+    cloud: &PointCloud,
+    building: &Building,
+    building_from_input: DAffine3,
+) -> Result<(), EvalError> {
     let Some(labels) = &cloud.labels else {
         return Err(EvalError::NoLabels);
     };
@@ -57,7 +68,10 @@ pub fn check_ground_truth(cloud: &PointCloud, building: &Building) -> Result<(),
         .collect();
     let on = sample
         .iter()
-        .filter(|&&i| geometry.distance_to_entity(cloud.points[i], labels[i].entity) <= ON_ENTITY_M)
+        .filter(|&&i| {
+            let p = building_from_input.transform_point3(cloud.points[i].as_dvec3());
+            geometry.distance_to_entity(p.as_vec3(), labels[i].entity) <= ON_ENTITY_M
+        })
         .count();
     if sample.is_empty() || (on as f64) < MIN_ON_FRACTION * sample.len() as f64 {
         return Err(EvalError::NotGroundTruth {

@@ -32,7 +32,12 @@
 //! Endpoint errors: the distance of each detected centre-line end from the stretch of the true
 //! centre line between the observed piece's end and the wall's true end (a map may carry a wall
 //! on behind what hid it from the scans, which is right; stopping short of what was seen, or
-//! running past the wall's end, is not).
+//! running past the wall's end, is not). A wall piece whose scans saw one face only (both faces
+//! with `min_bin_points` in fewer than half of its observed 10 cm stretches) is compared by the
+//! face seen most: the map wall's face on that side against the true face, for the offset gate
+//! and the endpoint errors. A wall
+//! seen from one side cannot show its thickness; where its seen face stands is what a robot
+//! meets, and what a map can get right.
 
 //!
 //! ```
@@ -50,6 +55,7 @@
 
 mod config;
 mod doors;
+mod frame;
 mod ground_truth;
 mod labels;
 mod obstacles;
@@ -62,7 +68,8 @@ mod walls;
 
 pub use config::EvalConfig;
 pub use doors::DoorMatch;
-pub use ground_truth::{check_ground_truth, EvalError};
+pub use frame::registration_frame;
+pub use ground_truth::{check_ground_truth, check_ground_truth_in_frame, EvalError};
 pub use labels::{evaluate_labels, LabelEvaluation};
 pub use obstacles::ObstacleMatch;
 pub use score::ClassScore;
@@ -147,7 +154,20 @@ pub fn evaluate_with(
     observed: Option<&PointCloud>,
     c: &EvalConfig,
 ) -> Evaluation {
-    let t = Truth::new(map, building, observed);
+    evaluate_in_frame(map, building, observed, glam::DAffine3::IDENTITY, c)
+}
+
+/// Evaluates `map`, made from a cloud in a frame `input_from_building` away from the
+/// building's (a registration's frame: see [`registration_frame`]), against `building`;
+/// `observed` is in that input frame too.
+pub fn evaluate_in_frame(
+    map: &SemanticMap,
+    building: &Building,
+    observed: Option<&PointCloud>,
+    input_from_building: glam::DAffine3,
+    c: &EvalConfig,
+) -> Evaluation {
+    let t = Truth::new(map, building, observed, input_from_building);
     let mut ev = Evaluation::default();
     evaluate_walls(&mut ev, map, building, &t, c);
     evaluate_doors(&mut ev, map, building, &t, c);

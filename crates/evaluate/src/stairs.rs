@@ -29,8 +29,12 @@ pub struct StairsMatch {
     pub width_error_m: f64,
     /// Angle between the directions of ascent.
     pub direction_error_deg: f64,
-    /// Distance between the first steps' front-edge centres.
+    /// Distance between the first steps' front-edge centres (in plan).
     pub start_error_m: f64,
+    /// Detected minus true height of the flight's foot (a flight starting on a mid landing
+    /// stands `base_m` above the floor).
+    #[serde(default)]
+    pub base_error_m: f64,
 }
 
 pub(crate) fn evaluate_stairs(
@@ -91,6 +95,7 @@ pub(crate) fn evaluate_stairs(
                 .abs()
                 .to_degrees(),
             start_error_m: DVec2::new(d.start_m[0], d.start_m[1]).distance(start),
+            base_error_m: d.start_m[2] - t.to_map(s.start_m[0], s.start_m[1], s.base_m).z,
         });
     }
     for (i, (e, _)) in stairs.iter().enumerate() {

@@ -9,7 +9,9 @@ use std::collections::HashMap;
 
 /// The ground truth in the map frame: true entity ids by name and their observed points.
 pub(crate) struct Truth {
-    map_from_input: DAffine3,
+    /// The building's frame in the map frame: the map's levelling after the registration's
+    /// frame (the identity where the scans were placed by their true poses).
+    map_from_building: DAffine3,
     id_of: HashMap<String, u32>,
     seen: HashMap<u32, Vec<DVec3>>,
     /// True if an observed (labelled) cloud was given.
@@ -17,10 +19,19 @@ pub(crate) struct Truth {
 }
 
 impl Truth {
-    pub fn new(map: &SemanticMap, building: &Building, observed: Option<&PointCloud>) -> Truth {
+    /// The truth of `building` for `map`, whose input cloud was in a frame that is
+    /// `input_from_building` from the building's (the identity for scans placed by their true
+    /// poses), with the labelled `observed` cloud in that input frame.
+    pub fn new(
+        map: &SemanticMap,
+        building: &Building,
+        observed: Option<&PointCloud>,
+        input_from_building: DAffine3,
+    ) -> Truth {
         let geometry = BuildingGeometry::new(building);
+        let map_from_input = map.input_from_map().inverse();
         let mut t = Truth {
-            map_from_input: map.input_from_map().inverse(),
+            map_from_building: map_from_input * input_from_building,
             id_of: geometry
                 .entities()
                 .iter()
@@ -32,7 +43,7 @@ impl Truth {
         if let Some((cloud, labels)) = observed.and_then(|c| c.labels.as_ref().map(|l| (c, l))) {
             for (p, l) in cloud.points.iter().zip(labels) {
                 if p.is_finite() && l.entity != 0 {
-                    let q = t.to_map(p.x as f64, p.y as f64, p.z as f64);
+                    let q = map_from_input.transform_point3(p.as_dvec3());
                     t.seen.entry(l.entity).or_default().push(q);
                 }
             }
@@ -40,9 +51,9 @@ impl Truth {
         t
     }
 
-    /// A point of the building (input frame) in the map frame.
+    /// A point of the building (the building's frame) in the map frame.
     pub fn to_map(&self, x: f64, y: f64, z: f64) -> DVec3 {
-        self.map_from_input.transform_point3(DVec3::new(x, y, z))
+        self.map_from_building.transform_point3(DVec3::new(x, y, z))
     }
 
     /// The observed points of the true entity `name` (e.g. `walls[2]`), map frame.

@@ -6,7 +6,7 @@ use crate::score::ClassScore;
 use crate::truth::Truth;
 use crate::Evaluation;
 use cloud::EntityClass;
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 use scanner::Building;
 use semantic::undirected_angle_deg;
 use semantic::Line2;
@@ -30,6 +30,11 @@ pub struct WallMatch {
     pub thickness_error_m: f64,
     /// Angle between the lines.
     pub angle_deg: f64,
+    /// The scans saw one face of the true wall only: `offset_m` and `endpoint_errors_m`
+    /// compare that face with the map wall's face on the same side, not the centre lines (a
+    /// wall seen from one side cannot show its thickness; its seen face is what a robot meets).
+    #[serde(default)]
+    pub one_face: bool,
 }
 
 /// An expected wall: the observed piece of a true wall (the whole wall where nothing was
@@ -44,6 +49,54 @@ struct Piece {
     /// The whole wall along `line`.
     full: (f64, f64),
     thickness: f64,
+    /// The side (+1 left of `line`, -1 right) of the one face the scans saw, or `None` if they
+    /// saw both (or no observed cloud was given).
+    seen_side: Option<f64>,
+}
+
+impl Piece {
+    /// Signed distance of a map wall's centre-line point `q` (the map wall `thickness_m`
+    /// thick) from the compared line: the true centre line, or for a wall seen from one side
+    /// the true seen face, `q` then moved to the map wall's face on that side.
+    fn offset(&self, q: DVec2, thickness_m: f64) -> (f64, f64) {
+        let (s, d) = self.line.coords(q);
+        match self.seen_side {
+            Some(side) => (s, d + side * (thickness_m - self.thickness) / 2.0),
+            None => (s, d),
+        }
+    }
+}
+
+/// The face of a true wall the scans saw over the piece `range`: `None` if they saw both faces
+/// along at least half of the piece's observed 10 cm stretches (each face with `min_bin_points`
+/// there), else the side (+1 left of `line`, -1 right) of the face with more points. Points
+/// within a quarter thickness of the centre line (on the wall's ends) count for neither face.
+fn seen_side(
+    points: &[DVec3],
+    line: &Line2,
+    range: (f64, f64),
+    t: f64,
+    min_bin_points: usize,
+) -> Option<f64> {
+    let mut bins: std::collections::BTreeMap<i64, [usize; 2]> = Default::default();
+    for p in points {
+        let (s, d) = line.coords(p.truncate());
+        if s < range.0 || s > range.1 || d.abs() < t / 4.0 {
+            continue;
+        }
+        bins.entry((s / 0.1).floor() as i64).or_default()[usize::from(d > 0.0)] += 1;
+    }
+    let both = bins
+        .values()
+        .filter(|[r, l]| *r >= min_bin_points && *l >= min_bin_points)
+        .count();
+    if 2 * both >= bins.len() {
+        return None;
+    }
+    let (right, left) = bins
+        .values()
+        .fold((0, 0), |(r, l), [br, bl]| (r + br, l + bl));
+    Some(if left >= right { 1.0 } else { -1.0 })
 }
 
 /// The expected wall pieces (see the crate docs).
@@ -85,13 +138,20 @@ fn expected_pieces(building: &Building, t: &Truth, c: &EvalConfig) -> Vec<Piece>
                 .map(|r| (r.0, r.1))
                 .collect()
         };
+        let points = t.points(&name).map(Vec::as_slice).unwrap_or_default();
         for range in ranges {
+            let seen_side = if t.observed {
+                seen_side(points, &line, range, w.thickness_m, c.min_bin_points)
+            } else {
+                None
+            };
             pieces.push(Piece {
                 name: name.clone(),
                 line,
                 range,
                 full: (0.0, a.distance(b)),
                 thickness: w.thickness_m,
+                seen_side,
             });
         }
     }
@@ -120,7 +180,7 @@ pub(crate) fn evaluate_walls(
                 DVec2::from_array(w.segment_m[1]),
             );
             let angle = undirected_angle_deg(b - a, p.line.dir);
-            let offset = p.line.coords((a + b) / 2.0).1.abs();
+            let offset = p.offset((a + b) / 2.0, w.thickness_m).1.abs();
             if angle > c.wall_max_angle_deg || offset > p.thickness / 2.0 + c.wall_max_offset_m {
                 continue;
             }
@@ -147,7 +207,7 @@ pub(crate) fn evaluate_walls(
         // An end is right anywhere from the observed end out to the wall's true end (the map
         // may carry a wall on behind what hid it): its error is its distance from that stretch.
         let near_end = |q: DVec2, from: f64, to: f64| {
-            let (s, d) = p.line.coords(q);
+            let (s, d) = p.offset(q, w.thickness_m);
             let (lo, hi) = (from.min(to), from.max(to));
             (s - s.clamp(lo, hi)).hypot(d)
         };
@@ -171,6 +231,7 @@ pub(crate) fn evaluate_walls(
             offset_m: offset,
             thickness_error_m: w.thickness_m - p.thickness,
             angle_deg: angle,
+            one_face: p.seen_side.is_some(),
         });
     }
     for (pi, p) in pieces.iter().enumerate() {

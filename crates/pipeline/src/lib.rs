@@ -85,5 +85,7 @@ pub use scan_folder::{
 };
 pub use scans::{merge_scan_files, place_and_merge, read_scans, read_scans_with};
 pub use score::score_map_file;
-pub use simulate::{simulate, write_simulation, ScenarioChoice, ScenarioSource};
+pub use simulate::{
+    simulate, world_and_scenario, write_simulation, ScenarioChoice, ScenarioSource,
+};
 pub use truth::{relative_pose_errors, worst_pose_error};

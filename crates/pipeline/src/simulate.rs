@@ -2,7 +2,7 @@
 //! from the world when none is given) run in the world of a semantic map or of a building,
 //! judged, and its files.
 
-use crate::error::Result;
+use crate::error::{PipelineError, Result};
 use scanner::Building;
 use sim::{
     Outcome, PlanConfig, PlannedScenario, ReportConfig, RobotModel, Scenario, StartPose, WorldSpec,
@@ -132,6 +132,33 @@ impl ScenarioSource {
         report
     }
 
+    /// The scenario driving `robot` instead (a built-in name, a robot TOML or a URDF file,
+    /// relative to the current folder), its text saying so: the text written beside a run
+    /// (`scenario.toml`) names the robot, a file by its absolute path, so that a replay of the
+    /// run drives the same robot from any folder.
+    pub fn with_robot(mut self, robot: &str) -> Result<ScenarioSource> {
+        let model = RobotModel::resolve(robot, Path::new("."))?;
+        let name = if Path::new(robot).is_file() {
+            std::fs::canonicalize(robot)
+                .map_err(|e| cloud::CloudError::io(robot, e))?
+                .display()
+                .to_string()
+        } else {
+            robot.to_string()
+        };
+        let mut table: toml::Table = toml::from_str(&self.text)
+            .map_err(|e| PipelineError::bad_input(format!("{}: {e}", self.scenario.name)))?;
+        table.insert("robot".into(), toml::Value::String(name.clone()));
+        let text = toml::to_string(&table).map_err(|e| PipelineError::Serialise {
+            what: "the scenario with another robot",
+            msg: e.to_string(),
+        })?;
+        self.text = format!("# semsim --robot {robot}: the scenario with this robot\n{text}");
+        self.scenario.robot = name;
+        self.robot = model;
+        Ok(self)
+    }
+
     /// The building the scenario names (`building`, relative to its folder; "default" or
     /// nothing for the built-in one), unless `explicit` is given.
     pub fn building(&self, explicit: Option<&Path>) -> Result<Building> {
@@ -141,6 +168,38 @@ impl ScenarioSource {
             (None, other) => Building::load(&self.base_dir.join(other))?,
         })
     }
+}
+
+/// The world and scenario of a simulation given as files (`semsim simulate`): with a semantic
+/// map (`map`), its world (named by the file when the scenario is planned, so that "no free
+/// space for the robot in <map>" names it) and the `scenario` file's scenario or, without one, a
+/// scenario planned there with `plan` (its robot resolved from the current folder); without a
+/// map, the `scenario` file's scenario (the built-in one for `None`) in the `building` given or
+/// else the one the scenario names.
+pub fn world_and_scenario(
+    map: Option<&Path>,
+    scenario: Option<&Path>,
+    building: Option<&Path>,
+    plan: &PlanConfig,
+) -> Result<(WorldSpec, ScenarioSource)> {
+    Ok(match (map, scenario) {
+        (Some(m), None) => {
+            let mut world = WorldSpec::from_semantic_map_file(m)?;
+            world.name = m.display().to_string();
+            let robot = RobotModel::resolve(&plan.robot, Path::new("."))?;
+            let source = ScenarioSource::plan(&world, &robot, None, plan)?;
+            (world, source)
+        }
+        (Some(m), Some(_)) => (
+            WorldSpec::from_semantic_map_file(m)?,
+            ScenarioSource::load(scenario)?,
+        ),
+        (None, _) => {
+            let source = ScenarioSource::load(scenario)?;
+            let world = WorldSpec::from_building(&source.building(building)?)?;
+            (world, source)
+        }
+    })
 }
 
 /// Runs the scenario in `world` and judges it. `progress(sim_time_s)` is called every few
@@ -170,4 +229,83 @@ pub fn write_simulation(outcome: &Outcome, source: &ScenarioSource, out: &Path) 
     }
     cloud::write_bytes_atomically(&out.join("scenario.toml"), source.text.as_bytes())?;
     Ok(report)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cloud::BadInput;
+
+    #[test]
+    fn another_robot_is_driven_and_named_in_the_scenario_text() {
+        let source = ScenarioSource::load(None).expect("the default scenario");
+        assert_ne!(source.scenario.robot, "pioneer3at");
+        let other = source.with_robot("pioneer3at").expect("a built-in robot");
+        assert_eq!(other.scenario.robot, "pioneer3at");
+        assert_eq!(
+            other.robot,
+            RobotModel::builtin("pioneer3at").expect("built in")
+        );
+        // The text written beside the run reads back as the same scenario with that robot.
+        let back = Scenario::from_toml_str(&other.text, "scenario.toml").expect("valid TOML");
+        assert_eq!(back, other.scenario);
+    }
+
+    #[test]
+    fn a_robot_file_is_named_by_its_absolute_path() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let file = dir.path().join("robot.toml");
+        let text = include_str!("../../sim/data/pioneer3at.toml");
+        std::fs::write(&file, text).expect("write");
+        let relative = pathdiff(&file);
+        let other = ScenarioSource::load(None)
+            .expect("default")
+            .with_robot(&relative)
+            .expect("a robot file");
+        assert!(Path::new(&other.scenario.robot).is_absolute());
+        assert_eq!(
+            Path::new(&other.scenario.robot),
+            file.canonicalize().expect("exists")
+        );
+        let back = Scenario::from_toml_str(&other.text, "scenario.toml").expect("valid TOML");
+        assert_eq!(back.robot, other.scenario.robot);
+    }
+
+    /// `path` relative to the current folder where it can be (else as it is).
+    fn pathdiff(path: &Path) -> String {
+        let here = std::env::current_dir().expect("cwd");
+        path.strip_prefix(&here)
+            .unwrap_or(path)
+            .display()
+            .to_string()
+    }
+
+    #[test]
+    fn an_unknown_robot_is_bad_input() {
+        let e = ScenarioSource::load(None)
+            .expect("default")
+            .with_robot("no-such-robot")
+            .expect_err("unknown");
+        assert!(e.is_bad_input(), "{e}");
+        assert!(e.to_string().contains("no-such-robot"), "{e}");
+    }
+
+    #[test]
+    fn a_map_without_a_scenario_gets_a_planned_one_named_after_the_map() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let map = dir.path().join("semantic_map.json");
+        let json = fixtures::door_wall_map_json("left", 0.0, fixtures::DOOR_RELATIONS);
+        std::fs::write(&map, json).expect("write");
+        let (world, source) =
+            world_and_scenario(Some(&map), None, None, &PlanConfig::default()).expect("planned");
+        assert_eq!(world.name, map.display().to_string());
+        assert!(source.planned.is_some());
+        let (_, given) = world_and_scenario(None, None, None, &PlanConfig::default())
+            .expect("the default scenario in its building");
+        assert!(given.planned.is_none());
+        assert_eq!(
+            given.scenario,
+            Scenario::default_scenario().expect("built in")
+        );
+    }
 }

@@ -116,41 +116,16 @@ fn split(outliers: &[usize], n: usize) -> (Vec<usize>, usize) {
 /// surfaces out to its 30 m range, many of the far ones at grazing incidence (floor, ceiling,
 /// side walls).
 fn long_hall() -> Building {
-    let text = r#"
-        name = "long hall"
-        [floor]
-        min_m = [-0.2, -15.2]
-        max_m = [60.2, 15.2]
-        thickness_m = 0.2
-        [ceiling]
-        height_m = 6.0
-        thickness_m = 0.2
-        [[walls]]
-        name = "south"
-        start_m = [-0.1, -15.0]
-        end_m = [60.1, -15.0]
-        thickness_m = 0.2
-        [[walls]]
-        name = "north"
-        start_m = [-0.1, 15.0]
-        end_m = [60.1, 15.0]
-        thickness_m = 0.2
-        [[walls]]
-        name = "west"
-        start_m = [0.0, -15.0]
-        end_m = [0.0, 15.0]
-        thickness_m = 0.2
-        [[walls]]
-        name = "east"
-        start_m = [60.0, -15.0]
-        end_m = [60.0, 15.0]
-        thickness_m = 0.2
+    let crate_box = r#"
         [[boxes]]
         name = "crate"
         center_m = [20.0, 2.0, 0.5]
         size_m = [1.0, 1.0, 1.0]
     "#;
-    Building::from_toml_str(text, Path::new("long_hall.toml")).expect("a valid building")
+    let text = fixtures::RoomToml::new([0.0, -15.0], [60.0, 15.0], 6.0)
+        .name("long hall")
+        .toml(crate_box);
+    Building::from_toml_str(&text, Path::new("long_hall.toml")).expect("a valid building")
 }
 
 #[test]
@@ -392,15 +367,9 @@ const MIXED_PIXELS_REMOVED: f64 = 0.15;
 /// surface) removed: 13 of 87 (15 %) were; most of them are in streaks.
 const ISOLATED_MIXED_PIXELS_REMOVED: f64 = 0.10;
 
+/// The 3DTK corridor's folder, or `None` (skip) where it is absent.
 fn corridor() -> Option<PathBuf> {
-    let dir =
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/real/3dtk-corridor");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!("SKIPPED: real data folder {} is absent", dir.display());
-        None
-    }
+    fixtures::real_data_dir("3dtk-corridor")
 }
 
 #[test]

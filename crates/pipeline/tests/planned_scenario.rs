@@ -6,43 +6,11 @@ use sim::{Scenario, WorldSpec};
 use std::ops::ControlFlow;
 use std::path::Path;
 
-/// A 6 x 4 m room whose only door (in the east wall) opens onto a wall 0.3 m behind it.
-const WALLED_OFF_ROOM: &str = r#"
-name = "walled-off room"
-[floor]
-min_m = [-0.2, -2.2]
-max_m = [9.0, 2.2]
-[ceiling]
-height_m = 2.5
-[[walls]]
-start_m = [-0.1, -2.0]
-end_m = [6.1, -2.0]
-thickness_m = 0.2
-[[walls]]
-start_m = [-0.1, 2.0]
-end_m = [6.1, 2.0]
-thickness_m = 0.2
-[[walls]]
-start_m = [0.0, -2.0]
-end_m = [0.0, 2.0]
-thickness_m = 0.2
-[[walls]]
-start_m = [6.0, -2.0]
-end_m = [6.0, 2.0]
-thickness_m = 0.2
-[[walls.doors]]
-offset_m = 1.5
-width_m = 0.9
-height_m = 2.0
-[[walls]]
-start_m = [6.5, -2.0]
-end_m = [6.5, 2.0]
-thickness_m = 0.2
-"#;
-
+/// In a 6 x 4 m room whose only door (`walls[3].doors[0]`) opens onto a wall 0.5 m behind it
+/// (`fixtures::walled_off_room`), the plan reaches nothing.
 #[test]
 fn a_world_with_no_reachable_door_gets_a_planned_scenario_and_a_verdict() {
-    let b = scanner::Building::from_toml_str(WALLED_OFF_ROOM, Path::new("room.toml"))
+    let b = scanner::Building::from_toml_str(&fixtures::walled_off_room(), Path::new("room.toml"))
         .expect("building");
     let world = WorldSpec::from_building(&b).expect("world");
     let choice = ScenarioChoice::from_file_or_plan(None, &Config::default().plan).expect("plan");

@@ -7,15 +7,9 @@ use cloud::io::threedtk::{read_3d, read_frames_3dtk};
 use cloud::pose_error;
 use std::path::PathBuf;
 
+/// The 3DTK corridor's folder, or `None` (skip) where it is absent.
 fn corridor() -> Option<PathBuf> {
-    let dir =
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data/real/3dtk-corridor");
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        eprintln!("SKIPPED: real data folder {} is absent", dir.display());
-        None
-    }
+    fixtures::real_data_dir("3dtk-corridor")
 }
 
 #[test]

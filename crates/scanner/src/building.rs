@@ -168,7 +168,9 @@ fn default_leaf_m() -> f64 {
     0.04
 }
 
-/// A straight staircase of block steps rising from the floor, with an optional top landing.
+/// A straight flight of block steps rising from the floor (or from `base_m` above it: the
+/// second flight of a staircase with a mid landing starts on the first one's landing), with an
+/// optional top landing. Steps and landing are solid down to the floor.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Staircase {
@@ -190,6 +192,14 @@ pub struct Staircase {
     /// Depth of the landing at the top (0 = none).
     #[serde(default)]
     pub landing_m: f64,
+    /// Height of the flight's foot above the floor (0: it rises from the floor; a flight
+    /// starting on a mid landing: the landing's height).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub base_m: f64,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 /// A ramp: a straight sloped slab whose top rises from the floor at `start_m` to `rise_m`

@@ -75,7 +75,7 @@ impl BuildingGeometry {
             let yaw = s.direction_deg.to_radians();
             let dir = [yaw.cos(), yaw.sin()];
             for k in 0..s.steps {
-                let top = (k + 1) as f64 * s.rise_m;
+                let top = s.base_m + (k + 1) as f64 * s.rise_m;
                 let along = (k as f64 + 0.5) * s.run_m;
                 let c = [
                     s.start_m[0] + dir[0] * along,
@@ -85,7 +85,7 @@ impl BuildingGeometry {
                 g.oriented(id, c, [s.run_m / 2.0, s.width_m / 2.0, top / 2.0], yaw);
             }
             if s.landing_m > 0.0 {
-                let top = s.steps as f64 * s.rise_m;
+                let top = s.base_m + s.steps as f64 * s.rise_m;
                 let along = s.steps as f64 * s.run_m + s.landing_m / 2.0;
                 let c = [
                     s.start_m[0] + dir[0] * along,

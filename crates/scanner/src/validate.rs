@@ -78,6 +78,7 @@ impl Building {
                 s.run_m,
                 s.width_m,
                 s.landing_m,
+                s.base_m,
             ])
             .map_err(|m| bad(el(), m))?;
             if s.steps == 0 || s.steps > 1000 {
@@ -96,7 +97,10 @@ impl Building {
             if s.landing_m < 0.0 {
                 return Err(bad(el(), "landing_m must not be negative".into()));
             }
-            if s.rise_m * s.steps as f64 >= c.height_m {
+            if s.base_m < 0.0 {
+                return Err(bad(el(), "base_m must not be negative".into()));
+            }
+            if s.base_m + s.rise_m * s.steps as f64 >= c.height_m {
                 return Err(bad(el(), "the staircase rises through the ceiling".into()));
             }
             let length_m = s.run_m * s.steps as f64 + s.landing_m;

@@ -153,7 +153,7 @@ pub(crate) fn label_points(
     for (s, &id) in d.stairs.iter().zip(&ids.stairs) {
         for k in 1..=s.steps + u32::from(s.landing > 0.0) {
             let (a, b) = s.step_range(k);
-            let top = floor + s.rise * k.min(s.steps) as f64;
+            let top = floor + s.base + s.rise * k.min(s.steps) as f64;
             let line = crate::points::Line2 {
                 origin: s.start,
                 dir: s.dir,

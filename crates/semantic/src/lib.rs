@@ -99,9 +99,9 @@ pub use hough::{hough_lines_p, HoughConfig, HoughParams, PixelSegment, Unvote};
 pub use image_frame::ImageFrame;
 pub use labels::LabelConfig;
 pub use map::{
-    DoorInfo, Entity, HingeEdge, ObstacleInfo, OpeningInfo, OrientedBox, Relation, RelationType,
-    SemanticMap, StairsInfo, SwingSide, WallInfo, MAP_CLASSES, MAP_CLASSES_V1, MAP_FORMAT,
-    MAP_VERSION, READ_VERSIONS,
+    DoorInfo, Entity, FloorInfo, HingeEdge, ObstacleInfo, OpeningInfo, OrientedBox, Relation,
+    RelationType, SemanticMap, StairsInfo, SwingSide, WallInfo, MAP_CLASSES, MAP_CLASSES_V1,
+    MAP_FORMAT, MAP_VERSION, READ_VERSIONS,
 };
 pub use merge::{MergeConfig, Segment};
 pub use net::NetConfig;

@@ -241,9 +241,9 @@ fn bad_files_give_typed_errors() {
     );
     let err = edit(&|v| v["format"] = Value::from("something else")).expect_err("format");
     assert!(matches!(err, SemanticError::WrongFormat { .. }), "{err}");
-    let err = edit(&|v| v["version"] = Value::from(3)).expect_err("version");
+    let err = edit(&|v| v["version"] = Value::from(4)).expect_err("version");
     assert!(
-        matches!(err, SemanticError::UnsupportedVersion { found: 3, .. }),
+        matches!(err, SemanticError::UnsupportedVersion { found: 4, .. }),
         "{err}"
     );
     let err = edit(&|v| v["entities"][1]["id"] = v["entities"][0]["id"].clone())
@@ -360,14 +360,20 @@ fn version_1_files_are_still_read() {
     );
     assert!(map.of_class(EntityClass::Wall).count() >= 8);
     assert_eq!(map.of_class(EntityClass::Stairs).count(), 1);
-    // Saved again, it is a version 2 file that reads back the same.
+    // Saved again, it is a current-version file that reads back the same.
     let dir = tempfile::tempdir().expect("temp dir");
-    let out = dir.path().join("v2.json");
+    let out = dir.path().join("v3.json");
     map.save(&out).expect("save");
     let again: Value =
         serde_json::from_str(&std::fs::read_to_string(&out).expect("read")).expect("JSON");
-    assert_eq!(again["version"], 2);
-    assert_eq!(SemanticMap::load(&out).expect("v2"), map);
+    assert_eq!(again["version"], MAP_VERSION);
+    assert_eq!(SemanticMap::load(&out).expect("v3"), map);
+    // A version 2 file (no `floor` section: the floor is its box) reads as the current one.
+    let mut v2 = again.clone();
+    v2["version"] = Value::from(2);
+    let v2 = SemanticMap::from_json_str(&v2.to_string(), Path::new("v2.json")).expect("v2");
+    assert_eq!(v2.version, MAP_VERSION);
+    assert!(v2.of_class(EntityClass::Floor).all(|f| f.floor.is_none()));
     // Version 1 knew no obstacles: one in a version 1 file is an unknown class.
     let mut bad = raw.clone();
     bad["entities"][0]["class"] = Value::from("obstacle");

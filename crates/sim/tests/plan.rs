@@ -4,6 +4,7 @@
 mod common;
 
 use common::{default_world, room, world};
+use fixtures::Side;
 use sim::{plan_scenario, Goal, PlanConfig, RobotModel, Scenario, SimError, StartPose};
 
 fn robot(name: &str) -> (RobotModel, PlanConfig) {
@@ -79,28 +80,11 @@ fn the_pioneer_cannot_climb_the_default_stairs_and_the_report_says_why() {
     assert!(section.starts_with("## Not reachable") && section.contains("`stairs[0]`"));
 }
 
-/// A room (x 0..6) with a door in its east wall at x = 6 and, 0.4 m behind it, another wall:
-/// the robot fits through the opening but has no room on the far side.
-const WALLED_OFF: &str = r#"
-[[walls]]
-name = "east"
-start_m = [6.0, -2.0]
-end_m = [6.0, 2.0]
-thickness_m = 0.2
-[[walls.doors]]
-offset_m = 1.5
-width_m = 0.9
-height_m = 2.0
-[[walls]]
-name = "behind"
-start_m = [6.5, -2.0]
-end_m = [6.5, 2.0]
-thickness_m = 0.2
-"#;
-
 #[test]
 fn a_walled_off_door_is_listed_unreachable_and_the_run_still_gets_a_verdict() {
-    let text = room(WALLED_OFF).replace("max_m = [6.2, 2.2]", "max_m = [9.2, 2.2]");
+    // A room (x 0..6) whose east wall's door opens onto another wall 0.5 m behind it: the
+    // robot fits through the opening but has no room on the far side.
+    let text = fixtures::walled_off_room();
     let w = world(&text);
     let (model, cfg) = robot("pioneer3at");
     let p = plan_scenario(&w, &model, None, &cfg).expect("planned");
@@ -114,23 +98,28 @@ fn a_walled_off_door_is_listed_unreachable_and_the_run_still_gets_a_verdict() {
     // The start: the free cell nearest the middle of the room (x 0.1..5.9, y -1.9..1.9).
     let s = &p.scenario.start;
     assert!((s.x_m - 3.0).abs() < 0.1 && s.y_m.abs() < 0.1, "{s:?}");
-    // Nothing to reach: only the constraints, judged after a short stand-still.
-    assert!(p.scenario.waypoints.is_empty());
+    // No door to pass: the robot sweeps the room instead, to its farthest free point and on
+    // to the point farthest from there (two far corners of the free x 0.35..5.65, y
+    // -1.65..1.65), and must reach the sweep's far end; plus the two constraints.
+    let end = p.sweep_end_m.expect("a sweep");
+    assert!(!p.scenario.waypoints.is_empty());
+    assert!(end[0] < 1.0 || end[0] > 5.0, "{end:?}");
+    assert!(p.tour_length_m > 5.0, "{}", p.summary());
+    assert!(p.summary().ends_with(" sweep"), "{}", p.summary());
+    let reach = p.scenario.rules.reach.expect("a reach rule");
+    assert_eq!([reach.x_m, reach.y_m], end);
     let outcome = sim::run_scenario(&w, &p.scenario, &model).expect("runs");
     assert!(outcome.verdict.passed, "{:#?}", outcome.verdict.rules);
-    assert_eq!(outcome.verdict.rules.len(), 2);
+    assert_eq!(outcome.verdict.rules.len(), 3);
 }
 
 #[test]
 fn the_same_door_without_the_wall_behind_is_passed() {
     // The control for the test above: the door itself is passable.
-    let text = room(
-        WALLED_OFF
-            .split("[[walls]]\nname = \"behind\"")
-            .next()
-            .unwrap_or(""),
-    )
-    .replace("max_m = [6.2, 2.2]", "max_m = [9.2, 2.2]");
+    let text = fixtures::RoomToml::new([0.0, -2.0], [6.0, 2.0], 2.5)
+        .walls(&[Side::South, Side::North, Side::West])
+        .floor_to_x(9.2)
+        .toml(fixtures::EAST_DOOR_WALL);
     let w = world(&text);
     let (model, cfg) = robot("pioneer3at");
     let p = plan_scenario(&w, &model, None, &cfg).expect("planned");

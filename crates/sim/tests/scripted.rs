@@ -3,43 +3,21 @@
 
 mod common;
 
-use common::{has, of, room, run, timeline};
+use common::{closed_room, has, of, room, run, timeline};
 use sim::EventKind::*;
 
-const EAST_WALL: &str = r#"
-[[walls]]
-name = "east"
-start_m = [6.0, -2.0]
-end_m = [6.0, 2.0]
-thickness_m = 0.2
-"#;
-
-/// An east wall at x = 6 with a 0.9 m door (y -0.5 .. 0.4), hinged at its south edge.
+/// An east wall at x = 6 with a 0.9 m door (y -0.5 .. 0.4), hinged at its south edge, and no
+/// other wall; the floor reaches x = 9.2.
 fn door_room(swing: &str) -> String {
-    format!(
-        r#"
-[floor]
-min_m = [-0.2, -2.2]
-max_m = [9.2, 2.2]
-[ceiling]
-height_m = 2.5
-[[walls]]
-name = "east"
-start_m = [6.0, -2.0]
-end_m = [6.0, 2.0]
-thickness_m = 0.2
-[[walls.doors]]
-offset_m = 1.5
-width_m = 0.9
-height_m = 2.0
-leaf = {{ hinge = "start", swing = "{swing}", open_deg = 0.0 }}
-"#
-    )
+    fixtures::RoomToml::new([0.0, -2.0], [6.0, 2.0], 2.5)
+        .walls(&[])
+        .floor_to_x(9.2)
+        .toml(&fixtures::east_door_wall_with_leaf(swing))
 }
 
 #[test]
 fn driving_into_a_wall() {
-    let spec = common::world(&room(EAST_WALL));
+    let spec = common::world(&closed_room());
     let o = run(
         &spec,
         r#"
@@ -291,7 +269,7 @@ fn driving_off_a_ledge_tips_the_robot() {
 
 #[test]
 fn ramming_a_wall_with_the_arm_out_breaks_an_arm_joint() {
-    let spec = common::world(&room(EAST_WALL));
+    let spec = common::world(&closed_room());
     let sc = sim::Scenario::from_toml_str(
         r#"
         robot = "inspection"
@@ -326,7 +304,7 @@ fn ramming_a_wall_with_the_arm_out_breaks_an_arm_joint() {
 
 #[test]
 fn pushing_against_a_wall_for_long_is_being_stuck() {
-    let spec = common::world(&room(EAST_WALL));
+    let spec = common::world(&closed_room());
     let o = run(
         &spec,
         r#"

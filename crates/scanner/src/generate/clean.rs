@@ -220,6 +220,7 @@ fn place_stairs(
         run_m: run,
         width_m: width,
         landing_m: landing,
+        base_m: 0.0,
     };
     (Some(s), Some(zone))
 }

@@ -5,7 +5,7 @@
 
 use super::furniture::{cabinet, chair, clutter, pillar, table, Place};
 use super::layout::{wall, Layout};
-use super::stairs::flight;
+use super::stairs::{flight, two_flights};
 use crate::building::{Building, Door, Hinge, Leaf, Material, Swing};
 use cloud::Rng;
 
@@ -86,9 +86,21 @@ pub(super) fn generate(seed: u64) -> Building {
     } else {
         (hall[2] - 1.0, 180.0)
     };
-    if let Some(mut s) = flight(&mut r, [x, 0.0], dir, 5.0, height, "stairs") {
-        s.start_m[1] = t / 2.0 + 0.35 + s.width_m / 2.0;
-        l.stairs(s);
+    //    Every other hall's has a landing half-way (where two flights fit under the ceiling).
+    let mut placed = false;
+    if r.chance(0.5) {
+        if let Some(mut f) = two_flights(&mut r, [x, 0.0], dir, 5.0, height, "stairs") {
+            for s in &mut f {
+                s.start_m[1] = t / 2.0 + 0.35 + s.width_m / 2.0;
+            }
+            placed = l.flights(f.to_vec());
+        }
+    }
+    if !placed {
+        if let Some(mut s) = flight(&mut r, [x, 0.0], dir, 5.0, height, "stairs") {
+            s.start_m[1] = t / 2.0 + 0.35 + s.width_m / 2.0;
+            l.stairs(s);
+        }
     }
     // 5. Shelves against the south wall, tables with chairs, clutter along the walls.
     for k in 0..r.int(1, 3) {

@@ -204,6 +204,21 @@ impl Layout {
         true
     }
 
+    /// Places the flights of one staircase (a flight and the one starting on its landing) if
+    /// all their footprints (grown by 0.3 m) are free and open above; true if placed.
+    pub fn flights(&mut self, flights: Vec<Staircase>) -> bool {
+        let fps: Vec<Footprint> = flights.iter().map(stairs_footprint).collect();
+        if !fps
+            .iter()
+            .all(|fp| self.is_free(&fp.grown(0.3)) && self.is_open_above(fp))
+        {
+            return false;
+        }
+        self.taken.extend(fps.iter().map(|fp| fp.grown(0.3)));
+        self.b.stairs.extend(flights);
+        true
+    }
+
     /// Places a ramp if its footprint (grown by 0.3 m) is free and open above; true if placed.
     pub fn ramp(&mut self, r: Ramp) -> bool {
         let fp = ramp_footprint(&r);

@@ -7,7 +7,7 @@
 
 use super::furniture::{cabinet, chair, clutter, table, Place};
 use super::layout::{wall, Footprint, Layout};
-use super::stairs::flight;
+use super::stairs::{flight, two_flights};
 use crate::building::{Building, Door, Hinge, Leaf, Material, Swing, Wall};
 use cloud::Rng;
 
@@ -144,6 +144,25 @@ pub(super) fn generate(seed: u64) -> Building {
             (room.x1 - 0.35, 180.0)
         };
         let max_len = room.x1 - room.x0 - 0.7;
+        // The largest room's staircase has a landing half-way where it fits.
+        let y_for = |width: f64| {
+            if room.north {
+                room.y1 - 0.35 - width / 2.0
+            } else {
+                room.y0 + 0.35 + width / 2.0
+            }
+        };
+        if n == 0 {
+            if let Some(mut f) = two_flights(&mut r, [x, 0.0], dir, max_len, height, "stairs 0") {
+                let y = y_for(f[0].width_m);
+                for s in &mut f {
+                    s.start_m[1] = y;
+                }
+                if l.flights(f.to_vec()) {
+                    continue;
+                }
+            }
+        }
         if let Some(mut s) = flight(
             &mut r,
             [x, 0.0],

@@ -11,9 +11,14 @@
 //! peaks. The floor is the lowest peak holding at least `peak_fraction` of the strongest bin,
 //! the ceiling the highest such peak at least `min_room_height_m` above the floor; both are
 //! refined to the mean z of the points within `surface_tolerance_m` of the peak.
+//!
+//! The floor's footprint is where its points were seen ([`footprint`]): a few rectangles,
+//! which the floor entity carries and a simulation builds; the ceiling keeps its extent.
 
+mod footprint;
 mod levelling;
 
+pub(crate) use footprint::{floor_footprint, FloorFootprint};
 pub(crate) use levelling::level_transform;
 
 use crate::error::Result;
@@ -48,6 +53,19 @@ pub struct FloorCeilingConfig {
     pub surface_tolerance_m: f64,
     /// Thickness given to the floor and ceiling boxes (the scans see only one face).
     pub slab_thickness_m: f64,
+    /// Cell edge of the floor's footprint grid. 0.2 m: under half a robot's or a person's
+    /// width, so a part of the floor big enough to stand on is never lost to the grid, and
+    /// coarser than a laser's return spacing on the floor within a few metres.
+    pub footprint_cell_m: f64,
+    /// Fewest floor points in a cell for it to be seen floor (one is a stray or mixed pixel).
+    pub footprint_min_points: usize,
+    /// Gaps in the seen floor up to this across are closed: the floor under what stands on it
+    /// (legs, bins, feet) and between a rotating laser's scan lines at grazing incidence.
+    /// 0.5 m: no robot or person fits through a narrower gap, so closing it moves no one.
+    pub footprint_closing_m: f64,
+    /// Parts of the floor smaller than this are left out: 0.5 m x 0.5 m, less than a person
+    /// or a robot stands on.
+    pub footprint_min_area_m2: f64,
 }
 
 impl Default for FloorCeilingConfig {
@@ -64,6 +82,10 @@ impl Default for FloorCeilingConfig {
             min_room_height_m: 1.8,
             surface_tolerance_m: 0.04,
             slab_thickness_m: 0.2,
+            footprint_cell_m: 0.2,
+            footprint_min_points: 2,
+            footprint_closing_m: 0.5,
+            footprint_min_area_m2: 0.25,
         }
     }
 }
@@ -139,6 +161,34 @@ impl FloorCeilingConfig {
             1e-3,
             10.0,
             "within 0.001..10 m",
+        )?;
+        check_range(
+            "floor_ceiling.footprint_cell_m",
+            self.footprint_cell_m,
+            0.01,
+            10.0,
+            "within 0.01..10 m",
+        )?;
+        check_range(
+            "floor_ceiling.footprint_min_points",
+            self.footprint_min_points as f64,
+            1.0,
+            1e6,
+            "within 1..1e6",
+        )?;
+        check_range(
+            "floor_ceiling.footprint_closing_m",
+            self.footprint_closing_m,
+            0.0,
+            10.0,
+            "within 0..10 m",
+        )?;
+        check_range(
+            "floor_ceiling.footprint_min_area_m2",
+            self.footprint_min_area_m2,
+            0.0,
+            1e4,
+            "within 0..1e4 m2",
         )?;
         Ok(())
     }

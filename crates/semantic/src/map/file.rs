@@ -36,7 +36,8 @@ impl SemanticMap {
     ///
     /// Unknown classes and relation types, dangling or duplicate ids, a wrong `format` or
     /// `version` and entities lacking their class's geometry are typed errors. A version 1 file
-    /// (a subset of version 2: no obstacles, columns, beams or `near`) is read as version 2.
+    /// (no obstacles, columns, beams or `near`) or version 2 file (no `floor` section) is read
+    /// as the current version: both are subsets of it.
     pub fn from_json_str(text: &str, path: &Path) -> Result<SemanticMap> {
         let syntax = |e: serde_json::Error| SemanticError::Syntax {
             path: path.to_path_buf(),
@@ -45,7 +46,7 @@ impl SemanticMap {
         let value: serde_json::Value = serde_json::from_str(text).map_err(syntax)?;
         precheck(&value, path)?;
         let mut map: SemanticMap = serde_json::from_value(value).map_err(syntax)?;
-        // Version 1 is read as the current version (its content is a subset).
+        // Versions 1 and 2 are read as the current version (their content is a subset).
         map.version = MAP_VERSION;
         map.validate(path)?;
         Ok(map)
@@ -237,6 +238,15 @@ fn check_entity(e: &Entity) -> std::result::Result<(), String> {
             }
         }
         EntityClass::FreeSpaceForDoor => need(e.opening.is_some(), "opening")?,
+        EntityClass::Floor => {
+            if let Some(f) = &e.floor {
+                if !(f.parts.iter().all(OrientedBox::is_finite)
+                    && (0.0..=1.0).contains(&f.coverage))
+                {
+                    return Err("a floor part is invalid or the coverage is outside 0..1".into());
+                }
+            }
+        }
         EntityClass::Obstacle | EntityClass::Column | EntityClass::Beam => {
             need(e.obstacle.is_some(), "obstacle")?;
             if let Some(o) = &e.obstacle {

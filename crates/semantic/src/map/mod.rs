@@ -6,6 +6,7 @@
 //! lengths are metres, angles degrees. Every entity has an oriented box (`geometry`: centre,
 //! full size along the box's own axes, yaw about z); the box's x axis points along `yaw_deg`.
 
+mod door_swing;
 mod file;
 
 use cloud::EntityClass;
@@ -15,12 +16,14 @@ use serde::{Deserialize, Serialize};
 /// The `format` string of every semantic map file.
 pub const MAP_FORMAT: &str = "semsim.semantic_map";
 /// The map file version this build writes. Version 2 added the classes `obstacle`, `column` and
-/// `beam` (with their `obstacle` section) and the relation `near`; version 1 files are still
-/// read (see [`READ_VERSIONS`]).
-pub const MAP_VERSION: u32 = 2;
+/// `beam` (with their `obstacle` section) and the relation `near`; version 3 the floor's
+/// `floor` section (where the floor was seen); version 1 and 2 files are still read (see
+/// [`READ_VERSIONS`]).
+pub const MAP_VERSION: u32 = 3;
 /// The map file versions this build reads: version 1 (walls, openings, doors, stairs, floor and
-/// ceiling only) is a subset of version 2 and is read as such.
-pub const READ_VERSIONS: [u32; 2] = [1, 2];
+/// ceiling only) and version 2 (no `floor` section: the floor is its box) are subsets of
+/// version 3 and are read as such.
+pub const READ_VERSIONS: [u32; 3] = [1, 2, 3];
 
 /// An oriented box: centre, full size along its own axes (x along `yaw_deg`, y across, z up).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -249,7 +252,8 @@ pub struct StairsInfo {
     pub width_m: f64,
     /// Direction of ascent (0 = +x).
     pub direction_deg: f64,
-    /// Centre of the first step's front edge, on the floor.
+    /// Centre of the first step's front edge, at the flight's foot: on the floor, or on the
+    /// landing a flight starts from (the second flight of a staircase with a mid landing).
     pub start_m: [f64; 3],
     /// Depth of the top level beyond the last step's tread (0 if none).
     pub landing_m: f64,
@@ -288,6 +292,19 @@ pub struct ObstacleInfo {
     pub fill: f64,
 }
 
+/// Floor geometry beyond the box (version 3): where the floor was seen. The entity's
+/// `geometry` is the extent of these parts; a simulation builds the floor from the parts (a
+/// map without them, version 1 or 2, from the box).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FloorInfo {
+    /// Non-overlapping boxes covering the seen floor, largest first, each with the entity's
+    /// top and thickness.
+    pub parts: Vec<OrientedBox>,
+    /// Fraction of the seen floor's area (its points' cells, gaps closed) that the parts cover.
+    pub coverage: f64,
+}
+
 /// A semantic entity: a node of the semantic net.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -319,6 +336,9 @@ pub struct Entity {
     /// For obstacles, columns and beams (version 2).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub obstacle: Option<ObstacleInfo>,
+    /// For the floor: where it was seen (version 3).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub floor: Option<FloorInfo>,
 }
 
 /// The semantic map: entities, relations and the map frame.

@@ -3,8 +3,8 @@
 
 use super::Net;
 use crate::map::{
-    DoorInfo, Entity, HingeEdge, OpeningInfo, OrientedBox, RelationType, StairsInfo, SwingSide,
-    WallInfo,
+    DoorInfo, Entity, FloorInfo, HingeEdge, OpeningInfo, OrientedBox, RelationType, StairsInfo,
+    SwingSide, WallInfo,
 };
 use cloud::EntityClass;
 use glam::DVec2;
@@ -34,6 +34,7 @@ fn blank(class: EntityClass, geometry: OrientedBox, confidence: f64, rules: Vec<
         opening: None,
         stairs: None,
         obstacle: None,
+        floor: None,
     }
 }
 
@@ -59,12 +60,34 @@ impl Net<'_> {
     /// The floor and the ceiling, where both their height and their extent were found.
     pub(super) fn add_slabs(&mut self) {
         let d = self.d;
-        if let (Some((z, n)), Some(ext)) = (d.levels.floor, d.floor_extent) {
-            let rules = vec![format!(
-                "lowest horizontal peak of the z histogram: {n} points at z {z:.3} m (tilt levelled: {:.2} deg)",
-                d.levels.tilt_deg
-            )];
-            let floor = blank(EntityClass::Floor, self.slab(ext, z), 1.0, rules);
+        let footprint = d.floor_footprint.as_ref();
+        if let (Some((z, n)), Some((f, ext))) = (
+            d.levels.floor,
+            footprint.and_then(|f| f.extent().map(|e| (f, e))),
+        ) {
+            let coverage = if f.seen_cells > 0 {
+                (f.covered_cells as f64 / f.seen_cells as f64).min(1.0)
+            } else {
+                0.0
+            };
+            let rules = vec![
+                format!(
+                    "lowest horizontal peak of the z histogram: {n} points at z {z:.3} m (tilt levelled: {:.2} deg)",
+                    d.levels.tilt_deg
+                ),
+                format!(
+                    "seen floor: {} parts covering {:.0} % of the {:.1} m2 seen (cells of {:.2} m, gaps closed)",
+                    f.parts.len(),
+                    100.0 * coverage,
+                    f.seen_cells as f64 * f.cell_m * f.cell_m,
+                    f.cell_m
+                ),
+            ];
+            let mut floor = blank(EntityClass::Floor, self.slab(ext, z), 1.0, rules);
+            floor.floor = Some(FloorInfo {
+                parts: f.parts.iter().map(|&p| self.slab(p, z)).collect(),
+                coverage,
+            });
             self.ids.floor = self.add(floor);
         }
         if let (Some((z, n)), Some(ext)) = (d.levels.ceiling, d.ceiling_extent) {
@@ -204,7 +227,7 @@ impl Net<'_> {
         for s in &d.stairs {
             let step_box = |k: u32| {
                 let (a, b) = s.step_range(k);
-                let top = floor_z + s.rise * k.min(s.steps) as f64;
+                let top = floor_z + s.base + s.rise * k.min(s.steps) as f64;
                 OrientedBox::along(
                     xy(s.start + s.dir * a),
                     xy(s.start + s.dir * b),
@@ -221,7 +244,7 @@ impl Net<'_> {
                     xy(s.start),
                     xy(s.start + s.dir * total),
                     s.width,
-                    [floor_z, floor_z + s.rise * s.steps as f64],
+                    [floor_z, floor_z + s.base + s.rise * s.steps as f64],
                 ),
                 s.confidence,
                 s.rules.clone(),
@@ -232,7 +255,7 @@ impl Net<'_> {
                 run_m: s.run,
                 width_m: s.width,
                 direction_deg: s.dir.y.atan2(s.dir.x).to_degrees(),
-                start_m: [s.start.x, s.start.y, floor_z],
+                start_m: [s.start.x, s.start.y, floor_z + s.base],
                 landing_m: s.landing,
                 steps,
                 landing,

@@ -78,8 +78,9 @@ impl NetConfig {
 /// Everything the identification stages found.
 pub(crate) struct Detections {
     pub levels: Levels,
-    /// Floor and ceiling footprints: (min, max) in a frame turned by `slab_yaw`.
-    pub floor_extent: Option<([f64; 2], [f64; 2])>,
+    /// Where the floor was seen (rectangles in a frame turned by `slab_yaw`).
+    pub floor_footprint: Option<crate::floor_ceiling::FloorFootprint>,
+    /// The ceiling's extent: (min, max) in a frame turned by `slab_yaw`.
     pub ceiling_extent: Option<([f64; 2], [f64; 2])>,
     pub slab_yaw: f64,
     pub slab_thickness: f64,

@@ -47,6 +47,7 @@ pub(crate) fn add_obstacles(
                 hull_m: o.hull.iter().map(|q| q.to_array()).collect(),
                 fill: o.fill.clamp(0.0, 1.0),
             }),
+            floor: None,
         });
         let mut relate = |kind, a, b| {
             if a != 0 && b != 0 {

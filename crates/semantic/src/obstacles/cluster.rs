@@ -1,5 +1,5 @@
-//! Clusters of unexplained points: an XY occupancy grid per height band, its 8-connected
-//! components (see the `obstacles` module).
+//! Clusters of unexplained points: an XY occupancy grid per height band, each cell's top, and
+//! the connected components of the occupied cells whose tops join (see the `obstacles` module).
 
 use crate::image_frame::ImageFrame;
 
@@ -49,16 +49,30 @@ impl BandGrid {
     pub fn count(&self, k: usize) -> usize {
         (self.start[k + 1] - self.start[k]) as usize
     }
+
+    /// Per cell, the height of its highest point (`f32::MIN` for an empty cell).
+    pub fn tops(&self, z_of: impl Fn(u32) -> f32) -> Vec<f32> {
+        (0..self.width * self.height)
+            .map(|k| {
+                self.points(k)
+                    .iter()
+                    .map(|&i| z_of(i))
+                    .fold(f32::MIN, f32::max)
+            })
+            .collect()
+    }
 }
 
-/// The 8-connected components of the cells for which `occupied` holds, each a list of cell
+/// The connected components of the cells for which `occupied` holds, each a list of cell
 /// indices (row-major). Cells up to `reach` cells apart (Chebyshev) are connected, so that the
-/// gaps a sparse scan leaves in one surface do not split it.
+/// gaps a sparse scan leaves in one surface do not split it, if `joins` holds for them (the
+/// first argument is the cell reached from).
 pub(crate) fn components(
     width: usize,
     height: usize,
     reach: usize,
     occupied: impl Fn(usize) -> bool,
+    joins: impl Fn(usize, usize) -> bool,
 ) -> Vec<Vec<usize>> {
     let mut seen = vec![false; width * height];
     let mut out = Vec::new();
@@ -80,7 +94,7 @@ pub(crate) fn components(
                         continue;
                     }
                     let n = ny as usize * width + nx as usize;
-                    if !seen[n] && occupied(n) {
+                    if !seen[n] && occupied(n) && joins(k, n) {
                         seen[n] = true;
                         stack.push(n);
                     }
@@ -100,10 +114,19 @@ mod tests {
     fn components_join_cells_within_reach_only() {
         // Row 0: cells 0, 1 and 3 occupied (a one-cell gap), cell 7 far off.
         let occ = [0usize, 1, 3, 7];
-        let one = components(8, 1, 1, |k| occ.contains(&k));
+        let one = components(8, 1, 1, |k| occ.contains(&k), |_, _| true);
         assert_eq!(one.len(), 3, "{one:?}");
-        let two = components(8, 1, 2, |k| occ.contains(&k));
+        let two = components(8, 1, 2, |k| occ.contains(&k), |_, _| true);
         assert_eq!(two.len(), 2, "{two:?}");
         assert_eq!(two[0].len(), 3);
+    }
+
+    #[test]
+    fn components_split_where_the_join_test_fails() {
+        // Cells 0-5 in a row, tops 0.75 (a desk) then 0.45 (a chair's seat) from cell 3 on.
+        let top: [f64; 6] = [0.75, 0.75, 0.75, 0.45, 0.45, 0.45];
+        let parts = components(6, 1, 2, |_| true, |a, b| (top[a] - top[b]).abs() <= 0.1);
+        assert_eq!(parts.len(), 2, "{parts:?}");
+        assert!(parts.iter().all(|p| p.len() == 3), "{parts:?}");
     }
 }

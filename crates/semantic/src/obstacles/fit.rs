@@ -137,3 +137,59 @@ mod tests {
         assert!(dir.dot(d).abs() > 1.0 - 1e-9, "{dir}");
     }
 }
+
+/// The corners of the rectangle with centre `c`, unit first axis `d` and full `size`,
+/// counter-clockwise.
+pub(crate) fn rect_corners(c: DVec2, d: DVec2, size: [f64; 2]) -> [DVec2; 4] {
+    let (u, v) = (d * (size[0] / 2.0), d.perp() * (size[1] / 2.0));
+    [c - u - v, c + u - v, c + u + v, c - u + v]
+}
+
+/// The area of a polygon (absolute).
+pub(crate) fn polygon_area(p: &[DVec2]) -> f64 {
+    (0..p.len())
+        .map(|k| p[k].perp_dot(p[(k + 1) % p.len()]))
+        .sum::<f64>()
+        .abs()
+        / 2.0
+}
+
+/// The area of the intersection of two convex counter-clockwise polygons (Sutherland-Hodgman).
+pub(crate) fn intersection_area(a: &[DVec2], b: &[DVec2]) -> f64 {
+    let mut poly: Vec<DVec2> = a.to_vec();
+    for k in 0..b.len() {
+        let (e0, e1) = (b[k], b[(k + 1) % b.len()]);
+        let side = |q: DVec2| (e1 - e0).perp_dot(q - e0);
+        let mut next = Vec::with_capacity(poly.len() + 2);
+        for m in 0..poly.len() {
+            let (p, q) = (poly[m], poly[(m + 1) % poly.len()]);
+            let (sp, sq) = (side(p), side(q));
+            if sp >= 0.0 {
+                next.push(p);
+            }
+            if (sp >= 0.0) != (sq >= 0.0) {
+                next.push(p + (q - p) * (sp / (sp - sq)));
+            }
+        }
+        poly = next;
+        if poly.is_empty() {
+            return 0.0;
+        }
+    }
+    polygon_area(&poly)
+}
+
+#[cfg(test)]
+mod area_tests {
+    use super::*;
+
+    #[test]
+    fn intersection_of_overlapping_rectangles() {
+        let a = rect_corners(DVec2::ZERO, DVec2::X, [2.0, 2.0]);
+        let b = rect_corners(DVec2::new(1.0, 1.0), DVec2::X, [2.0, 2.0]);
+        assert!((intersection_area(&a, &b) - 1.0).abs() < 1e-9);
+        let far = rect_corners(DVec2::new(5.0, 0.0), DVec2::Y, [1.0, 1.0]);
+        assert_eq!(intersection_area(&a, &far), 0.0);
+        assert!((polygon_area(&a) - 4.0).abs() < 1e-9);
+    }
+}

@@ -7,8 +7,11 @@
 //!    leaf's free edge is the leaf, not a post in its doorway).
 //! 2. Two height bands split at `head_height_m`: below it, what a person or robot runs into;
 //!    above it, what they pass under. Each band's points go into an XY grid (`cell_m`); a cell
-//!    with `min_cell_points` is occupied (one stray return is not), and occupied cells up to two
-//!    cells apart form a cluster ([`cluster`]).
+//!    with `min_cell_points` is occupied (one stray return is not). Occupied cells up to two
+//!    cells apart form a cluster ([`cluster`]) if their tops (highest points) differ by at most
+//!    `max_top_step_m`: a surface's top changes little from cell to cell, while where one thing
+//!    stands beside another (a chair's seat by a desk, a car by a pillar, a duct under a beam)
+//!    the top steps.
 //! 3. A low cluster's top climbs through the points above head height in its cells while they
 //!    follow each other within `max_vertical_gap_m` (a shelf taller than head height, a column
 //!    up to the ceiling; not the beam over a car). The high points it climbed through are its
@@ -16,23 +19,31 @@
 //! 4. Each cluster's box: the smallest-area rectangle around its footprint's convex hull
 //!    ([`fit`]; along a wall instead if that is at most 15 % larger), z from its points; a
 //!    bottom near the floor stands on it.
-//! 5. Classes: a low cluster standing on the floor, reaching the ceiling and at most
-//!    `column_max_across_m` across is a `column`; a high cluster at least `beam_min_length_m`
-//!    long and twice as long as wide is a `beam` (its bottom is above head height by
-//!    construction: the robot passes under it); anything else is an `obstacle`.
+//! 5. Put together ([`merge`]): a low cluster lying mostly inside a larger one's box, at heights
+//!    within `max_vertical_gap_m` of it (a chair's backrest over its seat, a car's cabin over
+//!    its body), is part of it; overhead pieces
+//!    continuing each other along one line across gaps up to `column_max_across_m` (a duct cut
+//!    where beams cross it) are one; thin clusters along a wall's face are its residue, dropped.
+//! 6. Classes ([`classify`]): a low cluster standing on the floor, reaching the ceiling and at
+//!    most `column_max_across_m` across is a `column`; a high cluster at least
+//!    `beam_min_length_m` long and twice as long as wide is a `beam` (its bottom is above head
+//!    height by construction: the robot passes under it); anything else is an `obstacle`.
 
+mod classify;
 mod cluster;
 mod fit;
+mod merge;
 
 use crate::error::Result;
 use crate::image_frame::{pixel_center, pixel_range, ImageFrame};
 use crate::map::OrientedBox;
 use crate::points::quantile;
 use crate::walls::WallFit;
+use classify::{classify, fit_cluster};
 use cloud::{check_range, EntityClass};
 use cluster::{components, BandGrid};
-use fit::{convex_hull, min_area_rect};
 use glam::{DVec2, Vec3};
+use merge::{absorb_parts, drop_wall_slivers, join_collinear};
 use serde::{Deserialize, Serialize};
 
 /// Configuration of the obstacle, column and beam stage.
@@ -69,6 +80,17 @@ pub struct ObstacleConfig {
     /// A low cluster's top climbs through points above head height with gaps up to this:
     /// a few of a laser's line spacings at 10 m (0.5-1 degree, 9-17 cm).
     pub max_vertical_gap_m: f64,
+    /// Neighbouring cells whose tops differ by more than this are of different things (or
+    /// parts, put together again when one lies within the other). One cell (10 cm): a surface
+    /// sloping up to 45 degrees changes its top by at most that from cell to cell, and the
+    /// laser's range noise (1-3 cm) by much less; the things a building holds step by more
+    /// (seat 0.45 m, desk 0.72-0.76 m, backrest 0.85-0.9 m, car bonnet to roof ~0.5 m).
+    pub max_top_step_m: f64,
+    /// A cluster at most this thin, parallel to a wall (or as thin both ways) and within
+    /// `wall_margin_m` plus this of its faces' planes, is the wall's residue: twice the wall margin's allowance for face noise.
+    /// Thin things do stand against walls (pipes, radiators, skirting), but at this depth
+    /// they are the wall to a robot.
+    pub sliver_max_across_m: f64,
 }
 
 impl Default for ObstacleConfig {
@@ -85,6 +107,8 @@ impl Default for ObstacleConfig {
             full_height_margin_m: 0.35,
             beam_min_length_m: 1.0,
             max_vertical_gap_m: 0.3,
+            max_top_step_m: 0.1,
+            sliver_max_across_m: 0.2,
         }
     }
 }
@@ -107,6 +131,8 @@ impl ObstacleConfig {
             ("obstacles.full_height_margin_m", self.full_height_margin_m),
             ("obstacles.beam_min_length_m", self.beam_min_length_m),
             ("obstacles.max_vertical_gap_m", self.max_vertical_gap_m),
+            ("obstacles.max_top_step_m", self.max_top_step_m),
+            ("obstacles.sliver_max_across_m", self.sliver_max_across_m),
         ] {
             check_range(name, v, 0.0, 100.0, "within 0..100 m")?;
         }
@@ -210,10 +236,14 @@ pub(crate) fn find_obstacles(
     let low_grid = BandGrid::new(&frame, &low, &cell_of);
     let high_grid = BandGrid::new(&frame, &high, &cell_of);
     let (w, h) = (low_grid.width, low_grid.height);
+    let z_of = |i: u32| sc.points[i as usize].z;
+    let step = c.max_top_step_m as f32;
     let mut consumed = vec![false; sc.points.len()];
     let mut out = Vec::new();
     // 2-3. Low clusters, their tops climbing into the high band.
-    for cells in components(w, h, 2, |k| low_grid.count(k) >= c.min_cell_points) {
+    let tops = low_grid.tops(z_of);
+    let occupied = |k: usize| low_grid.count(k) >= c.min_cell_points;
+    for cells in components(w, h, 2, occupied, |a, b| (tops[a] - tops[b]).abs() <= step) {
         let members: Vec<u32> = cells
             .iter()
             .flat_map(|&k| low_grid.points(k).iter().copied())
@@ -248,7 +278,9 @@ pub(crate) fn find_obstacles(
     }
     // 3. High clusters: what is left above head height. Cells a column climbed through still
     //    connect (a beam carried by pillars is one beam), but their points are the column's.
-    for cells in components(w, h, 2, |k| high_grid.count(k) >= c.min_cell_points) {
+    let tops = high_grid.tops(z_of);
+    let occupied = |k: usize| high_grid.count(k) >= c.min_cell_points;
+    for cells in components(w, h, 2, occupied, |a, b| (tops[a] - tops[b]).abs() <= step) {
         let members: Vec<u32> = cells
             .iter()
             .flat_map(|&k| high_grid.points(k).iter().copied())
@@ -267,121 +299,19 @@ pub(crate) fn find_obstacles(
             out.push(o);
         }
     }
-    drop_parts(out)
-}
-
-/// The clusters, largest footprint first, without those lying mostly inside a larger one's box
-/// at its heights (a part of it that the grid split off: a car's far edge, a sliver).
-fn drop_parts(mut found: Vec<DetectedObstacle>) -> Vec<DetectedObstacle> {
-    found.sort_by(|a, b| (b.size[0] * b.size[1]).total_cmp(&(a.size[0] * a.size[1])));
-    let mut kept: Vec<DetectedObstacle> = Vec::new();
-    for o in found {
-        let within = |k: &DetectedObstacle, q: DVec2| {
-            let r = q - k.center;
-            let margin = 0.1;
-            r.dot(k.dir).abs() <= k.size[0] / 2.0 + margin
-                && r.dot(k.dir.perp()).abs() <= k.size[1] / 2.0 + margin
-        };
-        let part_of = kept.iter().any(|k| {
-            // A column under a beam is no part of it: only clusters of one band are compared.
-            if k.overhead != o.overhead {
-                return false;
-            }
-            let z_overlap = o.z_range.0 < k.z_range.1 && k.z_range.0 < o.z_range.1;
-            let inside = o.hull.iter().filter(|q| within(k, **q)).count();
-            z_overlap && 2 * inside >= o.hull.len().max(1)
-        });
-        if !part_of {
-            kept.push(o);
-        }
+    // 5-6. Put together, then classed.
+    let out = absorb_parts(out, frame.resolution_m, c.max_vertical_gap_m);
+    let out = join_collinear(out, c.column_max_across_m);
+    let mut out = drop_wall_slivers(
+        out,
+        sc.walls,
+        c.sliver_max_across_m,
+        c.wall_margin_m + c.sliver_max_across_m,
+    );
+    for o in &mut out {
+        classify(o, sc.floor, sc.ceiling, frame.resolution_m, c);
     }
-    kept
-}
-
-/// The box and class of one cluster (see the module docs, steps 4 and 5).
-fn fit_cluster(
-    sc: &ObstacleScene,
-    members: &[u32],
-    cells: usize,
-    (bottom, top): (f64, f64),
-    overhead: bool,
-    frame: &ImageFrame,
-    c: &ObstacleConfig,
-) -> Option<DetectedObstacle> {
-    let xy: Vec<DVec2> = members
-        .iter()
-        .map(|&i| {
-            let p = sc.points[i as usize];
-            DVec2::new(p.x as f64, p.y as f64)
-        })
-        .collect();
-    let hull = convex_hull(&xy);
-    let preferred: Vec<DVec2> = sc.walls.iter().map(|w| w.line.dir).collect();
-    let (center, dir, mut size) = min_area_rect(&hull, &preferred)?;
-    // The points are samples of the surface: the box reaches half a cell beyond them at least.
-    let pad = frame.resolution_m / 2.0;
-    size = [size[0].max(pad), size[1].max(pad)];
-    let fill =
-        (cells as f64 * frame.resolution_m.powi(2) / ((size[0] + pad) * (size[1] + pad))).min(1.0);
-    let near = c.full_height_margin_m;
-    let on_floor = !overhead && bottom - sc.floor <= c.min_above_floor_m + near;
-    let to_ceiling = sc.ceiling - top <= near;
-    let z0 = if on_floor { sc.floor } else { bottom };
-    // A cluster of one height (a ledge seen edge-on) still has a box: half a cell tall at least.
-    let z1 = if to_ceiling { sc.ceiling } else { top }.max(z0 + pad);
-    let (class, why) = if !overhead && on_floor && to_ceiling && size[0] <= c.column_max_across_m {
-        (
-            EntityClass::Column,
-            format!(
-                "stands from the floor to the ceiling, {:.2} m across at most (a column is at most {:.2} m)",
-                size[0], c.column_max_across_m
-            ),
-        )
-    } else if overhead && size[0] >= c.beam_min_length_m && size[0] >= 2.0 * size[1] {
-        (
-            EntityClass::Beam,
-            format!(
-                "{:.2} m long and {:.2} m wide above head height: its underside {:.2} m above the floor",
-                size[0],
-                size[1],
-                z0 - sc.floor
-            ),
-        )
-    } else {
-        (
-            EntityClass::Obstacle,
-            format!(
-                "occupies {:.2} x {:.2} m from {:.2} to {:.2} m above the floor",
-                size[0],
-                size[1],
-                z0 - sc.floor,
-                z1 - sc.floor
-            ),
-        )
-    };
-    let rules = vec![
-        format!(
-            "{} points explained by no floor, ceiling, wall, door or stairs, {} occupied {:.2} m cells {}",
-            members.len(),
-            cells,
-            frame.resolution_m,
-            if overhead { "above head height" } else { "below head height" }
-        ),
-        "box: the smallest-area rectangle around the footprint's convex hull".into(),
-        why,
-    ];
-    Some(DetectedObstacle {
-        class,
-        center,
-        dir,
-        size,
-        z_range: (z0, z1),
-        hull,
-        fill,
-        support: members.len() as u64,
-        overhead,
-        rules,
-    })
+    out
 }
 
 /// The grid cells within a wall's slab grown by `margin` (its points are the wall's).

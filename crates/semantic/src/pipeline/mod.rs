@@ -8,7 +8,9 @@ pub use output::{MapOutput, StageTime};
 use crate::dilation::{dilate_mask, DilationConfig};
 use crate::doors::{find_doors, DoorConfig, Doorways, OpeningConfig};
 use crate::error::{Result, SemanticError};
-use crate::floor_ceiling::{find_levels, level_transform, slab_extent, FloorCeilingConfig, Levels};
+use crate::floor_ceiling::{
+    find_levels, floor_footprint, level_transform, slab_extent, FloorCeilingConfig, Levels,
+};
 use crate::hough::{ppht, HoughConfig};
 use crate::image_frame::{pixel_center, ImageFrame, Mask};
 use crate::labels::{label_obstacles, label_points, LabelConfig};
@@ -140,7 +142,7 @@ pub fn build_semantic_map(cloud: &PointCloud, config: &SemanticConfig) -> Result
         .entities
         .iter()
         .filter_map(|e| match (&e.class, &e.door) {
-            (cloud::EntityClass::Door, Some(d)) => Some(swing_square(&e.geometry, d)),
+            (cloud::EntityClass::Door, Some(d)) => Some(d.swing_square(&e.geometry)),
             (cloud::EntityClass::Stairs, _) => Some(e.geometry),
             _ => None,
         })
@@ -278,7 +280,8 @@ fn localise(
     })
 }
 
-/// Everything identified, with the floor and ceiling extents (turned along the longest wall).
+/// Everything identified, with the floor's footprint and the ceiling's extent (turned along the
+/// longest wall).
 fn detections(
     points: &[glam::Vec3],
     levels: Levels,
@@ -297,15 +300,15 @@ fn detections(
         .map(|w| w.line.angle())
         .unwrap_or(0.0);
     let tol = config.floor_ceiling.surface_tolerance_m;
-    let floor_extent = levels
+    let floor_footprint = levels
         .floor
-        .and_then(|(z, _)| slab_extent(points, z, tol, slab_yaw));
+        .and_then(|(z, _)| floor_footprint(points, z, slab_yaw, &config.floor_ceiling));
     let ceiling_extent = levels
         .ceiling
         .and_then(|(z, _)| slab_extent(points, z, tol, slab_yaw));
     Detections {
         levels,
-        floor_extent,
+        floor_footprint,
         ceiling_extent,
         slab_yaw,
         slab_thickness: config.floor_ceiling.slab_thickness_m,
@@ -337,28 +340,4 @@ fn label_input(
         e.support_points = support.get(&e.id).copied().unwrap_or(0);
     }
     labels
-}
-
-/// The square a door leaf sweeps opening up to 90 degrees (its side's quarter circle's bounding
-/// box): whatever the scans saw of the leaf, at any angle, is the door's, not an obstacle.
-fn swing_square(
-    closed: &crate::map::OrientedBox,
-    d: &crate::map::DoorInfo,
-) -> crate::map::OrientedBox {
-    let (s, c) = closed.yaw_deg.to_radians().sin_cos();
-    let (u, w) = (glam::DVec2::new(c, s), closed.size_m[0]);
-    let along = match d.hinge_edge {
-        crate::map::HingeEdge::Start => u,
-        crate::map::HingeEdge::End => -u,
-    };
-    let side = match d.swing {
-        crate::map::SwingSide::Left => u.perp(),
-        crate::map::SwingSide::Right => -u.perp(),
-    };
-    let centre = glam::DVec2::new(d.hinge_m[0], d.hinge_m[1]) + (along + side) * (w / 2.0);
-    crate::map::OrientedBox {
-        center_m: [centre.x, centre.y, closed.center_m[2]],
-        size_m: [w, w, closed.size_m[2]],
-        yaw_deg: closed.yaw_deg,
-    }
 }

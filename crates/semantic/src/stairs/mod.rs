@@ -32,7 +32,9 @@
 use crate::error::Result;
 use crate::image_frame::ImageFrame;
 use cloud::check_range;
+mod flights;
 mod profile;
+mod surface;
 
 use crate::scene::Scene;
 use crate::walls::WallFit;
@@ -64,7 +66,10 @@ pub struct StairsConfig {
     /// narrower one was seen from its side only.
     pub min_width_m: f64,
     /// Fewest points on each step between its height and the one below (its tread, riser or
-    /// side face): fewer are a glimpse of clutter, not a surface.
+    /// side face): fewer are a glimpse of clutter, not a surface. Each of them is on a surface
+    /// (see `min_surface_neighbours`), so 5 are a patch of a few spacings across; a registered
+    /// map voxel-downsampled to 5 cm holds only 8-40 points on a whole step face (0.10-0.23 m
+    /// by 0.20-0.45 m), and a face half hidden by clutter or seen at grazing angles fewer.
     pub min_step_points: usize,
     /// ... and at least this fraction of what the local density (the floor's around it)
     /// promises on a rise x run of surface (a step's riser or side face): the lowest step
@@ -75,6 +80,13 @@ pub struct StairsConfig {
     pub default_width_m: f64,
     /// The direction of ascent snaps to a wall's (or its normal's) within this angle.
     pub snap_direction_deg: f64,
+    /// A point of a candidate lies on a surface if it has this many neighbours within
+    /// `surface_radius_spacings` times the candidate's point spacing (see `surface`): a surface
+    /// sampled at spacing d puts about a dozen points within 2d of an inner point and 3-5 of
+    /// a corner's; a mixed pixel floating in front of a depth edge has hardly any (0: keep all).
+    pub min_surface_neighbours: usize,
+    /// The neighbourhood's radius in point spacings (the median nearest-neighbour distance).
+    pub surface_radius_spacings: f64,
 }
 
 impl Default for StairsConfig {
@@ -87,10 +99,12 @@ impl Default for StairsConfig {
             max_height_m: 2.6,
             min_level_pixels: 3,
             min_width_m: 0.6,
-            min_step_points: 8,
+            min_step_points: 5,
             min_step_fill: 0.15,
             default_width_m: 1.0,
             snap_direction_deg: 10.0,
+            min_surface_neighbours: 3,
+            surface_radius_spacings: 3.0,
         }
     }
 }
@@ -188,6 +202,20 @@ impl StairsConfig {
             45.0,
             "within 0..45 deg",
         )?;
+        check_range(
+            "stairs.min_surface_neighbours",
+            self.min_surface_neighbours as f64,
+            0.0,
+            100.0,
+            "within 0..100",
+        )?;
+        check_range(
+            "stairs.surface_radius_spacings",
+            self.surface_radius_spacings,
+            1.0,
+            10.0,
+            "within 1..10",
+        )?;
         Ok(())
     }
 }
@@ -203,6 +231,8 @@ pub(crate) struct DetectedStairs {
     /// Centre of the first step's front edge (XY).
     pub start: DVec2,
     pub landing: f64,
+    /// Height of the flight's foot above the floor (0, or the landing it starts from).
+    pub base: f64,
     pub support: u64,
     pub confidence: f64,
     pub rules: Vec<String>,
@@ -346,12 +376,25 @@ pub(crate) fn find_stairs(
             if pixels.len() < (c.min_steps as usize) * c.min_level_pixels || members.len() < 20 {
                 return None;
             }
-            let xy: Vec<DVec2> = members
+            let all: Vec<(DVec2, f64)> = members
                 .iter()
-                .map(|&i| DVec2::new(sc.points[i].x as f64, sc.points[i].y as f64))
+                .map(|&i| {
+                    let p = sc.points[i];
+                    (DVec2::new(p.x as f64, p.y as f64), p.z as f64 - sc.floor)
+                })
                 .collect();
+            let xy: Vec<DVec2> = all.iter().map(|p| p.0).collect();
             let mut cands = directions.clone();
             if let Some((_, d)) = crate::points::fit_line(&xy) {
+                // A staircase seen from its side only is one face, a line in plan: it climbs
+                // along that line (its stepped top edge reads as a staircase along any
+                // direction not square to it, with the run shortened).
+                if across(&xy, d) < c.min_width_m {
+                    cands.retain(|e| {
+                        e.angle_to(d).abs().to_degrees() < c.snap_direction_deg
+                            || e.angle_to(-d).abs().to_degrees() < c.snap_direction_deg
+                    });
+                }
                 for cand in [d, d.perp(), -d, -d.perp()] {
                     if !cands
                         .iter()
@@ -361,16 +404,48 @@ pub(crate) fn find_stairs(
                     }
                 }
             }
-            let pts: Vec<(DVec2, f64)> = members
+            // Mixed pixels and stray returns are on no surface: left out of the levels and the
+            // support (see `surface`).
+            let pts: Vec<(DVec2, f64)> = surface::on_surfaces(
+                sc.points,
+                members,
+                c.min_surface_neighbours,
+                c.surface_radius_spacings,
+                3.0 * c.cell_m,
+            )
+            .into_iter()
+            .map(|i| {
+                let p = sc.points[i];
+                (DVec2::new(p.x as f64, p.y as f64), p.z as f64 - sc.floor)
+            })
+            .collect();
+            // A staircase with a landing half-way is its two flights (see `flights`).
+            if let Some(f) = cands
                 .iter()
-                .zip(&xy)
-                .map(|(&i, q)| (*q, sc.points[i].z as f64 - sc.floor))
+                .find_map(|&dir| flights::two_flights(&pts, &all, dir, sc, c))
+            {
+                return Some(f.to_vec());
+            }
+            let profs: Vec<_> = cands
+                .iter()
+                .filter_map(|&dir| profile(&pts, &all, dir, c))
                 .collect();
-            let best = cands
-                .iter()
-                .filter_map(|&dir| profile(&pts, dir, c))
-                .max_by(|a, b| a.score.total_cmp(&b.score))?;
-            finish(&pts, best, sc, c)
+            // The best score that makes a plausible staircase (a direction oblique to a face
+            // seen from its side reads as steps too, but not as a staircase people climb); of
+            // equal ones the first direction (the walls' come first: a staircase is built
+            // square to the walls around it).
+            let mut profs = profs;
+            profs.sort_by(|a, b| b.score.total_cmp(&a.score));
+            let r = profs.into_iter().find_map(|p| finish(&pts, p, sc, c));
+            r.map(|r| vec![r])
         })
+        .flatten()
         .collect()
+}
+
+/// The extent of points across a direction (1 % to 99 %).
+fn across(xy: &[DVec2], dir: DVec2) -> f64 {
+    let mut t: Vec<f64> = xy.iter().map(|q| dir.perp_dot(*q)).collect();
+    let lo = crate::points::quantile(&mut t, 0.01).unwrap_or(0.0);
+    crate::points::quantile(&mut t, 0.99).unwrap_or(0.0) - lo
 }

@@ -29,26 +29,18 @@ pub(crate) struct Profile {
 /// `support - 3 violations` explains the data equally well (a front edge can lie anywhere
 /// between the last sample of the level below and the first of its own): their centroid is the
 /// fit, unbiased by the sampling either side of an edge.
-pub(crate) fn profile(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<Profile> {
+pub(crate) fn profile(
+    pts: &[(DVec2, f64)],
+    all: &[(DVec2, f64)],
+    dir: DVec2,
+    c: &StairsConfig,
+) -> Option<Profile> {
     let bin = 0.01;
-    let mut s: Vec<f64> = pts.iter().map(|(q, _)| q.dot(dir)).collect();
+    let mut s: Vec<f64> = all.iter().map(|(q, _)| q.dot(dir)).collect();
     let s_lo = quantile(&mut s.clone(), 0.005)? - 0.05;
     let s_hi = quantile(&mut s, 0.995)? + 0.05;
     let nb = (((s_hi - s_lo) / bin).ceil() as usize).clamp(1, 100_000);
-    let mut highest_in = vec![f64::NEG_INFINITY; nb];
-    for (q, z) in pts {
-        let v = (q.dot(dir) - s_lo) / bin;
-        if v >= 0.0 && (v as usize) < nb {
-            highest_in[v as usize] = highest_in[v as usize].max(*z);
-        }
-    }
-    // (along, highest point)
-    let env: Vec<(f64, f64)> = highest_in
-        .iter()
-        .enumerate()
-        .filter(|(_, z)| z.is_finite())
-        .map(|(i, z)| (s_lo + (i as f64 + 0.5) * bin, *z))
-        .collect();
+    let env = envelope(pts, dir, s_lo, nb);
     if env.len() < 10 {
         return None;
     }
@@ -64,15 +56,77 @@ pub(crate) fn profile(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Opt
     let mut highest: Vec<f64> = env.iter().map(|e| e.1).collect();
     highest.sort_by(|x, y| y.total_cmp(x));
     let top_height = *highest.get(1)?;
-    let n = ((top_height - offset) / rise0).round();
-    if n < c.min_steps as f64 {
+    // The step count from the top level over the rise of the levels; with the levels seen
+    // on a side face (a few centimetres under the treads: the edge between two scan lines,
+    // a voxel's centroid) the rise can be off by enough to miss the count by one, so the
+    // counts either side are fitted too and the best fit wins (the first on a tie).
+    let n0 = ((top_height - offset) / rise0).round();
+    // The edges are fitted to every point: a step's nosing has fewer neighbours than its tread
+    // and riser, and the fit's violations bear the odd mixed pixel in front of it.
+    let fit_env = envelope(all, dir, s_lo, nb);
+    let fit = [n0, n0 - 1.0, n0 + 1.0]
+        .into_iter()
+        .filter(|&n| n >= c.min_steps as f64 && n <= 64.0)
+        .filter(|&n| (c.rise_m[0]..=c.rise_m[1]).contains(&(top_height / n)))
+        .filter_map(|n| fit_steps(&fit_env, n as u32, top_height / n, c))
+        .reduce(|a, b| if b.best > a.best { b } else { a })?;
+    let Fit {
+        n,
+        rise,
+        run,
+        s0,
+        found,
+        best,
+    } = fit;
+    let nf = n as f64;
+    if (found as f64) < 0.6 * nf || best <= 0.0 {
         return None;
     }
-    let rise = top_height / n;
-    if rise < c.rise_m[0] || rise > c.rise_m[1] {
-        return None;
+    Some(Profile {
+        dir,
+        rise,
+        run,
+        front1: s0,
+        steps: n,
+        found,
+        score: found as f64 + best / (5.0 * nf + 1.0),
+    })
+}
+
+/// The highest point per 1 cm bin along `dir` from `s_lo` (`nb` bins): `(along, highest)` of
+/// the bins with points.
+fn envelope(pts: &[(DVec2, f64)], dir: DVec2, s_lo: f64, nb: usize) -> Vec<(f64, f64)> {
+    let bin = 0.01;
+    let mut highest_in = vec![f64::NEG_INFINITY; nb];
+    for (q, z) in pts {
+        let v = (q.dot(dir) - s_lo) / bin;
+        if v >= 0.0 && (v as usize) < nb {
+            highest_in[v as usize] = highest_in[v as usize].max(*z);
+        }
     }
-    let n = n as u32;
+    highest_in
+        .iter()
+        .enumerate()
+        .filter(|(_, z)| z.is_finite())
+        .map(|(i, z)| (s_lo + (i as f64 + 0.5) * bin, *z))
+        .collect()
+}
+
+/// The stair model fitted to the envelope for one step count.
+struct Fit {
+    n: u32,
+    rise: f64,
+    run: f64,
+    s0: f64,
+    /// Levels with a bin on them.
+    found: u32,
+    /// `support - 3 violations` (see `profile`).
+    best: f64,
+}
+
+/// The run and start of `n` steps of `rise` that explain the envelope `(along, highest)` best
+/// (see `profile`).
+fn fit_steps(env: &[(f64, f64)], n: u32, rise: f64, c: &StairsConfig) -> Option<Fit> {
     let nf = n as f64;
     let level = |s: f64, run: f64, s0: f64| {
         if s < s0 {
@@ -83,13 +137,13 @@ pub(crate) fn profile(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Opt
     };
     let score = |run: f64, s0: f64| -> f64 {
         let mut v = 0.0;
-        let mut support = [0u8; 64];
-        for &(s, z) in &env {
+        let mut support = [0u8; 65];
+        for &(s, z) in env {
             let k = level(s, run, s0);
             if z > rise * level(s + 0.015, run, s0) + 0.025 {
                 v -= 3.0;
             } else if k > 0.0 && z >= rise * k - 0.035 {
-                let slot = &mut support[(k as usize).min(63)];
+                let slot = &mut support[(k as usize).min(64)];
                 *slot = slot.saturating_add(1);
             }
         }
@@ -117,33 +171,29 @@ pub(crate) fn profile(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Opt
         }
         run += 0.002;
     }
-    let m = optimal.len().max(1) as f64;
-    let run = optimal.iter().map(|o| o.0).sum::<f64>() / m;
-    let s0 = optimal.iter().map(|o| o.1).sum::<f64>() / m;
-    let found = {
-        let mut ks: Vec<u32> = env
-            .iter()
-            .filter(|e| {
-                let top = rise * level(e.0, run, s0);
-                top > 0.0 && e.1 >= top - 0.035 && e.1 <= top + 0.025
-            })
-            .map(|e| level(e.0, run, s0) as u32)
-            .collect();
-        ks.sort_unstable();
-        ks.dedup();
-        ks.len() as u32
-    };
-    if (found as f64) < 0.6 * nf || best <= 0.0 || optimal.is_empty() {
+    if optimal.is_empty() {
         return None;
     }
-    Some(Profile {
-        dir,
+    let m = optimal.len() as f64;
+    let run = optimal.iter().map(|o| o.0).sum::<f64>() / m;
+    let s0 = optimal.iter().map(|o| o.1).sum::<f64>() / m;
+    let mut ks: Vec<u32> = env
+        .iter()
+        .filter(|e| {
+            let top = rise * level(e.0, run, s0);
+            top > 0.0 && e.1 >= top - 0.035 && e.1 <= top + 0.025
+        })
+        .map(|e| level(e.0, run, s0) as u32)
+        .collect();
+    ks.sort_unstable();
+    ks.dedup();
+    Some(Fit {
+        n,
         rise,
         run,
-        front1: s0,
-        steps: n,
-        found,
-        score: found as f64 + best / (5.0 * nf + 1.0),
+        s0,
+        found: ks.len() as u32,
+        best,
     })
 }
 
@@ -219,7 +269,8 @@ pub(crate) fn finish(
     let mut t0 = quantile(&mut ts, 0.01).unwrap_or(0.0);
     let mut t1 = quantile(&mut ts, 0.99).unwrap_or(0.0);
     let mut width_rule = format!("{:.2} m wide across its points", t1 - t0);
-    if t1 - t0 < c.min_width_m {
+    let side_only = t1 - t0 < c.min_width_m;
+    if side_only {
         // Only a side face was seen (the treads above the laser are hidden): the staircase
         // extends `default_width_m` away from the side with floor in front of the face.
         let length = p.run * p.steps as f64;
@@ -292,7 +343,11 @@ pub(crate) fn finish(
         let top = (k + 1) as f64 * p.rise;
         per_step[k] += usize::from(*z > top - p.rise + 0.02 && *z <= top + 0.03);
     }
-    let weakest = per_step.iter().copied().min().unwrap_or(0);
+    // Seen from its side only, the lowest step's side face is a low strip at grazing angles
+    // that clutter in the room hides first; the floor hidden under the whole footprint (checked
+    // above) stands in for it, and its count still follows from the levels above it.
+    let first_checked = usize::from(side_only && per_step.len() > c.min_steps as usize);
+    let weakest = per_step[first_checked..].iter().copied().min().unwrap_or(0);
     // ... as many as the local point density promises on that much surface: the floor's
     // density around the staircase (points per m² of the 10 cm cells where it was seen).
     let density = floor_density(
@@ -342,6 +397,7 @@ pub(crate) fn finish(
         dir,
         start,
         landing,
+        base: 0.0,
         support: pts.len() as u64,
         confidence: (p.found as f64 / p.steps as f64).min(1.0),
         rules,

@@ -9,6 +9,13 @@ use crate::merge::Segment;
 use crate::points::{quantile, Line2};
 use crate::scene::Scene;
 
+/// A wall's face has free space (floor, ceiling) right in front of it and its body behind it.
+/// A face with the slab seen beside it on both sides alike (or on neither) bounds no free space;
+/// it is a wall only if nothing is seen through it (a glass wall, a wall in clutter): open or
+/// bare along this fraction of its length (a tenth: more than a stray return or two per
+/// metre) and it is a plane through clutter, a beam or a door leaf.
+const UNBOUNDED_FACE_MAX_THROUGH: f64 = 0.1;
+
 /// Measures the wall along one prerequisite segment; `None` if it is no wall.
 pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
     let len0 = seg.length_m();
@@ -79,8 +86,8 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
     }
     // A wall stands on the floor and hides what is behind it (see `support`): not a beam, a
     // row of pillars or a beam over them.
-    let (standing, open) = profile.fractions();
-    if standing == 0.0 || open > standing {
+    let (standing, open, bare) = profile.fractions();
+    if standing == 0.0 || open + bare > standing {
         return None;
     }
     let support = zs.len() as u64;
@@ -113,9 +120,10 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
         hi - lo,
         coverage * 100.0
     ), format!(
-        "face seen below head height along {:.0} % of it, seen through below head height along {:.0} % (a beam or pillars would be open more than standing)",
+        "face seen below head height along {:.0} % of it, seen through below head height along {:.0} %, seen above head height only with nothing below along {:.0} % (a beam or pillars would be open or bare more than standing)",
         standing * 100.0,
-        open * 100.0
+        open * 100.0,
+        bare * 100.0
     )];
     let mut fit = WallFit {
         line: Line2 {
@@ -150,6 +158,11 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
         // One face: the one with free space in front of it (else the first, the strongest).
         let k = (0..faces.len()).find(|&k| side(k) != 0.0).unwrap_or(0);
         let mut s = side(k);
+        if s == 0.0 && open + bare >= UNBOUNDED_FACE_MAX_THROUGH {
+            // No side of the face is free space with a body behind it, and the scans saw
+            // through it: a plane through clutter, a beam, a door leaf; not a wall.
+            return None;
+        }
         if s == 0.0 {
             // No floor or ceiling seen beside it: the free space faces the cloud's middle.
             s = if (sc.middle - line.at((lo + hi) / 2.0)).dot(line.normal()) >= 0.0 {

@@ -28,13 +28,15 @@
 //! behind the partitions that meet it and the furniture that hid it ([`joins`]). A wall's
 //! ends then move on to its face points glimpsed beyond a stretch of up to
 //! `max_glimpse_gap_m` that nobody saw ([`glimpses`]: through the doorway of a room not
-//! entered).
+//! entered). A stretch no longer than a column is wide that stands free (the floor seen past
+//! both ends) is a column, not a wall ([`piers`]).
 
 mod extent;
 mod faces;
 mod fit;
 mod glimpses;
 mod joins;
+mod piers;
 mod support;
 
 use crate::error::Result;
@@ -46,6 +48,7 @@ use fit::fit_wall;
 use glam::DVec2;
 use glimpses::extend_to_glimpses;
 use joins::merge_through_gaps;
+use piers::is_free_standing_pier;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -274,6 +277,8 @@ pub(crate) fn identify_walls(
     }
     merge_through_gaps(&mut kept, sc, c, max_angle_deg);
     extend_to_glimpses(&mut kept, sc, c);
+    // A pillar's face standing free with the floor seen past both ends is a column.
+    kept.retain(|w| !is_free_standing_pier(w, sc));
     let mut measured: Vec<f64> = kept
         .iter()
         .filter(|w| w.measured)

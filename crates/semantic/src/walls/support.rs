@@ -11,14 +11,17 @@
 //!   between its two faces, or (one face seen) on both sides of the face right next to it.
 //!   A wall hides what is behind its face; under a beam or between pillars the floor and what
 //!   stands there are seen;
-//! - neither: the face seen above head height only with nothing seen below (clutter, parked
-//!   cars in front of it hid it), or nothing at all (not seen).
+//! - *bare*: the face seen above head height, and below head height neither the face nor
+//!   anything in front of or behind it that could hide it: the space under the face is empty
+//!   (under a beam, between two pillars), or its face would have been seen there;
+//! - neither: the face seen above head height with something standing beside it below head
+//!   height (clutter, parked cars in front of it hid it), or nothing at all (not seen).
 //!
-//! A candidate is dropped if more of its length is open than standing (a door is open too, but
-//! a wall holds fewer and narrower doors than wall), or if no bin stands (it rests on no points
-//! of its own). Occlusion by clutter makes bins neither standing nor open, so a wall behind a
-//! row of parked cars stays a wall as long as its face is seen somewhere below head height
-//! (above the cars, at its ends).
+//! A candidate is dropped if more of its length is open or bare than standing (a door is open
+//! or bare too, but a wall holds fewer and narrower doors than wall), or if no bin stands (it
+//! rests on no points of its own). Occlusion by clutter makes bins neither standing nor open
+//! nor bare, so a wall behind a row of parked cars stays a wall as long as its face is seen
+//! somewhere below head height (above the cars, at its ends).
 
 /// Bins along the wall.
 pub(crate) const BIN_M: f64 = 0.1;
@@ -29,9 +32,23 @@ pub(crate) const HEAD_HEIGHT_M: f64 = 1.95;
 /// The band beside a face where the wall's body would be: from 6 cm (beyond the face's own
 /// noise: the faces' tolerance is 3 cm, a laser's range noise 1-2 cm) to 15 cm.
 const BODY_BAND_M: (f64, f64) = (0.06, 0.15);
+/// Between two faces nearer than twice the body band's start, the body is what lies more than
+/// a quarter of their distance inside either (a thin partition's body is thin; its faces'
+/// noise reaches about 2 cm in, and only bins where no face stands count as open anyway).
+const THIN_BODY_FRACTION: f64 = 0.25;
+/// Something standing this high above the floor (a car, a cabinet, a person) beside a face
+/// may hide the face below head height; lower returns are the floor and its noise.
+const CLUTTER_MIN_HEIGHT_M: f64 = 0.1;
 
-/// Per bin: bit 0 standing, bit 1 seen left of the face, bit 2 right of it, bit 3 between two
-/// faces.
+const STANDING: u8 = 1;
+const LEFT: u8 = 2;
+const RIGHT: u8 = 4;
+const BETWEEN: u8 = 8;
+const ABOVE_HEAD: u8 = 16;
+const CLUTTER: u8 = 32;
+
+/// Per bin: standing, seen left of the face, right of it, between two faces, the face seen
+/// above head height, something standing beside the face below head height.
 pub(crate) struct SupportProfile {
     bins: Vec<u8>,
     faces: (f64, f64),
@@ -59,11 +76,14 @@ impl SupportProfile {
         };
         let above_floor = z - self.floor;
         if above_floor > HEAD_HEIGHT_M {
+            if face {
+                *bin |= ABOVE_HEAD;
+            }
             return;
         }
         if face {
             if above_floor > 0.05 {
-                *bin |= 1;
+                *bin |= STANDING;
             }
             return;
         }
@@ -73,26 +93,33 @@ impl SupportProfile {
         let (lo, hi) = self.faces;
         let (b0, b1) = BODY_BAND_M;
         if self.two {
-            if d > lo + b0 && d < hi - b0 {
-                *bin |= 8;
+            let inset = b0.min((hi - lo) * THIN_BODY_FRACTION);
+            if d > lo + inset && d < hi - inset {
+                *bin |= BETWEEN;
+            } else if above_floor >= CLUTTER_MIN_HEIGHT_M && (d - hi >= b0 || lo - d >= b0) {
+                *bin |= CLUTTER;
             }
         } else if d - hi >= b0 && d - hi <= b1 {
-            *bin |= 2;
+            *bin |= LEFT;
         } else if lo - d >= b0 && lo - d <= b1 {
-            *bin |= 4;
+            *bin |= RIGHT;
+        }
+        if !self.two && above_floor >= CLUTTER_MIN_HEIGHT_M && (d - hi >= b0 || lo - d >= b0) {
+            *bin |= CLUTTER;
         }
     }
 
-    /// (standing, open) fractions of the length.
-    pub fn fractions(&self) -> (f64, f64) {
+    /// (standing, open, bare) fractions of the length.
+    pub fn fractions(&self) -> (f64, f64, f64) {
         let n = self.bins.len() as f64;
-        let standing = self.bins.iter().filter(|&&b| b & 1 != 0).count() as f64;
-        let open = self
-            .bins
-            .iter()
-            .filter(|&&b| b & 1 == 0 && (b & 8 != 0 || b & 6 == 6))
-            .count() as f64;
-        (standing / n, open / n)
+        let share = |f: &dyn Fn(u8) -> bool| self.bins.iter().filter(|&&b| f(b)).count() as f64 / n;
+        let open =
+            |b: u8| b & STANDING == 0 && (b & BETWEEN != 0 || b & (LEFT | RIGHT) == LEFT | RIGHT);
+        (
+            share(&|b| b & STANDING != 0),
+            share(&open),
+            share(&|b| b & (STANDING | CLUTTER) == 0 && b & ABOVE_HEAD != 0 && !open(b)),
+        )
     }
 }
 
@@ -116,8 +143,43 @@ mod tests {
             }
             wall.add(k, 0.3, 0.0, false); // the floor in front of the wall
         }
-        let (s, o) = beam.fractions();
+        let (s, o, _) = beam.fractions();
         assert!(s < 0.05 && o > 0.9, "{s} {o}");
-        assert_eq!(wall.fractions(), (1.0, 0.0));
+        assert_eq!(wall.fractions(), (1.0, 0.0, 0.0));
+    }
+
+    /// Regression: faces picked on a beam's underside lie a few centimetres apart; the floor
+    /// seen between them under the beam was never counted as open (the body band started 6 cm
+    /// inside each face), so a beam over a row of pillars stood as a wall.
+    #[test]
+    fn floor_between_two_close_faces_is_open() {
+        let mut beam = SupportProfile::new(100, &[-0.05, 0.05], 0.0);
+        for k in 0..100 {
+            beam.add(k, 0.05, 2.5, true);
+            if k % 40 == 10 {
+                beam.add(k, 0.05, 1.0, true); // a pillar
+            } else {
+                beam.add(k, 0.0, 0.01, false); // the floor under the beam
+            }
+        }
+        let (s, o, _) = beam.fractions();
+        assert!(s < 0.05 && o > 0.9, "{s} {o}");
+    }
+
+    /// A beam whose floor was not seen right under it is bare (its face above head height,
+    /// nothing below that could hide it); a wall behind a car is hidden, neither open nor bare.
+    #[test]
+    fn a_face_above_head_height_with_nothing_below_is_bare_and_behind_a_car_is_not() {
+        let mut beam = SupportProfile::new(100, &[0.0], 0.0);
+        let mut hidden = SupportProfile::new(100, &[0.0], 0.0);
+        for k in 0..100 {
+            beam.add(k, 0.0, 2.5, true);
+            hidden.add(k, 0.0, 2.5, true);
+            hidden.add(k, 0.3, 1.0, false); // a car's side 30 cm in front of the wall
+        }
+        let (s, o, b) = beam.fractions();
+        assert_eq!((s, o), (0.0, 0.0));
+        assert!(b > 0.99, "{b}");
+        assert_eq!(hidden.fractions(), (0.0, 0.0, 0.0));
     }
 }

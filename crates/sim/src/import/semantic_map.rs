@@ -1,5 +1,6 @@
 //! Building a [`WorldSpec`] from a semantic map (`semantic::SemanticMap`, the map built from
-//! scans): walls from their solid boxes, lintels, floor and ceiling as fixed boxes; each door
+//! scans): walls from their solid boxes, the floor from the parts where it was seen, lintels
+//! and ceiling as fixed boxes; each door
 //! leaf hinged to the wall it is `connected_via_joint` to; free spaces linked to their door and
 //! wall through `available_inside`; stairs from their step and landing boxes.
 //!
@@ -13,7 +14,7 @@ use crate::spec::{
     WorldSpec,
 };
 use cloud::EntityClass;
-use semantic::{HingeEdge, OrientedBox, RelationType, SemanticMap, SwingSide};
+use semantic::{OrientedBox, RelationType, SemanticMap};
 use std::path::Path;
 
 /// The name a semantic entity gets in the simulation.
@@ -73,8 +74,16 @@ impl WorldSpec {
             match e.class {
                 // Obstacles, columns and beams are fixed bodies: the robot collides with what
                 // the scans saw (and passes under a beam above its height).
-                EntityClass::Floor
-                | EntityClass::Ceiling
+                // The floor where it was seen (version 3), else its box.
+                EntityClass::Floor => match &e.floor {
+                    Some(f) if !f.parts.is_empty() => {
+                        for b in &f.parts {
+                            spec.fixed.push(fixed(EntityClass::Floor, b));
+                        }
+                    }
+                    _ => spec.fixed.push(fixed(EntityClass::Floor, &e.geometry)),
+                },
+                EntityClass::Ceiling
                 | EntityClass::WallAboveDoor
                 | EntityClass::Obstacle
                 | EntityClass::Column
@@ -99,10 +108,10 @@ impl WorldSpec {
                     } else {
                         HingeEnd::End
                     };
-                    let opens = match (d.hinge_edge, d.swing) {
-                        (HingeEdge::Start, SwingSide::Left)
-                        | (HingeEdge::End, SwingSide::Right) => OpeningSense::Ccw,
-                        _ => OpeningSense::Cw,
+                    let opens = if d.opens_counter_clockwise() {
+                        OpeningSense::Ccw
+                    } else {
+                        OpeningSense::Cw
                     };
                     let max_deg = cfg.door_max_deg.max(d.observed_open_deg);
                     spec.doors.push(DoorSpec {
@@ -204,6 +213,7 @@ mod obstacle_tests {
             opening: None,
             stairs: None,
             obstacle: Some(info([c[2] - s[2] / 2.0, c[2] + s[2] / 2.0])),
+            floor: None,
         };
         // Through the wall at x = 6 (y 1 .. 2), a column, and a beam over the way at 2.2 m.
         map.entities.push(entity(

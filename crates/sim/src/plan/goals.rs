@@ -17,6 +17,8 @@ pub(crate) struct DoorLeg {
     /// Per side: (approach point, exit point on the other side, whether entering from this
     /// side pushes the leaf), for the sides where both points are free.
     pub sides: Vec<([f64; 2], [f64; 2], bool)>,
+    /// Why the side the leaf swings to is no entry (the robot cannot pull the leaf), if so.
+    pub pull_refused: Option<String>,
     /// The free space: centre, unit vector along the opening, unit normal, half extents.
     centre: [f64; 2],
     along: [f64; 2],
@@ -119,6 +121,14 @@ pub(crate) fn door_leg(
             d.leaf.center_m[1] - d.hinge_m[1],
         ])
     });
+    // From the side the leaf swings to, the robot must get past the leaf's free edge as the
+    // map has it: the gap between that edge and the far jamb, 2 w sin(angle / 2), must take
+    // the robot (it pushes a leaf, it cannot pull one: one ajar towards it is pushed shut).
+    let pull_gap = leaf.map(|d| {
+        let w = 2.0 * d.leaf.half_extents_m[0];
+        2.0 * w * (d.initial_deg.to_radians() / 2.0).sin().abs()
+    });
+    let pull_ok = pull_gap.is_none_or(|gap| gap >= needed);
     let centre = [g.center_m[0], g.center_m[1]];
     let play = (g.half_extents_m[0] - fp.half_width_m - cfg.margin_m).max(0.0);
     let hy = g.half_extents_m[1];
@@ -152,6 +162,7 @@ pub(crate) fn door_leg(
     let shifts = (play / grid.cell_m()).floor().min(100.0) as usize;
     let mut sides = vec![];
     let mut room = [false; 2];
+    let mut pull_only = false;
     for k in (0..=shifts).rev() {
         let c = add(
             centre,
@@ -165,11 +176,30 @@ pub(crate) fn door_leg(
                 continue;
             };
             if grid.segment_free(a, e) {
-                sides.push((a, e, swing.is_none_or(|w| w != side)));
+                let push = swing.is_none_or(|w| w != side);
+                if push || pull_ok {
+                    sides.push((a, e, push));
+                } else {
+                    pull_only = true;
+                }
             }
         }
         if !sides.is_empty() {
             break;
+        }
+    }
+    let pull_refused = pull_only.then(|| {
+        let (gap, deg) = (pull_gap.unwrap_or(0.0), leaf.map_or(0.0, |d| d.initial_deg));
+        format!(
+            "the leaf swings towards the other side, and the robot cannot pull it: ajar \
+             {deg:.0} deg, it leaves {gap:.2} m past its free edge, the robot needs {needed:.2} m"
+        )
+    });
+    if sides.is_empty() {
+        if let Some(why) = pull_refused {
+            return Err(fail(format!(
+                "no room on the side that pushes the leaf; {why}"
+            )));
         }
     }
     if sides.is_empty() {
@@ -184,6 +214,7 @@ pub(crate) fn door_leg(
     Ok(DoorLeg {
         name,
         sides,
+        pull_refused,
         centre,
         along: [yaw.cos(), yaw.sin()],
         normal,

@@ -7,10 +7,18 @@
 //! reason, never an error; a world with no free space for the robot is one.
 //!
 //! Door leaves do not block the grid: the robot may push a closed or ajar leaf (hinges turn
-//! freely up to their limit, as the demo's robot pushes the stair room's door open). Where
-//! both sides of an opening are reachable, the tour enters from the side the leaf swings away
-//! from (the push side). Staircases are climbed last (the tour ends on a landing; with
-//! several, the robot drives back down to each foot before the next).
+//! freely up to their limit, as the demo's robot pushes the stair room's door open). It
+//! cannot pull one: from the side a leaf swings towards, an opening is passed only where the
+//! leaf, as the map has it, already leaves the robot a way past its free edge (a leaf ajar
+//! towards the robot is pushed shut by it, which is what happens on real scans, where most
+//! leaves are seen ajar). Where both sides are reachable, the tour enters from the push side.
+//! Staircases are climbed last (the tour ends on a landing; with several, the robot drives
+//! back down to each foot before the next). A tour with nothing to pass or climb sweeps the
+//! start's free region (its two farthest points), with a `reach` rule at the point farthest from
+//! the start.
+//!
+//! The scenario names the world it was planned in (`building`: a semantic map's world is
+//! named `semantic map`, or after its file), never the built-in building it was not.
 
 mod distance;
 mod footprint;
@@ -24,11 +32,16 @@ pub use footprint::Footprint;
 use crate::controller::Waypoint;
 use crate::error::{check_range, Result, SimError};
 use crate::model::{RobotModel, StartPose};
-use crate::scenario::{Rules, Scenario};
+use crate::scenario::{ReachGoal, Rules, Scenario};
 use crate::spec::WorldSpec;
 use grid::FreeGrid;
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
+
+/// The radius of the `reach` rule at a sweep's end (m): about a robot's length (the
+/// Pioneer 3-AT is 0.5 m long), over three times the controller's waypoint tolerance (0.15 m),
+/// so a robot that drove there passes, one that stopped a body length short does not.
+const REACH_RADIUS_M: f64 = 0.5;
 
 /// The planner's settings (`[plan]` of a run's configuration).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -167,6 +180,9 @@ pub struct PlannedScenario {
     pub unreachable: Vec<Unreachable>,
     /// The grid cell size used (m; larger than asked for in very large worlds).
     pub cell_m: f64,
+    /// The sweep's point farthest from the start, in a tour without doors or stairs (the
+    /// `reach` rule's centre).
+    pub sweep_end_m: Option<[f64; 2]>,
 }
 
 impl PlannedScenario {
@@ -186,14 +202,20 @@ impl PlannedScenario {
             .count()
     }
 
-    /// One line: `planned tour: 3 doors, 1 stairs, 2 unreachable, 41.2 m`.
+    /// One line: `planned tour: 3 doors, 1 stairs, 2 unreachable, 41.2 m` (`..., 0
+    /// unreachable, 12.5 m sweep` for a tour without goals that sweeps its free region).
     pub fn summary(&self) -> String {
         format!(
-            "planned tour: {} doors, {} stairs, {} unreachable, {:.1} m",
+            "planned tour: {} doors, {} stairs, {} unreachable, {:.1} m{}",
             self.doors(),
             self.stairs(),
             self.unreachable.len(),
-            self.tour_length_m
+            self.tour_length_m,
+            if self.sweep_end_m.is_some() {
+                " sweep"
+            } else {
+                ""
+            }
         )
     }
 
@@ -207,6 +229,12 @@ impl PlannedScenario {
             "# Planned by semsim from the world (no scenario was given): a tour through every\n\
              # reachable door opening and up every staircase the robot can climb.\n",
         );
+        let _ = writeln!(
+            s,
+            "# Planned in: {} (`building` names it; run it again with that world, e.g.\n\
+             # `semsim simulate --map map/semantic_map.json --scenario scenario.toml`).",
+            self.scenario.building
+        );
         let _ = writeln!(s, "# {}", self.summary());
         for u in &self.unreachable {
             let _ = writeln!(s, "# not reachable: {}: {}", u.goal.name(), u.reason);
@@ -219,7 +247,23 @@ impl PlannedScenario {
     pub fn report_section(&self) -> String {
         let mut s = String::from("## Not reachable\n\n");
         let stand = "the robot only had to stand without touching walls or tipping";
+        let sweep = self.sweep_end_m.map(|e| {
+            format!(
+                "the robot sweeps its free region instead ({:.1} m, reaching ({:.2}, {:.2}) m)",
+                self.tour_length_m, e[0], e[1]
+            )
+        });
         let intro = match (self.tour.is_empty(), self.unreachable.is_empty()) {
+            (true, true) if sweep.is_some() => format!(
+                "The scenario was planned from the world, which has no door opening or \
+                 staircase: {}.",
+                sweep.unwrap_or_default()
+            ),
+            (true, false) if sweep.is_some() => format!(
+                "The scenario was planned from the world, and nothing was reachable: {}. \
+                 Left out:",
+                sweep.unwrap_or_default()
+            ),
             (true, true) => format!(
                 "The scenario was planned from the world, which has no door opening or \
                  staircase: {stand}."
@@ -304,6 +348,7 @@ pub fn plan_scenario(
         tour_length_m: t.length_m,
         unreachable: t.unreachable,
         cell_m: grid.cell_m(),
+        sweep_end_m: t.sweep_end,
     })
 }
 
@@ -343,9 +388,16 @@ fn scenario_of(
             Goal::Door(_) => None,
         })
         .collect();
+    // A sweep's end is a goal: the robot must get there (within a robot's length).
+    let reach = t.sweep_end.map(|e| ReachGoal {
+        x_m: e[0],
+        y_m: e[1],
+        radius_m: REACH_RADIUS_M,
+    });
     let rules = Rules {
         pass_through_doors: doors,
         reach_top_of_stairs_all: stairs,
+        reach,
         // The issue's constraints: at most half a second against walls, never tipped.
         max_wall_contact_s: Some(0.5),
         no_tipping: true,
@@ -375,6 +427,13 @@ fn scenario_of(
     s.start = start;
     s.waypoints = waypoints;
     s.rules = rules;
+    s.building = if world.name.is_empty() {
+        "planned world".into()
+    } else {
+        world.name.clone()
+    };
+    // A sweep runs to its time limit: reaching its far point is the goal, the way back is
+    // driven (and judged for wall contact and tipping) too.
     s.stop_when_goals_met = !t.goals.is_empty();
     s.validate()?;
     Ok(s)

@@ -3,7 +3,9 @@
 //! leg from an approach point on one side of its free space to a point on the other side where
 //! the robot has left it; a staircase as a leg from a point before its foot, facing up the
 //! stairs, to the middle of its landing (or top step). Paths between goals are simplified into
-//! waypoints.
+//! waypoints. A tour with no door or staircase to pass sweeps the start's free region instead
+//! (to its farthest point, then to the point farthest from there: a corridor's two ends, a
+//! room's far corners), so that the robot drives the space the map holds rather than stand.
 
 use super::footprint::Footprint;
 use super::goals::{door_leg, stairs_leg, DoorLeg, StairsLeg};
@@ -18,6 +20,9 @@ use crate::spec::WorldSpec;
 const PULL_PENALTY_M: f64 = 10.0;
 /// Waypoint tolerance at a staircase's top (m): the middle of the landing, not its edge.
 const TOP_TOLERANCE_M: f64 = 0.1;
+/// A sweep leg shorter than this (m, weighted path length) is not driven: a free region no
+/// longer than a robot or two is a place to stand, not a space to cover.
+const MIN_SWEEP_M: f64 = 1.0;
 
 /// A planned tour.
 pub(crate) struct Tour {
@@ -26,6 +31,8 @@ pub(crate) struct Tour {
     pub length_m: f64,
     pub drive_time_s: f64,
     pub unreachable: Vec<Unreachable>,
+    /// The farthest point of the sweep of a tour without goals: the robot must reach it.
+    pub sweep_end: Option<[f64; 2]>,
 }
 
 /// At most this many openings are crossed on the way between two goals (each costs a search).
@@ -189,6 +196,7 @@ pub(crate) fn plan_tour(
             length_m: 0.0,
             drive_time_s: 0.0,
             unreachable: vec![],
+            sweep_end: None,
         },
         pos: start,
     };
@@ -215,9 +223,15 @@ pub(crate) fn plan_tour(
         b.tour.goals.push(Goal::Door(all_doors[d].name.clone()));
     }
     for d in doors {
+        let reason = match &all_doors[d].pull_refused {
+            Some(why) => {
+                format!("no free path from the start to the side that pushes the leaf; {why}")
+            }
+            None => "no free path from the start to either side of the opening".into(),
+        };
         unreachable.push(Unreachable {
             goal: Goal::Door(all_doors[d].name.clone()),
-            reason: "no free path from the start to either side of the opening".into(),
+            reason,
         });
     }
     // 3. Staircases, nearest first; between two, the robot drives back down to the foot of
@@ -257,6 +271,32 @@ pub(crate) fn plan_tour(
             reason: "no free path from the start to the foot of the stairs".into(),
         });
     }
+    // 4. Nothing to pass or climb: sweep the start's free region, to its farthest point, then
+    //    to the point farthest from there.
+    if b.tour.goals.is_empty() {
+        for _ in 0..2 {
+            let reach = Reach::from(grid, b.pos, b.comfort_m);
+            let Some((cost, far)) = farthest(grid, &reach) else {
+                break;
+            };
+            // Centimetres are enough for a goal a robot's length across (and read better).
+            let end = grid.centre(far).map(|v| (v * 100.0).round() / 100.0);
+            if cost < MIN_SWEEP_M || !b.drive_to(&reach, end) {
+                break;
+            }
+            // The goal: the sweep's first end, the farthest from the start (the second may
+            // lie back near the start, where a robot standing still would reach it).
+            b.tour.sweep_end.get_or_insert(end);
+        }
+    }
     b.tour.unreachable = unreachable;
     b.tour
+}
+
+/// The reachable cell farthest (weighted path length) from the search's start, with its cost.
+fn farthest(grid: &FreeGrid, reach: &Reach) -> Option<(f64, usize)> {
+    (0..grid.len())
+        .map(|c| (reach.cost(c), c))
+        .filter(|(d, _)| d.is_finite())
+        .max_by(|a, b| a.0.total_cmp(&b.0).then(b.1.cmp(&a.1)))
 }

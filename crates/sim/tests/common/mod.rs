@@ -1,6 +1,7 @@
 //! Shared helpers for the sim integration tests.
 #![allow(dead_code)]
 
+use fixtures::Side;
 use sim::{Event, EventKind, Outcome, RobotModel, Scenario, WorldSpec};
 use std::path::Path;
 
@@ -44,32 +45,15 @@ pub fn timeline(o: &Outcome) -> String {
         .join("\n")
 }
 
-/// A 6 m x 4 m room (x 0..6, y -2..2) with the given extra walls/boxes appended.
+/// A 6 m x 4 m room (x 0..6, y -2..2), 2.5 m high, named "test room", with its south, north
+/// and west walls (`walls[0..3]`) and the given extra walls/boxes appended.
 pub fn room(extra: &str) -> String {
-    format!(
-        r#"
-name = "test room"
-[floor]
-min_m = [-0.2, -2.2]
-max_m = [6.2, 2.2]
-[ceiling]
-height_m = 2.5
-[[walls]]
-name = "south"
-start_m = [-0.1, -2.0]
-end_m = [6.1, -2.0]
-thickness_m = 0.2
-[[walls]]
-name = "north"
-start_m = [-0.1, 2.0]
-end_m = [6.1, 2.0]
-thickness_m = 0.2
-[[walls]]
-name = "west"
-start_m = [0.0, -2.0]
-end_m = [0.0, 2.0]
-thickness_m = 0.2
-{extra}
-"#
-    )
+    fixtures::RoomToml::new([0.0, -2.0], [6.0, 2.0], 2.5)
+        .walls(&[Side::South, Side::North, Side::West])
+        .toml(extra)
+}
+
+/// [`room`] closed by its east wall at x = 6 (`walls[3]`).
+pub fn closed_room() -> String {
+    fixtures::RoomToml::new([0.0, -2.0], [6.0, 2.0], 2.5).toml("")
 }

@@ -1,0 +1,225 @@
+//! The clusters put together (see the `obstacles` module, step 5): parts absorbed by the thing
+//! they belong to, the pieces of a duct or beam that something crossing it split joined again,
+//! and slivers of wall residue dropped.
+
+use super::fit::{convex_hull, intersection_area, polygon_area, rect_corners};
+use super::DetectedObstacle;
+use crate::walls::WallFit;
+use glam::DVec2;
+
+/// Parallel: axes within 10 degrees (a beam's or duct's pieces, a wall's residue; farther
+/// apart, they are things crossing).
+const PARALLEL_COS: f64 = 0.984_807_753; // cos(10 degrees)
+
+/// The clusters, largest footprint first, each low part that lies mostly (half its footprint
+/// or more) inside a larger one's footprint grown by `margin_m`, at heights overlapping or
+/// apart by `max_gap_m` at most, absorbed by the low cluster holding most of it (a chair's
+/// backrest by its seat, a car's cabin by its body, a shelf's top by the shelf): the larger
+/// one's box grows to hold the part and its z range to span both.
+pub(super) fn absorb_parts(
+    mut found: Vec<DetectedObstacle>,
+    margin_m: f64,
+    max_gap_m: f64,
+) -> Vec<DetectedObstacle> {
+    found.sort_by(|a, b| (b.size[0] * b.size[1]).total_cmp(&(a.size[0] * a.size[1])));
+    let mut kept: Vec<DetectedObstacle> = Vec::new();
+    for o in found {
+        let part = rect_corners(o.center, o.dir, o.size);
+        let own = polygon_area(&part).max(1e-9);
+        // The host holding most of it (a backrest between its seat and a desk is the seat's).
+        let mut host: Option<(f64, usize)> = None;
+        for (n, k) in kept.iter().enumerate() {
+            let z_near =
+                o.z_range.0 <= k.z_range.1 + max_gap_m && k.z_range.0 <= o.z_range.1 + max_gap_m;
+            // Overhead, things cross (beams, ducts, pipes): the box of one holds pieces of
+            // others; they are joined along their lines instead (`join_collinear`).
+            if o.overhead || k.overhead || !z_near {
+                continue;
+            }
+            let grown = [k.size[0] + 2.0 * margin_m, k.size[1] + 2.0 * margin_m];
+            let inside = intersection_area(&part, &rect_corners(k.center, k.dir, grown)) / own;
+            if inside >= 0.5 && host.is_none_or(|h| inside > h.0) {
+                host = Some((inside, n));
+            }
+        }
+        match host {
+            Some((_, n)) => {
+                let dir = kept[n].dir;
+                absorb(&mut kept[n], &o, dir);
+            }
+            None => kept.push(o),
+        }
+    }
+    kept
+}
+
+/// Joins the overhead clusters that continue each other along one line (parallel, their centre
+/// lines within half the wider one's width, overlapping in height) across gaps up to
+/// `max_gap_m`: a duct or pipe that beams cross is cut where the beam's cells rise above it.
+pub(super) fn join_collinear(
+    mut found: Vec<DetectedObstacle>,
+    max_gap_m: f64,
+) -> Vec<DetectedObstacle> {
+    loop {
+        let mut joined = false;
+        'outer: for i in 0..found.len() {
+            for j in i + 1..found.len() {
+                let (a, b) = (&found[i], &found[j]);
+                if !(a.overhead && b.overhead) || a.dir.dot(b.dir).abs() < PARALLEL_COS {
+                    continue;
+                }
+                let r = b.center - a.center;
+                let lateral = r.dot(a.dir.perp()).abs();
+                let gap = r.dot(a.dir).abs() - (a.size[0] + b.size[0]) / 2.0;
+                let z_overlap = a.z_range.0 < b.z_range.1 && b.z_range.0 < a.z_range.1;
+                if z_overlap && lateral <= a.size[1].max(b.size[1]) / 2.0 && gap <= max_gap_m {
+                    let (keep, other) = if a.size[0] >= b.size[0] {
+                        (i, j)
+                    } else {
+                        (j, i)
+                    };
+                    let o = found[other].clone();
+                    let dir = found[keep].dir;
+                    absorb(&mut found[keep], &o, dir);
+                    found.swap_remove(other);
+                    joined = true;
+                    break 'outer;
+                }
+            }
+        }
+        if !joined {
+            return found;
+        }
+    }
+}
+
+/// The clusters without wall residue: those at most `max_across_m` thin, parallel to a wall
+/// (or as thin both ways) and lying wholly within `reach_m` of its faces' planes: points a
+/// wall's slab missed where its faces are rough, bent or blurred by mixed pixels, or where the
+/// wall goes on beyond the part of it found (a corridor's wall seen too sparsely far away, a
+/// door's jamb), not things standing there.
+pub(super) fn drop_wall_slivers(
+    found: Vec<DetectedObstacle>,
+    walls: &[WallFit],
+    max_across_m: f64,
+    reach_m: f64,
+) -> Vec<DetectedObstacle> {
+    found
+        .into_iter()
+        .filter(|o| {
+            o.size[1] > max_across_m
+                || !walls.iter().any(|w| {
+                    let half = w.thickness / 2.0 + reach_m;
+                    // (a cluster thin both ways has no direction to compare)
+                    (o.size[0] <= max_across_m || w.line.dir.dot(o.dir).abs() >= PARALLEL_COS)
+                        && rect_corners(o.center, o.dir, o.size)
+                            .iter()
+                            .all(|q| w.line.coords(*q).1.abs() <= half)
+                })
+        })
+        .collect()
+}
+
+/// `k` takes `o` in: the box along `dir` around both, their hulls, heights and points.
+fn absorb(k: &mut DetectedObstacle, o: &DetectedObstacle, dir: DVec2) {
+    let mut pts: Vec<DVec2> = rect_corners(k.center, k.dir, k.size).to_vec();
+    pts.extend(rect_corners(o.center, o.dir, o.size));
+    let n = dir.perp();
+    let (mut u, mut v) = ([f64::MAX, f64::MIN], [f64::MAX, f64::MIN]);
+    for q in &pts {
+        u = [u[0].min(q.dot(dir)), u[1].max(q.dot(dir))];
+        v = [v[0].min(q.dot(n)), v[1].max(q.dot(n))];
+    }
+    let area = (k.size[0] * k.size[1] * k.fill + o.size[0] * o.size[1] * o.fill).max(0.0);
+    k.center = dir * ((u[0] + u[1]) / 2.0) + n * ((v[0] + v[1]) / 2.0);
+    let size = [u[1] - u[0], v[1] - v[0]];
+    (k.dir, k.size) = if size[0] >= size[1] {
+        (dir, size)
+    } else {
+        (n, [size[1], size[0]])
+    };
+    k.fill = (area / (k.size[0] * k.size[1]).max(1e-9)).clamp(0.0, 1.0);
+    let mut hull = k.hull.clone();
+    hull.extend(o.hull.iter().copied());
+    k.hull = convex_hull(&hull);
+    k.z_range = (k.z_range.0.min(o.z_range.0), k.z_range.1.max(o.z_range.1));
+    k.support += o.support;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cloud::EntityClass;
+
+    fn cluster(
+        center: [f64; 2],
+        dir: DVec2,
+        size: [f64; 2],
+        z: (f64, f64),
+        overhead: bool,
+    ) -> DetectedObstacle {
+        let c = DVec2::from_array(center);
+        DetectedObstacle {
+            class: EntityClass::Obstacle,
+            center: c,
+            dir,
+            size,
+            z_range: z,
+            hull: rect_corners(c, dir, size).to_vec(),
+            fill: 1.0,
+            support: 100,
+            overhead,
+            rules: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn a_backrest_is_absorbed_by_its_seat_and_a_chair_beside_a_desk_is_not() {
+        let desk = cluster([0.0, 0.0], DVec2::X, [1.4, 0.8], (0.0, 0.75), false);
+        // The chair's seat 7.5 cm off the desk's long side, its backrest on the desk's side.
+        let seat = cluster([0.0, 0.705], DVec2::X, [0.45, 0.45], (0.0, 0.45), false);
+        let back = cluster([0.0, 0.5], DVec2::X, [0.45, 0.04], (0.47, 0.87), false);
+        let out = absorb_parts(vec![back, desk, seat], 0.1, 0.3);
+        assert_eq!(out.len(), 2, "{out:#?}");
+        let chair = out.iter().find(|o| o.center.y > 0.3).expect("the chair");
+        assert!((chair.z_range.1 - 0.87).abs() < 1e-9, "{:?}", chair.z_range);
+        assert_eq!(chair.support, 200);
+    }
+
+    #[test]
+    fn a_duct_cut_by_beams_is_joined_but_not_with_a_parallel_beam() {
+        let duct = |x: f64| cluster([x, 5.0], DVec2::X, [7.5, 0.5], (2.1, 2.36), true);
+        let beam = cluster([4.0, 6.0], DVec2::X, [8.0, 0.4], (2.4, 2.8), true);
+        let out = join_collinear(vec![duct(0.0), duct(8.0), duct(16.0), beam], 1.0);
+        assert_eq!(out.len(), 2, "{out:#?}");
+        let d = out.iter().find(|o| o.size[0] > 20.0).expect("one duct");
+        assert!((d.size[0] - 23.5).abs() < 1e-9 && (d.size[1] - 0.5).abs() < 1e-9);
+    }
+
+    #[test]
+    fn thin_clusters_along_a_wall_face_or_its_continuation_are_residue() {
+        let wall = WallFit {
+            line: crate::points::Line2 {
+                origin: DVec2::ZERO,
+                dir: DVec2::X,
+            },
+            length: 10.0,
+            thickness: 0.2,
+            measured: true,
+            faces: vec![0.1, -0.1],
+            free_side: 1.0,
+            z_range: (0.0, 2.5),
+            support: 1000,
+            coverage: 1.0,
+            rules: Vec::new(),
+        };
+        let sliver = cluster([3.0, 0.2], DVec2::X, [1.5, 0.05], (0.0, 2.0), false);
+        let shelf = cluster([6.0, 0.45], DVec2::X, [1.5, 0.5], (0.0, 2.0), false);
+        let post = cluster([3.0, 2.0], DVec2::X, [0.3, 0.05], (0.0, 2.0), false);
+        // A fragment of the same wall's face 4 m beyond its found end, thin both ways.
+        let beyond = cluster([14.0, 0.15], DVec2::Y, [0.08, 0.05], (0.0, 2.4), false);
+        let out = drop_wall_slivers(vec![sliver, shelf, post, beyond], &[wall], 0.1, 0.2);
+        assert_eq!(out.len(), 2, "{out:#?}");
+        assert!(out.iter().all(|o| o.center.y > 0.3));
+    }
+}

@@ -1,0 +1,144 @@
+//! Returns that lie on surfaces. A real laser's beam has a footprint; where it straddles a
+//! depth edge (a step's nosing, the corner where a staircase's side face steps up) the sensor
+//! can report a range between the two surfaces: a "mixed pixel" floating in the air in front
+//! of the edge, up to the height of the edge above the lower tread (Ye and Borenstein, ICRA
+//! 2002, for the SICK LMS 200). A staircase's profile takes the highest point along its
+//! direction, so a few such returns raise a tread's level by a whole step and shift its edge.
+//!
+//! A surface is sampled at the cloud's own spacing: a return on one (a tread, a riser, a side
+//! face, even its top edge or corner) has neighbours within twice that spacing, a mixed pixel
+//! (scattered along its ray between foreground and background) has hardly any. The spacing is
+//! measured on the candidate's own points (the distance to the nearest neighbour, 90th percentile), so
+//! the rule holds for a dense close scan as for a voxel-downsampled map or a far, sparse one.
+
+use glam::Vec3;
+use std::collections::HashMap;
+
+/// Points sampled to measure the spacing.
+const SPACING_SAMPLES: usize = 512;
+
+/// The members (indexes into `points`) with at least `min_neighbours` other members within
+/// `radius_spacings` times the members' spacing (the 90th percentile of their nearest-neighbour
+/// distances, capped at `max_radius_m`).
+pub(super) fn on_surfaces(
+    points: &[Vec3],
+    members: &[usize],
+    min_neighbours: usize,
+    radius_spacings: f64,
+    max_radius_m: f64,
+) -> Vec<usize> {
+    if min_neighbours == 0 || members.len() <= min_neighbours {
+        return members.to_vec();
+    }
+    // 1. The spacing: the median nearest-neighbour distance of a sample, searched within
+    //    the cap (a sample with no neighbour that close counts as the cap).
+    let cap = max_radius_m as f32;
+    let coarse = Grid::new(points, members, cap);
+    let stride = (members.len() / SPACING_SAMPLES).max(1);
+    let mut nearest: Vec<f32> = members
+        .iter()
+        .step_by(stride)
+        .map(|&i| {
+            let mut best = cap;
+            coarse.for_each_near(points[i], |j| {
+                if j != i {
+                    best = best.min(points[i].distance(points[j]));
+                }
+            });
+            best
+        })
+        .collect();
+    nearest.sort_by(f32::total_cmp);
+    // (the 90th percentile: a candidate's spacing varies, treads seen at grazing angles are
+    // sampled sparser than the riser in front of the laser, and they must stay)
+    let spacing = nearest[nearest.len() * 9 / 10];
+    // 2. The members with enough neighbours within the radius.
+    let radius = (radius_spacings as f32 * spacing).clamp(1e-3, cap);
+    let grid = Grid::new(points, members, radius);
+    members
+        .iter()
+        .copied()
+        .filter(|&i| {
+            let mut n = 0usize;
+            grid.for_each_near(points[i], |j| {
+                n += usize::from(j != i && points[i].distance(points[j]) <= radius);
+            });
+            n >= min_neighbours
+        })
+        .collect()
+}
+
+/// Members hashed into cubes of one edge.
+struct Grid {
+    edge: f32,
+    cells: HashMap<(i32, i32, i32), Vec<usize>>,
+}
+
+impl Grid {
+    fn new(points: &[Vec3], members: &[usize], edge: f32) -> Grid {
+        let mut cells: HashMap<(i32, i32, i32), Vec<usize>> = HashMap::new();
+        for &i in members {
+            cells.entry(cell(points[i], edge)).or_default().push(i);
+        }
+        Grid { edge, cells }
+    }
+
+    /// Calls `f` with every member in the 27 cubes around `p` (all within one edge of it).
+    fn for_each_near(&self, p: Vec3, mut f: impl FnMut(usize)) {
+        let (x, y, z) = cell(p, self.edge);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    if let Some(v) = self.cells.get(&(x + dx, y + dy, z + dz)) {
+                        v.iter().for_each(|&j| f(j));
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn cell(p: Vec3, edge: f32) -> (i32, i32, i32) {
+    let c = |v: f32| (v / edge).floor().clamp(-1e9, 1e9) as i32;
+    (c(p.x), c(p.y), c(p.z))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A riser-like vertical face sampled every 5 cm (a voxel map's spacing) and mixed pixels
+    /// scattered along rays in front of its top edge: the face is kept whole, its top edge and
+    /// corners included, and the mixed pixels are left out.
+    #[test]
+    fn mixed_pixels_in_front_of_an_edge_are_on_no_surface() {
+        let mut points = Vec::new();
+        for i in 0..20 {
+            for k in 0..4 {
+                points.push(Vec3::new(0.05 * i as f32, 0.0, 0.05 * k as f32));
+            }
+        }
+        let face = points.len();
+        for j in 0..6 {
+            let f = j as f32;
+            points.push(Vec3::new(0.17 * f, 0.12 + 0.13 * f, 0.2 + 0.07 * (f % 3.0)));
+        }
+        let members: Vec<usize> = (0..points.len()).collect();
+        let kept = on_surfaces(&points, &members, 3, 2.0, 0.15);
+        assert_eq!(kept, (0..face).collect::<Vec<_>>());
+    }
+
+    /// The same face sampled ten times more densely (a close scan, no voxels) keeps all its
+    /// points: the radius follows the spacing.
+    #[test]
+    fn the_neighbourhood_follows_the_point_spacing() {
+        let points: Vec<Vec3> = (0..200)
+            .flat_map(|i| (0..30).map(move |k| Vec3::new(0.005 * i as f32, 0.0, 0.005 * k as f32)))
+            .collect();
+        let members: Vec<usize> = (0..points.len()).collect();
+        assert_eq!(
+            on_surfaces(&points, &members, 3, 2.0, 0.15).len(),
+            points.len()
+        );
+    }
+}

@@ -172,7 +172,7 @@ impl ScenarioSource {
 
 /// The world and scenario of a simulation given as files (`semsim simulate`): with a semantic
 /// map (`map`), its world (named by the file when the scenario is planned, so that "no free
-/// space for the robot in <map>" names it) and the `scenario` file's scenario or, without one, a
+/// space for the robot in `<map>`" names it) and the `scenario` file's scenario or, without one, a
 /// scenario planned there with `plan` (its robot resolved from the current folder); without a
 /// map, the `scenario` file's scenario (the built-in one for `None`) in the `building` given or
 /// else the one the scenario names.

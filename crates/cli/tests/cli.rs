@@ -125,6 +125,18 @@ fn demo_writes_scans_ground_truth_odometry_and_config() {
     let walls = &ev["walls"];
     eprintln!("coarse-laser demo map: walls {walls}");
     assert!(walls["f1"].as_f64().expect("f1") >= 0.75, "{ev}");
+    // --true-poses relates a registration's frame to the building's: with the true poses as
+    // --poses too, the frames are one and the score is the same; a pose file naming none of
+    // the scans is bad input naming it.
+    let mut same = args.clone();
+    same.extend(["--true-poses", "demo/poses.txt"]);
+    let ev_same: serde_json::Value =
+        serde_json::from_str(&d.run(&same).ok()).expect("one JSON object");
+    assert_eq!(ev_same, ev);
+    d.write("other.txt", "elsewhere 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n");
+    let mut other = args.clone();
+    other.extend(["--true-poses", "other.txt"]);
+    d.run(&other).bad_input(&["other.txt", "no scan of"]);
     // The map's own labels.pcd is not ground truth: a clear error, not a meaningless score.
     d.run(&[
         "eval",

@@ -24,7 +24,7 @@ use crate::{EvalConfig, Evaluation};
 use cloud::EntityClass;
 use glam::DVec2;
 use scanner::Building;
-use semantic::{OrientedBox, SemanticMap};
+use semantic::{convex_intersection_area, OrientedBox, SemanticMap};
 use serde::{Deserialize, Serialize};
 
 /// A matched obstacle, column or beam.
@@ -217,7 +217,7 @@ fn match_boxes(
             if tz[0].max(fz[0]) >= tz[1].min(fz[1]) {
                 continue;
             }
-            let inter = intersection_area(&ta, &fa);
+            let inter = convex_intersection_area(&ta, &fa);
             let (a1, a2) = (area(&ta), area(&fa));
             if inter >= c.obstacle_min_overlap * a1.min(a2) && inter > 0.0 {
                 pairs.push((inter / (a1 + a2 - inter).max(1e-12), i, j));
@@ -279,31 +279,6 @@ fn inside(q: DVec2, p: &[DVec2]) -> bool {
     (0..p.len()).all(|k| (p[(k + 1) % p.len()] - p[k]).perp_dot(q - p[k]) >= 0.0)
 }
 
-/// The area of the intersection of two convex counter-clockwise polygons (Sutherland-Hodgman).
-fn intersection_area(a: &[DVec2], b: &[DVec2]) -> f64 {
-    let mut poly: Vec<DVec2> = a.to_vec();
-    for k in 0..b.len() {
-        let (e0, e1) = (b[k], b[(k + 1) % b.len()]);
-        let side = |q: DVec2| (e1 - e0).perp_dot(q - e0);
-        let mut next = Vec::with_capacity(poly.len() + 2);
-        for m in 0..poly.len() {
-            let (p, q) = (poly[m], poly[(m + 1) % poly.len()]);
-            let (sp, sq) = (side(p), side(q));
-            if sp >= 0.0 {
-                next.push(p);
-            }
-            if (sp >= 0.0) != (sq >= 0.0) {
-                next.push(p + (q - p) * (sp / (sp - sq)));
-            }
-        }
-        poly = next;
-        if poly.is_empty() {
-            return 0.0;
-        }
-    }
-    area(&poly)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -318,10 +293,10 @@ mod tests {
             })
         };
         let (a, b) = (sq([0.0, 0.0], 2.0, 0.0), sq([1.0, 1.0], 2.0, 0.0));
-        assert!((intersection_area(&a, &b) - 1.0).abs() < 1e-9);
-        assert_eq!(intersection_area(&a, &sq([5.0, 0.0], 1.0, 0.0)), 0.0);
+        assert!((convex_intersection_area(&a, &b) - 1.0).abs() < 1e-9);
+        assert_eq!(convex_intersection_area(&a, &sq([5.0, 0.0], 1.0, 0.0)), 0.0);
         // A square turned 45 degrees inside a larger one: its whole area.
         let d = sq([0.0, 0.0], 1.0, 45.0);
-        assert!((intersection_area(&a, &d) - 1.0).abs() < 1e-9);
+        assert!((convex_intersection_area(&a, &d) - 1.0).abs() < 1e-9);
     }
 }

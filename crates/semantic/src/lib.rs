@@ -106,7 +106,7 @@ pub use map::{
 pub use merge::{MergeConfig, Segment};
 pub use net::NetConfig;
 pub use noise_filter::{noise_filter, NoiseFilterConfig};
-pub use obstacles::ObstacleConfig;
+pub use obstacles::{convex_intersection_area, ObstacleConfig};
 pub use pipeline::{build_semantic_map, MapOutput, SemanticConfig, StageTime};
 pub use points::{undirected_angle_deg, Line2};
 pub use projection::{HeightBand, ProjectionConfig, ProjectionValue};

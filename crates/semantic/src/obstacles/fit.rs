@@ -154,8 +154,9 @@ pub(crate) fn polygon_area(p: &[DVec2]) -> f64 {
         / 2.0
 }
 
-/// The area of the intersection of two convex counter-clockwise polygons (Sutherland-Hodgman).
-pub(crate) fn intersection_area(a: &[DVec2], b: &[DVec2]) -> f64 {
+/// The area of the intersection of two convex counter-clockwise polygons (Sutherland-Hodgman),
+/// e.g. two boxes' footprints (m² for corners in metres).
+pub fn intersection_area(a: &[DVec2], b: &[DVec2]) -> f64 {
     let mut poly: Vec<DVec2> = a.to_vec();
     for k in 0..b.len() {
         let (e0, e1) = (b[k], b[(k + 1) % b.len()]);

@@ -32,6 +32,8 @@
 mod classify;
 mod cluster;
 mod fit;
+
+pub use fit::intersection_area as convex_intersection_area;
 mod merge;
 
 use crate::error::Result;

@@ -118,7 +118,7 @@ fn inputs(a: &ConsoleArgs) -> ConsoleInputs {
 /// The world (see [`ConsoleInputs::world_source`]); says which map it is when it was found
 /// beside the run rather than named.
 fn world(a: &ConsoleArgs, source: &ScenarioSource) -> anyhow::Result<ConsoleWorld> {
-    let file = inputs(a).world_source(&source.scenario.building, &source.base_dir);
+    let file = inputs(a).world_source(&source.scenario, &source.base_dir);
     if let WorldFile::Map(m) = &file {
         if m.was_found() {
             eprintln!(

@@ -43,7 +43,7 @@ pub fn run(a: ReportArgs) -> anyhow::Result<()> {
         ..console::ConsoleInputs::default()
     };
     let world = inputs
-        .world_source(&source.scenario.building, &source.base_dir)
+        .world_source(&source.scenario, &source.base_dir)
         .load()?;
     if let Some(parent) = a.html.parent().filter(|p| !p.as_os_str().is_empty()) {
         if !parent.is_dir() {

@@ -99,18 +99,18 @@ impl ConsoleInputs {
     }
 
     /// Where the world comes from: the map ([`Self::map_file`]), else `--building` (`default`:
-    /// the built-in one), else the scenario's `building` entry (`scenario_building`, relative
-    /// to the scenario's folder `scenario_dir`; `default` or empty: the built-in one).
-    pub fn world_source(&self, scenario_building: &str, scenario_dir: &Path) -> WorldFile {
+    /// the built-in one), else the building the scenario names
+    /// ([`sim::Scenario::building_file`], relative to the scenario's folder `scenario_dir`).
+    pub fn world_source(&self, scenario: &sim::Scenario, scenario_dir: &Path) -> WorldFile {
         if let Some(m) = self.map_file() {
             return WorldFile::Map(m);
         }
         match &self.building {
             Some(b) if b.as_os_str() == "default" => WorldFile::DefaultBuilding,
             Some(b) => WorldFile::Building(b.clone()),
-            None => match scenario_building {
-                "default" | "" => WorldFile::DefaultBuilding,
-                other => WorldFile::Building(scenario_dir.join(other)),
+            None => match scenario.building_file(scenario_dir) {
+                Some(file) => WorldFile::Building(file),
+                None => WorldFile::DefaultBuilding,
             },
         }
     }
@@ -203,7 +203,7 @@ mod tests {
         };
         assert_eq!(inputs.map_file(), None);
         assert_eq!(
-            inputs.world_source("default", Path::new(".")),
+            inputs.world_source(&in_building("default"), Path::new(".")),
             WorldFile::Building("b.toml".into())
         );
         assert_eq!(inputs.cloud_file(), Some(Located::Given("c.ply".into())));
@@ -216,7 +216,7 @@ mod tests {
             map: Some(dir.path().to_path_buf()),
             ..ConsoleInputs::default()
         };
-        let WorldFile::Map(m) = inputs.world_source("", Path::new(".")) else {
+        let WorldFile::Map(m) = inputs.world_source(&in_building(""), Path::new(".")) else {
             panic!("a map");
         };
         assert_eq!(m.path(), dir.path().join("semantic_map.json"));
@@ -224,17 +224,27 @@ mod tests {
         assert!(e.to_string().contains("semantic_map.json"), "{e}");
     }
 
+    /// The built-in scenario naming `building`.
+    fn in_building(building: &str) -> sim::Scenario {
+        let mut scenario = sim::Scenario::default_scenario().expect("built-in scenario");
+        scenario.building = building.to_string();
+        scenario
+    }
+
     #[test]
     fn the_scenario_building_is_relative_to_the_scenario() {
         let inputs = ConsoleInputs::default();
         let dir = Path::new("scenarios");
         assert_eq!(
-            inputs.world_source("default", dir),
+            inputs.world_source(&in_building("default"), dir),
             WorldFile::DefaultBuilding
         );
-        assert_eq!(inputs.world_source("", dir), WorldFile::DefaultBuilding);
         assert_eq!(
-            inputs.world_source("hall.toml", dir),
+            inputs.world_source(&in_building(""), dir),
+            WorldFile::DefaultBuilding
+        );
+        assert_eq!(
+            inputs.world_source(&in_building("hall.toml"), dir),
             WorldFile::Building(dir.join("hall.toml"))
         );
         let default = ConsoleInputs {
@@ -242,7 +252,7 @@ mod tests {
             ..ConsoleInputs::default()
         };
         assert_eq!(
-            default.world_source("hall.toml", dir),
+            default.world_source(&in_building("hall.toml"), dir),
             WorldFile::DefaultBuilding
         );
         assert!(WorldFile::DefaultBuilding.load().is_ok());

@@ -162,11 +162,13 @@ impl ScenarioSource {
     /// The building the scenario names (`building`, relative to its folder; "default" or
     /// nothing for the built-in one), unless `explicit` is given.
     pub fn building(&self, explicit: Option<&Path>) -> Result<Building> {
-        Ok(match (explicit, self.scenario.building.as_str()) {
-            (Some(p), _) => Building::load(p)?,
-            (None, "default" | "") => Building::default_building()?,
-            (None, other) => Building::load(&self.base_dir.join(other))?,
-        })
+        let file = explicit.map(Path::to_path_buf);
+        Ok(
+            match file.or_else(|| self.scenario.building_file(&self.base_dir)) {
+                Some(p) => Building::load(&p)?,
+                None => Building::default_building()?,
+            },
+        )
     }
 }
 

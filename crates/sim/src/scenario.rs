@@ -8,7 +8,7 @@ use crate::events::EventConfig;
 use crate::model::{RobotModel, StartPose};
 use crate::world::WorldConfig;
 use serde::{Deserialize, Serialize};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// A scenario: robot, start, commands, time limit, event settings and rules.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -158,6 +158,15 @@ impl Default for Rules {
 const DEFAULT_SCENARIO: &str = include_str!("../data/default_scenario.toml");
 
 impl Scenario {
+    /// The file of the building the scenario names, relative to `scenario_dir` (the folder of
+    /// the scenario file); `None` for the built-in building (`building = "default"` or empty).
+    pub fn building_file(&self, scenario_dir: &Path) -> Option<PathBuf> {
+        match self.building.as_str() {
+            "default" | "" => None,
+            other => Some(scenario_dir.join(other)),
+        }
+    }
+
     /// The demo's scenario (`data/default_scenario.toml`): in the default building, drive down
     /// the corridor, push open the stair room's door, climb the stairs.
     pub fn default_scenario() -> Result<Scenario> {

@@ -68,7 +68,7 @@ pub use demo::{prepare_demo, score_demo, DemoScans, DemoScore};
 pub use error::{PipelineError, Result};
 pub use export::{export_world_file, parse_start, ExportSummary, WorldSource};
 pub use guard::{check_output_dir, refuse_overwriting_inputs};
-pub use guess::parse_guess;
+pub use guess::{guess_from_text, parse_guess};
 pub use interop::ExportFormat;
 pub use interop::ReadOptions;
 pub use map::{build_map, map_summary, write_map, MAP_PICTURES};

@@ -9,7 +9,7 @@ use glam::DVec2;
 
 /// Parallel: axes within 10 degrees (a beam's or duct's pieces, a wall's residue; farther
 /// apart, they are things crossing).
-const PARALLEL_COS: f64 = 0.984_807_753; // cos(10 degrees)
+pub(super) const PARALLEL_COS: f64 = 0.984_807_753; // cos(10 degrees)
 
 /// The clusters, largest footprint first, each low part that lies mostly (half its footprint
 /// or more) inside a larger one's footprint grown by `margin_m`, at heights overlapping or

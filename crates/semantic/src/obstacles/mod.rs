@@ -23,12 +23,15 @@
 //!    within `max_vertical_gap_m` of it (a chair's backrest over its seat, a car's cabin over
 //!    its body), is part of it; overhead pieces
 //!    continuing each other along one line across gaps up to `column_max_across_m` (a duct cut
-//!    where beams cross it) are one; thin clusters along a wall's face are its residue, dropped.
+//!    where beams cross it) are one; thin clusters along a wall's face are its residue, dropped;
+//!    a standing cluster along a wall whose floor between it and the wall was never seen (a
+//!    cabinet seen from the room as its front face) reaches back to the wall ([`backing`]).
 //! 6. Classes ([`classify`]): a low cluster standing on the floor, reaching the ceiling and at
 //!    most `column_max_across_m` across is a `column`; a high cluster at least
 //!    `beam_min_length_m` long and twice as long as wide is a `beam` (its bottom is above head
 //!    height by construction: the robot passes under it); anything else is an `obstacle`.
 
+mod backing;
 mod classify;
 mod cluster;
 mod fit;
@@ -41,6 +44,7 @@ use crate::image_frame::{pixel_center, pixel_range, ImageFrame};
 use crate::map::OrientedBox;
 use crate::points::quantile;
 use crate::walls::WallFit;
+use backing::{back_onto_walls, floor_seen};
 use classify::{classify, fit_cluster};
 use cloud::{check_range, EntityClass};
 use cluster::{components, BandGrid};
@@ -310,6 +314,8 @@ pub(crate) fn find_obstacles(
         c.sliver_max_across_m,
         c.wall_margin_m + c.sliver_max_across_m,
     );
+    let seen = floor_seen(&frame, sc.points, sc.floor, c.min_above_floor_m);
+    back_onto_walls(&mut out, sc.walls, &frame, &seen, sc.floor);
     for o in &mut out {
         classify(o, sc.floor, sc.ceiling, frame.resolution_m, c);
     }

@@ -7,7 +7,9 @@
 //! landing (its foot stands there). A staircase is thus reported as its flights, each with its
 //! own step count, as a building file describes it (`[[stairs]]` with `base_m`).
 
-use super::profile::{finish, profile};
+use super::envelope::{envelope, BIN_M};
+use super::plausible::finish;
+use super::profile::profile;
 use super::{DetectedStairs, StairsConfig};
 use crate::scene::Scene;
 use glam::DVec2;
@@ -59,43 +61,41 @@ pub(super) fn two_flights(
     Some([first, second])
 }
 
-/// The far edge (along `dir`) and height of a mid landing in the profile of `pts`.
+/// The far edge (along `dir`) and height of a mid landing in the profile of `pts` (its
+/// envelope, see `envelope`).
 fn mid_landing(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<(f64, f64)> {
-    let bin = 0.01;
     let along: Vec<f64> = pts.iter().map(|(q, _)| q.dot(dir)).collect();
     let lo = along.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = along.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
         return None;
     }
-    let nb = (((hi - lo) / bin).ceil() as usize + 1).min(100_000);
-    let mut highest = vec![f64::NEG_INFINITY; nb];
-    for (s, (_, z)) in along.iter().zip(pts) {
-        let k = (((s - lo) / bin) as usize).min(nb - 1);
-        highest[k] = highest[k].max(*z);
-    }
-    let top = highest.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let nb = (((hi - lo) / BIN_M).ceil() as usize + 1).min(100_000);
+    let env = envelope(pts, dir, lo, nb, c.run_m[0] / 2.0);
+    let top = env.iter().map(|e| e.1).fold(f64::NEG_INFINITY, f64::max);
     let least = c.min_steps as f64 * c.rise_m[0];
     // The running maximum; a level stretch starts where it last rose by more than the
-    // measurement's few centimetres.
+    // measurement's few centimetres. It ends in a climb: within a tread's depth the profile
+    // stands half the lowest rise above it (the first return of the rise may be a mixed pixel
+    // between the landing and the next tread, only a few centimetres up).
     let mut running = f64::NEG_INFINITY;
-    let mut since = 0usize;
-    for (k, &z) in highest.iter().enumerate() {
-        if !z.is_finite() {
-            continue;
-        }
+    let mut since = lo;
+    for (k, &(s, z)) in env.iter().enumerate() {
         if z > running + 0.03 {
             let level = running;
-            let length = (k - since) as f64 * bin;
+            let climbs = env[k..]
+                .iter()
+                .take_while(|e| e.0 <= s + c.run_m[1])
+                .any(|e| e.1 - level >= 0.5 * c.rise_m[0]);
             let is_landing = running.is_finite()
-                && length >= min_landing_m(c)
+                && s - since >= min_landing_m(c)
                 && level >= least
                 && top - level >= least
-                && z - level >= 0.5 * c.rise_m[0];
+                && climbs;
             if is_landing {
-                return Some((lo + k as f64 * bin, level));
+                return Some((s - BIN_M / 2.0, level));
             }
-            since = k;
+            since = s;
         }
         running = running.max(z);
     }

@@ -1,0 +1,165 @@
+//! The upper envelope of a staircase candidate along its direction of ascent: the highest
+//! point per 1 cm bin, the profile the paper's "each step above & parallel to the previous"
+//! is read from (see the `stairs` module).
+//!
+//! The highest point of a bin is taken only where the surface it lies on goes on: a step's
+//! tread, its riser's top edge and its side face's stepped top edge all have other points at
+//! the same height (within the measurement's few centimetres) within half a tread's depth along
+//! the direction; the riser's top edge has them in its own bin (the edge runs across the whole
+//! width), a tread and a side face's top edge in the bins beside it. A lone return (or a pair)
+//! has none: range noise on a far tread at grazing incidence, a mixed pixel between a step's
+//! edge and the wall behind it (a laser below the edge puts it above the edge), a person walking
+//! past. One such return, taken as the top level or a plateau of the running maximum, would add
+//! a step (or break the rise's grid), so it is passed over for the next highest point of its
+//! bin.
+
+use glam::DVec2;
+
+/// Width of a bin along the direction (m).
+pub(super) const BIN_M: f64 = 0.01;
+
+/// How far above or under a point another may lie and still continue its surface: the realistic
+/// laser's range noise at a few metres and grazing incidence, and a 5 cm voxel's centroid,
+/// spread a surface's points over about this much.
+const SAME_SURFACE_M: f64 = 0.03;
+
+/// Other points that must continue a point's surface: two (one could be a second stray return
+/// next to the first).
+const CONTINUATION: i64 = 2;
+
+/// The highest point per bin with `CONTINUATION` others within `window_m` along `dir` and
+/// `SAME_SURFACE_M` in height, from `s_lo` (`nb` bins): `(along, highest)` of the bins that
+/// have one (see the module docs).
+pub(super) fn envelope(
+    pts: &[(DVec2, f64)],
+    dir: DVec2,
+    s_lo: f64,
+    nb: usize,
+    window_m: f64,
+) -> Vec<(f64, f64)> {
+    let mut bins: Vec<Vec<f64>> = vec![Vec::new(); nb];
+    let (mut z_lo, mut z_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for (q, z) in pts {
+        let v = (q.dot(dir) - s_lo) / BIN_M;
+        if v >= 0.0 && (v as usize) < nb && z.is_finite() {
+            bins[v as usize].push(*z);
+            z_lo = z_lo.min(*z);
+            z_hi = z_hi.max(*z);
+        }
+    }
+    if z_hi < z_lo {
+        return Vec::new();
+    }
+    // The points of the bins within the window, counted per 1 cm of height (a Fenwick tree
+    // for the count within a band of heights), slid along the bins.
+    let levels = (((z_hi - z_lo) / BIN_M) as usize + 1).min(1_000_000);
+    // (a height under the lowest casts to level 0)
+    let level = |z: f64| (((z - z_lo) / BIN_M) as usize).min(levels - 1);
+    let w = (window_m / BIN_M).round().max(0.0) as usize;
+    let mut tree = Fenwick::new(levels);
+    for zs in bins.iter().take(w) {
+        zs.iter().for_each(|&z| tree.add(level(z), 1));
+    }
+    let mut out = Vec::new();
+    for i in 0..nb {
+        if let Some(zs) = bins.get(i + w) {
+            zs.iter().for_each(|&z| tree.add(level(z), 1));
+        }
+        if i > w {
+            bins[i - w - 1].iter().for_each(|&z| tree.add(level(z), -1));
+        }
+        // The highest point of the bin with others at its height.
+        let top = bins[i]
+            .iter()
+            .copied()
+            .filter(|&z| {
+                let band = tree.below(level(z + SAME_SURFACE_M) + 1)
+                    - tree.below(level(z - SAME_SURFACE_M));
+                band > CONTINUATION
+            })
+            .fold(f64::NEG_INFINITY, f64::max);
+        if top.is_finite() {
+            out.push((s_lo + (i as f64 + 0.5) * BIN_M, top));
+        }
+    }
+    out
+}
+
+/// Counts per height level with prefix sums in O(log n).
+struct Fenwick {
+    tree: Vec<i64>,
+}
+
+impl Fenwick {
+    fn new(n: usize) -> Fenwick {
+        Fenwick {
+            tree: vec![0; n + 1],
+        }
+    }
+
+    fn add(&mut self, i: usize, v: i64) {
+        let mut k = i + 1;
+        while k < self.tree.len() {
+            self.tree[k] += v;
+            k += k & k.wrapping_neg();
+        }
+    }
+
+    /// The count at levels under `i`.
+    fn below(&self, i: usize) -> i64 {
+        let mut k = i.min(self.tree.len() - 1);
+        let mut s = 0;
+        while k > 0 {
+            s += self.tree[k];
+            k -= k & k.wrapping_neg();
+        }
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Points `(along, height)` on the x axis.
+    fn along_x(p: &[(f64, f64)]) -> Vec<(DVec2, f64)> {
+        p.iter().map(|&(s, z)| (DVec2::new(s, 0.0), z)).collect()
+    }
+
+    /// Three treads 0.17 m apart seen as 2 cm-spaced samples, with one stray return 6 cm above
+    /// the middle tread: the envelope follows the treads, the stray return is passed over.
+    #[test]
+    fn a_lone_return_above_the_treads_is_passed_over() {
+        let mut p = Vec::new();
+        for k in 0..3 {
+            for j in 0..14 {
+                p.push((
+                    0.3 * k as f64 + 0.02 * j as f64 + 0.005,
+                    0.17 * (k + 1) as f64,
+                ));
+            }
+        }
+        p.push((0.405, 0.17 * 2.0 + 0.06));
+        let env = envelope(&along_x(&p), DVec2::X, 0.0, 100, 0.1);
+        let highest_over_middle = env
+            .iter()
+            .filter(|e| e.0 > 0.3 && e.0 < 0.6)
+            .map(|e| e.1)
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(
+            (highest_over_middle - 0.34).abs() < 1e-9,
+            "{highest_over_middle}"
+        );
+    }
+
+    /// The top riser seen from below (no tread behind it): its top edge is a line of points
+    /// across the width in one bin, and it stays in the envelope.
+    #[test]
+    fn a_riser_top_edge_with_nothing_behind_it_is_kept() {
+        let mut p: Vec<(f64, f64)> = (0..10).map(|j| (0.005 + 0.02 * j as f64, 0.17)).collect();
+        p.extend((0..5).map(|j| (0.305, 0.30 + 0.01 * j as f64)));
+        p.push((0.305, 0.34));
+        let env = envelope(&along_x(&p), DVec2::X, 0.0, 100, 0.1);
+        assert_eq!(env.last().map(|e| e.1), Some(0.34));
+    }
+}

@@ -1,0 +1,225 @@
+//! A staircase from its best profile (see the `stairs` module): its width, landing and start
+//! from the blob's points, and the checks that make it one people could climb (rise, run and
+//! steps in the building codes' ranges, every step supported, no floor seen under it).
+
+use super::profile::Profile;
+use super::{DetectedStairs, StairsConfig};
+use crate::points::quantile;
+use crate::scene::Scene;
+use glam::DVec2;
+
+/// The staircase of the best profile: its width, landing and start from the blob's points;
+/// `None` if it is no staircase people could climb (see the module docs).
+pub(crate) fn finish(
+    pts: &[(DVec2, f64)],
+    p: Profile,
+    sc: &Scene,
+    c: &StairsConfig,
+) -> Option<DetectedStairs> {
+    let dir = p.dir;
+    let mut ts: Vec<f64> = pts.iter().map(|(q, _)| dir.perp_dot(*q)).collect();
+    let mut t0 = quantile(&mut ts, 0.01).unwrap_or(0.0);
+    let mut t1 = quantile(&mut ts, 0.99).unwrap_or(0.0);
+    let mut width_rule = format!("{:.2} m wide across its points", t1 - t0);
+    let side_only = t1 - t0 < c.min_width_m;
+    if side_only {
+        // Only a side face was seen (the treads above the laser are hidden): the staircase
+        // extends `default_width_m` away from the side with floor in front of the face.
+        let length = p.run * p.steps as f64;
+        let line = crate::points::Line2 {
+            origin: dir * (p.front1 + length / 2.0) + dir.perp() * ((t0 + t1) / 2.0),
+            dir,
+        };
+        let (mut left, mut right) = (0usize, 0usize);
+        sc.index.for_each_near_line(
+            sc.points,
+            &line,
+            -length / 2.0,
+            length / 2.0,
+            0.4,
+            |i, _, d| {
+                if (sc.points[i].z as f64 - sc.floor).abs() <= 0.03 && d.abs() >= 0.05 {
+                    if d > 0.0 {
+                        left += 1;
+                    } else {
+                        right += 1;
+                    }
+                }
+            },
+        );
+        if left > right {
+            t0 = t1 - c.default_width_m;
+        } else {
+            t1 = t0 + c.default_width_m;
+        }
+        // A staircase hides the floor under it: floor seen where its assumed width would be
+        // (past the side face) means there is none.
+        let hidden_side = (t0 + t1) / 2.0;
+        let line = crate::points::Line2 {
+            origin: dir * (p.front1 + length / 2.0) + dir.perp() * hidden_side,
+            dir,
+        };
+        let mut floor_seen = 0usize;
+        let inner = c.default_width_m / 2.0 - 0.1;
+        sc.index.for_each_near_line(
+            sc.points,
+            &line,
+            -length / 2.0 + 0.05,
+            length / 2.0 - 0.05,
+            inner.max(0.0),
+            |i, _, _| {
+                floor_seen += usize::from((sc.points[i].z as f64 - sc.floor).abs() <= 0.03);
+            },
+        );
+        if floor_seen > c.min_step_points {
+            return None;
+        }
+        width_rule = format!(
+            "only a side face seen: width assumed {:.2} m, away from the floor seen in front of it",
+            c.default_width_m
+        );
+    }
+    let width = t1 - t0;
+    // The local point density: the floor's around the staircase (points per m² of the 10 cm
+    // cells where it was seen).
+    let density = floor_density(
+        sc,
+        dir,
+        (p.front1, p.front1 + p.run * p.steps as f64),
+        (t0, t1),
+    );
+    // A staircase hides the floor under it (the risers close it, or the flight stands on a
+    // solid base), and a laser on the floor sees none from the second step on (the first
+    // one's front is fuzzed by its riser's foot); furniture whose parts happen to stand at
+    // step heights (a chair's seat, a desk's top) stands on legs, and the floor between them
+    // is seen. The middle half of the width is counted: the width spans 1-99 % of the points,
+    // and a few stray returns beside the staircase (mixed pixels towards a wall behind it)
+    // widen it over floor that is seen.
+    if !side_only {
+        let length = p.run * (p.steps as f64 - 1.0) - 0.05;
+        let line = crate::points::Line2 {
+            origin: dir * (p.front1 + p.run + length / 2.0) + dir.perp() * ((t0 + t1) / 2.0),
+            dir,
+        };
+        let mut floor_seen = 0usize;
+        sc.index.for_each_near_line(
+            sc.points,
+            &line,
+            -length / 2.0,
+            length / 2.0,
+            (t1 - t0) / 4.0,
+            |i, _, _| {
+                floor_seen += usize::from((sc.points[i].z as f64 - sc.floor).abs() <= 0.03);
+            },
+        );
+        // Seen at the density of the floor around it (less what its top shadows from far
+        // scanners), the floor is under legs; the footprint's strip may still overlap floor
+        // beside a staircase where its direction or start is off by a little, or its width
+        // spans clutter beside it, but not half of it.
+        let open = 0.5 * density * length * (t1 - t0) / 2.0;
+        if floor_seen > c.min_step_points && floor_seen as f64 > open {
+            return None;
+        }
+    }
+    // Every step rests on points of its own: on its tread, its riser, or the side face between
+    // its height and the one below (a staircase seen from its side shows its steps so).
+    let mut per_step = vec![0usize; p.steps as usize];
+    for (q, z) in pts {
+        let (s, t) = (q.dot(dir) - p.front1, dir.perp_dot(*q));
+        if s < 0.0 || t < t0 - 0.05 || t > t1 + 0.05 {
+            continue;
+        }
+        let k = (s / p.run).floor() as usize;
+        if k >= per_step.len() {
+            continue;
+        }
+        let top = (k + 1) as f64 * p.rise;
+        per_step[k] += usize::from(*z > top - p.rise + 0.02 && *z <= top + 0.03);
+    }
+    // Seen from its side only, the lowest step's side face is a low strip at grazing angles
+    // that clutter in the room hides first; the floor hidden under the whole footprint (checked
+    // above) stands in for it, and its count still follows from the levels above it.
+    let first_checked = usize::from(side_only && per_step.len() > c.min_steps as usize);
+    let weakest = per_step[first_checked..].iter().copied().min().unwrap_or(0);
+    // ... as many as the local point density promises on that much surface.
+    let promised = c.min_step_fill * density * p.rise * p.run;
+    if weakest < c.min_step_points || (weakest as f64) < promised {
+        return None;
+    }
+    let top_h = (p.steps as f64 - 0.5) * p.rise;
+    let mut far: Vec<f64> = pts
+        .iter()
+        .filter(|(_, z)| *z >= top_h)
+        .map(|(q, _)| q.dot(dir))
+        .collect();
+    let far = quantile(&mut far, 0.99).unwrap_or(p.front1);
+    let top_depth = far - (p.front1 + p.run * (p.steps as f64 - 1.0));
+    let landing = if top_depth - p.run > 0.1 {
+        top_depth - p.run
+    } else {
+        0.0
+    };
+    let start = dir * p.front1 + dir.perp() * ((t0 + t1) / 2.0);
+    let rules = vec![
+        format!(
+            "{} of {} levels at multiples of a {:.3} m rise, climbing along {:.1} deg, their edges {:.3} m apart (the paper's parallel lines at equal spacing, each step above the previous)",
+            p.found,
+            p.steps,
+            p.rise,
+            dir.y.atan2(dir.x).to_degrees(),
+            p.run
+        ),
+        format!("step count {} from the top level; {width_rule}", p.steps),
+        format!(
+            "every step supported: at least {weakest} points on its tread, riser or side (rise {:.3} m within {:.2}-{:.2}, run {:.3} m within {:.2}-{:.2}: building codes' ranges)",
+            p.rise, c.rise_m[0], c.rise_m[1], p.run, c.run_m[0], c.run_m[1]
+        ),
+    ];
+    Some(DetectedStairs {
+        steps: p.steps,
+        rise: p.rise,
+        run: p.run,
+        width,
+        dir,
+        start,
+        landing,
+        base: 0.0,
+        support: pts.len() as u64,
+        confidence: (p.found as f64 / p.steps as f64).min(1.0),
+        rules,
+    })
+}
+
+/// Points per m² of the floor seen in a ring 0.3-1.3 m around a footprint (`s` along `dir`,
+/// `t` across it): the local density of the scans, counted over the 10 cm cells where the
+/// floor was seen.
+fn floor_density(sc: &Scene, dir: DVec2, s: (f64, f64), t: (f64, f64)) -> f64 {
+    let (inner, outer) = (0.3, 1.3);
+    let line = crate::points::Line2 {
+        origin: dir.perp() * ((t.0 + t.1) / 2.0),
+        dir,
+    };
+    let half = (t.1 - t.0) / 2.0;
+    let mut cells = std::collections::HashSet::new();
+    let mut n = 0usize;
+    sc.index.for_each_near_line(
+        sc.points,
+        &line,
+        s.0 - outer,
+        s.1 + outer,
+        half + outer,
+        |i, a, d| {
+            let near = a > s.0 - inner && a < s.1 + inner && d.abs() < half + inner;
+            if near || (sc.points[i].z as f64 - sc.floor).abs() > 0.03 {
+                return;
+            }
+            n += 1;
+            cells.insert(((a / 0.1).floor() as i64, (d / 0.1).floor() as i64));
+        },
+    );
+    if cells.is_empty() {
+        0.0
+    } else {
+        n as f64 / (cells.len() as f64 * 0.01)
+    }
+}

@@ -5,6 +5,7 @@ use super::envelope::envelope;
 use super::StairsConfig;
 use crate::points::{linear_fit, quantile};
 use glam::DVec2;
+use rayon::prelude::*;
 
 /// A staircase profile along one direction.
 pub(crate) struct Profile {
@@ -116,14 +117,22 @@ fn fit_steps(env: &[(f64, f64)], n: u32, rise: f64, c: &StairsConfig) -> Option<
             (((s - s0) / run).floor() + 1.0).min(nf)
         }
     };
+    // The envelope is in order along the direction, so the levels at `s` and at `s + 1.5 cm`
+    // only climb: each is advanced past the front edges `s0 + k run` it has crossed.
     let score = |run: f64, s0: f64| -> f64 {
         let mut v = 0.0;
         let mut support = [0u8; 65];
+        let (mut k, mut k_ahead) = (0u32, 0u32);
         for &(s, z) in env {
-            let k = level(s, run, s0);
-            if z > rise * level(s + 0.015, run, s0) + 0.025 {
+            while k < n && s >= s0 + f64::from(k) * run {
+                k += 1;
+            }
+            while k_ahead < n && s + 0.015 >= s0 + f64::from(k_ahead) * run {
+                k_ahead += 1;
+            }
+            if z > rise * f64::from(k_ahead) + 0.025 {
                 v -= 3.0;
-            } else if k > 0.0 && z >= rise * k - 0.035 {
+            } else if k > 0 && z >= rise * f64::from(k) - 0.035 {
                 let slot = &mut support[(k as usize).min(64)];
                 *slot = slot.saturating_add(1);
             }
@@ -134,24 +143,26 @@ fn fit_steps(env: &[(f64, f64)], n: u32, rise: f64, c: &StairsConfig) -> Option<
     // and before the first point half a rise up.
     let first = env.iter().find(|e| e.1 >= 0.5 * rise)?.0;
     let s_start = env.first()?.0 - c.run_m[1];
-    let mut best = f64::NEG_INFINITY;
-    let mut optimal: Vec<(f64, f64)> = Vec::new();
-    let mut run = c.run_m[0];
-    while run <= c.run_m[1] + 1e-9 {
-        let mut s0 = s_start;
-        while s0 <= first + 0.05 {
-            let v = score(run, s0);
-            if v > best + 1e-9 {
-                best = v;
-                optimal.clear();
-            }
-            if (v - best).abs() <= 1e-9 {
-                optimal.push((run, s0));
-            }
-            s0 += 0.005;
-        }
-        run += 0.002;
-    }
+    let runs = ((c.run_m[1] - c.run_m[0]) / 0.002 + 1e-6).floor() as usize + 1;
+    let starts = ((first + 0.05 - s_start) / 0.005 + 1e-6).floor().max(0.0) as usize + 1;
+    // Every (run, start) on the grid scored, the runs in parallel (a grid of a few 10^4
+    // points, each a pass over the envelope).
+    let scored: Vec<(f64, f64, f64)> = (0..runs)
+        .into_par_iter()
+        .flat_map_iter(|i| {
+            let run = c.run_m[0] + i as f64 * 0.002;
+            (0..starts).map(move |j| {
+                let s0 = s_start + j as f64 * 0.005;
+                (run, s0, score(run, s0))
+            })
+        })
+        .collect();
+    let best = scored.iter().map(|o| o.2).fold(f64::NEG_INFINITY, f64::max);
+    let optimal: Vec<(f64, f64)> = scored
+        .iter()
+        .filter(|o| (o.2 - best).abs() <= 1e-9)
+        .map(|o| (o.0, o.1))
+        .collect();
     if optimal.is_empty() {
         return None;
     }

@@ -50,6 +50,9 @@ pub(super) fn envelope(
     if z_hi < z_lo {
         return Vec::new();
     }
+    // (each bin highest first: its top is the first point with others at its height)
+    bins.iter_mut()
+        .for_each(|zs| zs.sort_unstable_by(|a, b| b.total_cmp(a)));
     // The points of the bins within the window, counted per 1 cm of height (a Fenwick tree
     // for the count within a band of heights), slid along the bins.
     let levels = (((z_hi - z_lo) / BIN_M) as usize + 1).min(1_000_000);
@@ -69,16 +72,12 @@ pub(super) fn envelope(
             bins[i - w - 1].iter().for_each(|&z| tree.add(level(z), -1));
         }
         // The highest point of the bin with others at its height.
-        let top = bins[i]
-            .iter()
-            .copied()
-            .filter(|&z| {
-                let band = tree.below(level(z + SAME_SURFACE_M) + 1)
-                    - tree.below(level(z - SAME_SURFACE_M));
-                band > CONTINUATION
-            })
-            .fold(f64::NEG_INFINITY, f64::max);
-        if top.is_finite() {
+        let top = bins[i].iter().copied().find(|&z| {
+            let band =
+                tree.below(level(z + SAME_SURFACE_M) + 1) - tree.below(level(z - SAME_SURFACE_M));
+            band > CONTINUATION
+        });
+        if let Some(top) = top {
             out.push((s_lo + (i as f64 + 0.5) * BIN_M, top));
         }
     }

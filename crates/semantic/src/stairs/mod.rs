@@ -253,14 +253,16 @@ pub(crate) fn find_stairs(
             })
             .collect();
             // A staircase with a landing half-way is its two flights (see `flights`).
+            // (the directions in parallel too: one large blob, a row of parked cars, would
+            // otherwise keep one thread busy while the others wait)
             if let Some(f) = cands
-                .iter()
-                .find_map(|&dir| flights::two_flights(&pts, &all, dir, sc, c))
+                .par_iter()
+                .find_map_first(|&dir| flights::two_flights(&pts, &all, dir, sc, c))
             {
                 return Some(f.to_vec());
             }
             let mut profs: Vec<_> = cands
-                .iter()
+                .par_iter()
                 .enumerate()
                 .filter_map(|(k, &dir)| profile(&pts, &all, dir, c).map(|r| (k < walls_cands, r)))
                 .collect();

@@ -12,7 +12,9 @@
 //! the rule holds for a dense close scan as for a voxel-downsampled map or a far, sparse one.
 
 use glam::Vec3;
+use rayon::prelude::*;
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 
 /// Points sampled to measure the spacing.
 const SPACING_SAMPLES: usize = 512;
@@ -56,27 +58,49 @@ pub(super) fn on_surfaces(
     let radius = (radius_spacings as f32 * spacing).clamp(1e-3, cap);
     let grid = Grid::new(points, members, radius);
     members
-        .iter()
+        .par_iter()
         .copied()
-        .filter(|&i| {
-            let mut n = 0usize;
-            grid.for_each_near(points[i], |j| {
-                n += usize::from(j != i && points[i].distance(points[j]) <= radius);
-            });
-            n >= min_neighbours
-        })
+        .filter(|&i| grid.has_neighbours(points, i, radius, min_neighbours))
         .collect()
 }
 
 /// Members hashed into cubes of one edge.
 struct Grid {
     edge: f32,
-    cells: HashMap<(i32, i32, i32), Vec<usize>>,
+    cells: HashMap<(i32, i32, i32), Vec<usize>, BuildHasherDefault<CellHasher>>,
+}
+
+/// A multiplicative hash of a cube's three small integer coordinates: the map is built and
+/// probed 27 times per member, and the keys need no protection from chosen collisions.
+#[derive(Default)]
+struct CellHasher(u64);
+
+impl Hasher for CellHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        bytes.iter().for_each(|&b| self.write_u8(b));
+    }
+
+    fn write_u8(&mut self, b: u8) {
+        self.write_u64(u64::from(b));
+    }
+
+    fn write_i32(&mut self, v: i32) {
+        self.write_u64(u64::from(v as u32));
+    }
+
+    fn write_u64(&mut self, v: u64) {
+        self.0 = (self.0.rotate_left(21) ^ v).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0 ^ (self.0 >> 29)
+    }
 }
 
 impl Grid {
     fn new(points: &[Vec3], members: &[usize], edge: f32) -> Grid {
-        let mut cells: HashMap<(i32, i32, i32), Vec<usize>> = HashMap::new();
+        let mut cells: HashMap<(i32, i32, i32), Vec<usize>, BuildHasherDefault<CellHasher>> =
+            HashMap::default();
         for &i in members {
             cells.entry(cell(points[i], edge)).or_default().push(i);
         }
@@ -95,6 +119,32 @@ impl Grid {
                 }
             }
         }
+    }
+}
+
+impl Grid {
+    /// Whether member `i` has at least `n` other members within `radius` (at most one edge):
+    /// the cubes around it are searched until that many are found.
+    fn has_neighbours(&self, points: &[Vec3], i: usize, radius: f32, n: usize) -> bool {
+        let p = points[i];
+        let (x, y, z) = cell(p, self.edge);
+        let mut found = 0usize;
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    let Some(v) = self.cells.get(&(x + dx, y + dy, z + dz)) else {
+                        continue;
+                    };
+                    for &j in v {
+                        found += usize::from(j != i && p.distance(points[j]) <= radius);
+                        if found >= n {
+                            return true;
+                        }
+                    }
+                }
+            }
+        }
+        false
     }
 }
 

@@ -5,10 +5,35 @@ use super::WallConfig;
 use crate::points::Line2;
 use crate::scene::Scene;
 
+/// The corner regions along a wall where a crossing surface hides the face points: per 3 cm
+/// bin of the searched range, the heights `(z0, z1)` it covers, if any.
+pub(crate) struct Crossings {
+    r0: f64,
+    bin: f64,
+    heights: Vec<Option<(f64, f64)>>,
+}
+
+impl Crossings {
+    /// Whether a crossing surface hides the point at `s` along the wall, height `z`.
+    pub fn hides(&self, s: f64, z: f64) -> bool {
+        let k = (s - self.r0) / self.bin;
+        if k.is_nan() || k < 0.0 {
+            return false;
+        }
+        matches!(self.heights.get(k as usize), Some(Some((z0, z1))) if z >= *z0 && z <= *z1)
+    }
+
+    /// The crossing bins' centres along the wall and their heights covered.
+    fn centres(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        self.heights
+            .iter()
+            .enumerate()
+            .filter_map(|(k, h)| h.map(|(z0, z1)| (self.r0 + (k as f64 + 0.5) * self.bin, z1 - z0)))
+    }
+}
+
 /// A wall's extent along `line` from `[a, b]` (see the module docs), grown while it reaches the
-/// searched range's ends, and the corner regions `(s0, s1, z0, z1)` where a crossing surface
-/// hides the face points.
-#[allow(clippy::type_complexity)]
+/// searched range's ends, and the corners where a crossing surface hides the face points.
 pub(crate) fn find_extent(
     line: &Line2,
     faces: &[f64],
@@ -16,7 +41,7 @@ pub(crate) fn find_extent(
     b: f64,
     sc: &Scene,
     c: &WallConfig,
-) -> Option<(f64, f64, Vec<(f64, f64, f64, f64)>)> {
+) -> Option<(f64, f64, Crossings)> {
     let hw = c.search_half_width_m;
     let tol = c.face_tolerance_m;
     let on_face = |d: f64| faces.iter().any(|f| (d - f).abs() <= tol);
@@ -66,27 +91,21 @@ pub(crate) fn find_extent(
         let (lo, hi) = extent(&s_vals, a, b, c.max_gap_m)?;
         let grow_lo = lo <= r0 + c.max_gap_m;
         let grow_hi = hi >= r1 - c.max_gap_m;
-        let crossing: Vec<(f64, f64, f64, f64)> = across
-            .iter()
-            .enumerate()
-            .filter(|(_, m)| crossing(m.0))
-            .map(|(k, m)| {
-                (
-                    r0 + k as f64 * bin,
-                    r0 + (k + 1) as f64 * bin,
-                    m.1 - 0.1,
-                    m.2 + 0.1,
-                )
-            })
-            .collect();
+        let crossing = Crossings {
+            r0,
+            bin,
+            heights: across
+                .iter()
+                .map(|m| crossing(m.0).then_some((m.1 - 0.1, m.2 + 0.1)))
+                .collect(),
+        };
         // An end next to a wall-high crossing surface (the hidden bins keep it a few
         // centimetres off) is a corner: the wall ends at the surface.
         let snap = |end: f64| {
             crossing
-                .iter()
-                .filter(|x| x.3 - x.2 >= 1.5)
-                .map(|x| (x.0 + x.1) / 2.0)
-                .filter(|m| (m - end).abs() <= 0.15)
+                .centres()
+                .filter(|&(m, height)| height >= 1.5 && (m - end).abs() <= 0.15)
+                .map(|(m, _)| m)
                 .min_by(|p, q| (p - end).abs().total_cmp(&(q - end).abs()))
                 .unwrap_or(end)
         };

@@ -43,11 +43,7 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
     let tol = c.face_tolerance_m;
     let on_face = |d: f64, faces: &[f64]| faces.iter().any(|f| (d - f).abs() <= tol);
     let (z_lo, z_hi) = (sc.floor + 0.05, sc.ceiling - 0.05);
-    let crossed = |s: f64, z: f64| {
-        crossing
-            .iter()
-            .any(|&(a, b, z0, z1)| s >= a && s < b && z >= z0 && z <= z1)
-    };
+    let crossed = |s: f64, z: f64| crossing.hides(s, z);
     // Face points over the final extent (corners left out): support, coverage, heights, free sides.
     let mut zs = Vec::new();
     let mut bins = vec![false; (((hi - lo) / 0.1).ceil() as usize).clamp(1, 1_000_000)];

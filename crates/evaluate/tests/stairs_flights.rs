@@ -101,6 +101,55 @@ base_m = {base}
     assert!((top - 8.0 * RISE).abs() <= 0.05, "top {top}");
 }
 
+/// Regression: a cupboard standing right beyond the upper flight's top landing rose above the
+/// staircase's top in its profile: the top taken there counted 7 steps where 4 were seen, and
+/// the staircase was lost. The upper flight now ends at the far edge of its top landing.
+#[test]
+fn a_cupboard_beyond_the_top_landing_leaves_the_flights_their_step_counts() {
+    let landing = 1.1;
+    let second_x = 1.0 + 4.0 * RUN + landing;
+    let base = 4.0 * RISE;
+    let cupboard_x = second_x + 4.0 * RUN + 1.0 + 0.25;
+    let b = room(&format!(
+        r#"
+[[stairs]]
+name = "flight 1"
+start_m = [1.0, 1.4]
+direction_deg = 0.0
+steps = 4
+rise_m = {RISE}
+run_m = {RUN}
+width_m = 1.0
+landing_m = {landing}
+
+[[stairs]]
+name = "flight 2"
+start_m = [{second_x}, 1.4]
+direction_deg = 0.0
+steps = 4
+rise_m = {RISE}
+run_m = {RUN}
+width_m = 1.0
+landing_m = 1.0
+base_m = {base}
+
+[[boxes]]
+name = "cupboard"
+class = "obstacle"
+center_m = [{cupboard_x}, 1.4, 0.9]
+size_m = [0.5, 1.0, 1.8]
+yaw_deg = 0.0
+"#
+    ));
+    let (_, ev) = map_and_score(&b, &fixtures::test_laser());
+    assert_eq!(ev.stairs.expected, 2, "{ev:#?}");
+    assert_eq!(ev.stairs.matched, 2, "{ev:#?}");
+    assert_eq!(ev.stairs.detected, 2, "no false staircase: {ev:#?}");
+    for m in &ev.stairs_matches {
+        assert_eq!(m.steps, m.steps_truth, "{m:?}");
+    }
+}
+
 #[test]
 #[ignore = "issue #15, left open: with the tests' coarse laser (271 x 151) and the realistic preset this flight is not found yet"]
 fn a_flight_scanned_with_the_realistic_laser_keeps_its_exact_step_count() {

@@ -6,7 +6,13 @@
 //! upper one on the points from just before that edge on, with heights measured from the
 //! landing (its foot stands there). A staircase is thus reported as its flights, each with its
 //! own step count, as a building file describes it (`[[stairs]]` with `base_m`).
-
+//!
+//! Either flight may be hidden or only glimpsed (a survey that saw the staircase from above,
+//! or its side face past a wall). Where the lower one is no plausible staircase, the upper one
+//! is still a flight, on the landing, if the landing stands a whole number of its risers up (at
+//! least `min_steps`: a staircase's risers are uniform); where the upper one is none, the lower
+//! one is a flight ending on its landing. The upper flight ends at the far edge of its own top
+//! landing where something stands beyond it.
 use super::envelope::{envelope, BIN_M};
 use super::plausible::finish;
 use super::profile::profile;
@@ -20,15 +26,16 @@ fn min_landing_m(c: &StairsConfig) -> f64 {
     c.run_m[1] + 0.2
 }
 
-/// The two flights of a staircase with a mid landing climbing along `dir`, if the points show
-/// one (see the module docs); `None` if they show no mid landing or a flight is implausible.
+/// The flights of a staircase with a mid landing climbing along `dir`, if the points show one
+/// (see the module docs): both, or the one of them that is plausible; `None` if they show no
+/// mid landing or neither flight is.
 pub(super) fn two_flights(
     pts: &[(DVec2, f64)],
     all: &[(DVec2, f64)],
     dir: DVec2,
     sc: &Scene,
     c: &StairsConfig,
-) -> Option<[DetectedStairs; 2]> {
+) -> Option<Vec<DetectedStairs>> {
     // 1. The landing: the running maximum of the profile level for more than a tread, with
     //    at least `min_steps` of the lowest rise below it and above it.
     let (landing_end, landing_height) = mid_landing(pts, dir, c)?;
@@ -40,25 +47,62 @@ pub(super) fn two_flights(
             .collect()
     };
     let (lower, lower_all) = (below(pts), below(all));
-    let first = finish(&lower, profile(&lower, &lower_all, dir, c)?, sc, c)?;
-    let base = first.rise * first.steps as f64;
-    if (base - landing_height).abs() > 0.5 * first.rise {
-        return None;
+    let first = profile(&lower, &lower_all, dir, c).and_then(|p| finish(&lower, p, sc, c));
+    let base = match &first {
+        Some(first) => first.rise * first.steps as f64,
+        None => landing_height,
+    };
+    if let Some(first) = &first {
+        if (base - landing_height).abs() > 0.5 * first.rise {
+            return None;
+        }
     }
-    // 3. The upper flight: from a tread's depth before that edge on, heights from the landing.
+    // 3. The upper flight: from a tread's depth before that edge on, heights from the landing,
+    //    up to the far edge of its own top landing if something stands beyond that (a
+    //    cupboard, a wall the map did not find: no part of this flight).
     let above = |p: &[(DVec2, f64)]| -> Vec<(DVec2, f64)> {
         p.iter()
             .filter(|(q, z)| q.dot(dir) >= landing_end - c.run_m[1] && *z >= base - 0.05)
             .map(|(q, z)| (*q, z - base))
             .collect()
     };
-    let (upper, upper_all) = (above(pts), above(all));
-    let mut second = finish(&upper, profile(&upper, &upper_all, dir, c)?, sc, c)?;
-    second.base = base;
-    second.rules.push(format!(
-        "starts on the landing of the flight below, {base:.2} m above the floor"
-    ));
-    Some([first, second])
+    let (mut upper, mut upper_all) = (above(pts), above(all));
+    if let Some((end, _)) = mid_landing(&upper, dir, c) {
+        upper.retain(|(q, _)| q.dot(dir) < end);
+        upper_all.retain(|(q, _)| q.dot(dir) < end);
+    }
+    let second = profile(&upper, &upper_all, dir, c).and_then(|p| finish(&upper, p, sc, c));
+    match (first, second) {
+        (Some(first), Some(mut second)) => {
+            second.base = base;
+            second.rules.push(format!(
+                "starts on the landing of the flight below, {base:.2} m above the floor"
+            ));
+            Some(vec![first, second])
+        }
+        (Some(mut first), None) => {
+            first.rules.push(
+                "ends on a landing; nothing beyond it climbs as a flight of stairs".to_string(),
+            );
+            Some(vec![first])
+        }
+        (None, Some(mut second)) => {
+            // The hidden flight climbed to the landing in risers like the upper one's (a
+            // staircase's risers are uniform): the landing stands a whole number of them up,
+            // at least a flight's worth.
+            let risers = base / second.rise;
+            if risers.round() < f64::from(c.min_steps) || (risers - risers.round()).abs() > 0.25 {
+                return None;
+            }
+            second.base = base;
+            second.rules.push(format!(
+                "starts on a landing {base:.2} m above the floor ({:.0} of its risers up); the flight below it is hidden or only glimpsed",
+                risers.round()
+            ));
+            Some(vec![second])
+        }
+        (None, None) => None,
+    }
 }
 
 /// The far edge (along `dir`) and height of a mid landing in the profile of `pts` (its

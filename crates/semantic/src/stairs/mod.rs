@@ -252,14 +252,17 @@ pub(crate) fn find_stairs(
                 (DVec2::new(p.x as f64, p.y as f64), p.z as f64 - sc.floor)
             })
             .collect();
-            // A staircase with a landing half-way is its two flights (see `flights`).
-            // (the directions in parallel too: one large blob, a row of parked cars, would
-            // otherwise keep one thread busy while the others wait)
-            if let Some(f) = cands
+            // A staircase with a landing half-way is its two flights (see `flights`): the
+            // direction that shows both, else the first that shows one. (The directions in
+            // parallel too: one large blob, a row of parked cars, would otherwise keep one
+            // thread busy while the others wait.)
+            let flights: Vec<Vec<DetectedStairs>> = cands
                 .par_iter()
-                .find_map_first(|&dir| flights::two_flights(&pts, &all, dir, sc, c))
-            {
-                return Some(f.to_vec());
+                .filter_map(|&dir| flights::two_flights(&pts, &all, dir, sc, c))
+                .collect();
+            let most = flights.iter().map(Vec::len).max().unwrap_or(0);
+            if let Some(f) = flights.into_iter().find(|f| f.len() == most) {
+                return Some(f);
             }
             let mut profs: Vec<_> = cands
                 .par_iter()

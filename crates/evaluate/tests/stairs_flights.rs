@@ -150,6 +150,43 @@ yaw_deg = 0.0
     }
 }
 
+/// Regression: a cupboard beyond a single flight's top landing, standing less than a flight's
+/// worth of rises above it, was no landing's climb, so the flight's profile reached the
+/// cupboard's top and counted steps it does not have; the flight was lost.
+#[test]
+fn a_cupboard_beyond_a_single_flights_top_landing_leaves_its_step_count() {
+    let steps = 7;
+    let cupboard_x = 1.5 + steps as f64 * RUN + 1.0 + 0.25;
+    let top = steps as f64 * RISE;
+    let b = room(&format!(
+        r#"
+[[stairs]]
+name = "stairs"
+start_m = [1.5, 1.4]
+direction_deg = 0.0
+steps = {steps}
+rise_m = {RISE}
+run_m = {RUN}
+width_m = 1.0
+landing_m = 1.0
+
+[[boxes]]
+name = "cupboard"
+class = "obstacle"
+center_m = [{cupboard_x}, 1.4, {h}]
+size_m = [0.5, 1.0, {size}]
+yaw_deg = 0.0
+"#,
+        h = (top + 0.25) / 2.0,
+        size = top + 0.25,
+    ));
+    let (_, ev) = map_and_score(&b, &fixtures::test_laser());
+    assert_eq!(ev.stairs.expected, 1, "{ev:#?}");
+    assert_eq!(ev.stairs.matched, 1, "{ev:#?}");
+    assert_eq!(ev.stairs.detected, 1, "no false staircase: {ev:#?}");
+    assert_eq!(ev.stairs_matches[0].steps, steps, "{:?}", ev.stairs_matches);
+}
+
 #[test]
 #[ignore = "issue #15, left open: with the tests' coarse laser (271 x 151) and the realistic preset this flight is not found yet"]
 fn a_flight_scanned_with_the_realistic_laser_keeps_its_exact_step_count() {

@@ -37,7 +37,7 @@ pub(super) fn two_flights(
     c: &StairsConfig,
 ) -> Option<Vec<DetectedStairs>> {
     // 1. The landing: the running maximum of the profile level for more than a tread, with
-    //    at least `min_steps` of the lowest rise below it and above it.
+    //    at least `min_steps` of the lowest rise below it and a climb beyond it.
     let (landing_end, landing_height) = mid_landing(pts, dir, c)?;
     // 2. The lower flight: the points before the landing's far edge.
     let below = |p: &[(DVec2, f64)]| -> Vec<(DVec2, f64)> {
@@ -106,7 +106,9 @@ pub(super) fn two_flights(
 }
 
 /// The far edge (along `dir`) and height of a mid landing in the profile of `pts` (its
-/// envelope, see `envelope`).
+/// envelope, see `envelope`): a level stretch at least a flight's worth of the lowest rise up,
+/// with something climbing beyond it (the next flight, or what stands beyond a flight's top
+/// landing: `two_flights` keeps the lower flight alone then).
 fn mid_landing(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<(f64, f64)> {
     let along: Vec<f64> = pts.iter().map(|(q, _)| q.dot(dir)).collect();
     let lo = along.iter().copied().fold(f64::INFINITY, f64::min);
@@ -116,7 +118,6 @@ fn mid_landing(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<(f6
     }
     let nb = (((hi - lo) / BIN_M).ceil() as usize + 1).min(100_000);
     let env = envelope(pts, dir, lo, nb, c.run_m[0] / 2.0);
-    let top = env.iter().map(|e| e.1).fold(f64::NEG_INFINITY, f64::max);
     let least = c.min_steps as f64 * c.rise_m[0];
     // The running maximum; a level stretch starts where it last rose by more than the
     // measurement's few centimetres. It ends in a climb: within a tread's depth the profile
@@ -131,11 +132,8 @@ fn mid_landing(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<(f6
                 .iter()
                 .take_while(|e| e.0 <= s + c.run_m[1])
                 .any(|e| e.1 - level >= 0.5 * c.rise_m[0]);
-            let is_landing = running.is_finite()
-                && s - since >= min_landing_m(c)
-                && level >= least
-                && top - level >= least
-                && climbs;
+            let is_landing =
+                running.is_finite() && s - since >= min_landing_m(c) && level >= least && climbs;
             if is_landing {
                 return Some((s - BIN_M / 2.0, level));
             }

@@ -51,12 +51,13 @@ fn map_and_score(b: &Building, laser: &LaserConfig) -> (SemanticMap, Evaluation)
     (out.map, ev)
 }
 
-#[test]
-fn a_staircase_with_a_mid_landing_is_found_as_its_two_flights() {
-    let landing = 1.1;
-    let second_x = 1.0 + 4.0 * RUN + landing;
+/// Where the upper of the two test flights starts: four runs and a 1.1 m landing on (m).
+const SECOND_X: f64 = 1.0 + 4.0 * RUN + 1.1;
+
+/// A straight staircase with a landing half-way: two flights of 4 steps along +x (TOML).
+fn two_flights_toml() -> String {
     let base = 4.0 * RISE;
-    let b = room(&format!(
+    format!(
         r#"
 [[stairs]]
 name = "flight 1"
@@ -66,11 +67,11 @@ steps = 4
 rise_m = {RISE}
 run_m = {RUN}
 width_m = 1.0
-landing_m = {landing}
+landing_m = 1.1
 
 [[stairs]]
 name = "flight 2"
-start_m = [{second_x}, 1.4]
+start_m = [{SECOND_X}, 1.4]
 direction_deg = 0.0
 steps = 4
 rise_m = {RISE}
@@ -79,7 +80,13 @@ width_m = 1.0
 landing_m = 1.0
 base_m = {base}
 "#
-    ));
+    )
+}
+
+#[test]
+fn a_staircase_with_a_mid_landing_is_found_as_its_two_flights() {
+    let base = 4.0 * RISE;
+    let b = room(&two_flights_toml());
     let (map, ev) = map_and_score(&b, &fixtures::test_laser());
     assert_eq!(ev.stairs.expected, 2, "{ev:#?}");
     assert_eq!(ev.stairs.detected, 2, "no false staircase: {ev:#?}");
@@ -106,40 +113,17 @@ base_m = {base}
 /// the staircase was lost. The upper flight now ends at the far edge of its top landing.
 #[test]
 fn a_cupboard_beyond_the_top_landing_leaves_the_flights_their_step_counts() {
-    let landing = 1.1;
-    let second_x = 1.0 + 4.0 * RUN + landing;
-    let base = 4.0 * RISE;
-    let cupboard_x = second_x + 4.0 * RUN + 1.0 + 0.25;
+    let cupboard_x = SECOND_X + 4.0 * RUN + 1.0 + 0.25;
     let b = room(&format!(
-        r#"
-[[stairs]]
-name = "flight 1"
-start_m = [1.0, 1.4]
-direction_deg = 0.0
-steps = 4
-rise_m = {RISE}
-run_m = {RUN}
-width_m = 1.0
-landing_m = {landing}
-
-[[stairs]]
-name = "flight 2"
-start_m = [{second_x}, 1.4]
-direction_deg = 0.0
-steps = 4
-rise_m = {RISE}
-run_m = {RUN}
-width_m = 1.0
-landing_m = 1.0
-base_m = {base}
-
+        r#"{}
 [[boxes]]
 name = "cupboard"
 class = "obstacle"
 center_m = [{cupboard_x}, 1.4, 0.9]
 size_m = [0.5, 1.0, 1.8]
 yaw_deg = 0.0
-"#
+"#,
+        two_flights_toml()
     ));
     let (_, ev) = map_and_score(&b, &fixtures::test_laser());
     assert_eq!(ev.stairs.expected, 2, "{ev:#?}");

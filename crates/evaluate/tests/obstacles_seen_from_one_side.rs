@@ -4,7 +4,7 @@
 //! scored against the building's ground truth.
 
 use cloud::EntityClass;
-use scanner::{Building, LaserConfig, Realism, ScanPose};
+use scanner::Building;
 use semantic::{build_semantic_map, MapOutput, SemanticConfig};
 use std::path::Path;
 use std::sync::OnceLock;
@@ -48,18 +48,8 @@ yaw_deg = 50.0
             ])
             .toml(boxes);
         let b = Building::from_toml_str(&text, Path::new("room.toml")).expect("test building");
-        let poses: Vec<ScanPose> = [(1.5, 1.0), (3.5, 1.2), (5.5, 1.0)]
-            .iter()
-            .map(|&(x, y)| ScanPose {
-                x_m: x,
-                y_m: y,
-                yaw_deg: 0.0,
-            })
-            .collect();
-        let laser = LaserConfig {
-            realism: Realism::real(),
-            ..fixtures::test_laser()
-        };
+        let poses = fixtures::poses_at(&[(1.5, 1.0), (3.5, 1.2), (5.5, 1.0)]);
+        let laser = fixtures::real_test_laser();
         let cloud = fixtures::scan_building(&b, &poses, &laser, 0.03);
         let out = build_semantic_map(&cloud, &SemanticConfig::default()).expect("map");
         (b, cloud, out)

@@ -7,7 +7,7 @@
 use evaluate::{evaluate, Evaluation};
 use fixtures::RoomToml;
 use glam::Vec3;
-use scanner::{Building, BuildingGeometry, LaserConfig, Realism, ScanPose};
+use scanner::{Building, BuildingGeometry, LaserConfig, ScanPose};
 use semantic::{build_semantic_map, EntityClass, SemanticConfig, SemanticMap};
 
 /// Rise and run of the test flights (m).
@@ -187,10 +187,7 @@ width_m = 1.1
 landing_m = 1.0
 "#
     ));
-    let laser = LaserConfig {
-        realism: Realism::real(),
-        ..fixtures::test_laser()
-    };
+    let laser = fixtures::real_test_laser();
     let (_, ev) = map_and_score(&b, &laser);
     assert_eq!(ev.stairs.expected, 1, "{ev:#?}");
     assert_eq!(ev.stairs.detected, 1, "no false staircase: {ev:#?}");

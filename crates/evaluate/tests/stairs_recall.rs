@@ -7,7 +7,7 @@
 use evaluate::{evaluate, Evaluation};
 use fixtures::RoomToml;
 use glam::Vec3;
-use scanner::{Building, BuildingGeometry, LaserConfig, Realism, ScanPose};
+use scanner::{Building, BuildingGeometry, ScanPose};
 use semantic::{build_semantic_map, SemanticConfig};
 
 /// A 20 m x 12 m hall, 3.5 m high, holding `extra` (TOML).
@@ -40,10 +40,7 @@ fn poses_away_from(g: &BuildingGeometry, x: f64, y: f64, clear_m: f64) -> Vec<Sc
 
 /// The building scanned with the realistic laser from `poses`, mapped and scored.
 fn scan_map_score(b: &Building, poses: &[ScanPose]) -> Evaluation {
-    let laser = LaserConfig {
-        realism: Realism::real(),
-        ..fixtures::test_laser()
-    };
+    let laser = fixtures::real_test_laser();
     let cloud = fixtures::scan_building(b, poses, &laser, 0.03);
     let out = build_semantic_map(&cloud, &SemanticConfig::default()).expect("map");
     evaluate(&out.map, b, Some(&cloud))

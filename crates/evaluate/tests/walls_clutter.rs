@@ -6,7 +6,7 @@
 
 use cloud::EntityClass;
 use glam::Vec3;
-use scanner::{Building, BuildingGeometry, LaserConfig, Realism, ScanPose};
+use scanner::{Building, BuildingGeometry, ScanPose};
 use semantic::{build_semantic_map, MapOutput, SemanticConfig};
 use std::sync::OnceLock;
 
@@ -114,10 +114,7 @@ fn car_park() -> &'static (Building, cloud::PointCloud, MapOutput) {
                 yaw_deg: 0.0,
             })
             .collect();
-        let laser = LaserConfig {
-            realism: Realism::real(),
-            ..fixtures::test_laser()
-        };
+        let laser = fixtures::real_test_laser();
         let cloud = fixtures::scan_building(&b, &poses, &laser, 0.03);
         let out = build_semantic_map(&cloud, &SemanticConfig::default()).expect("map");
         (b, cloud, out)

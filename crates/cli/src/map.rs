@@ -88,6 +88,7 @@ pub fn run(a: MapArgs, cfg: &Config) -> anyhow::Result<()> {
         a.max_range_m,
         &a.read.options(),
         &cfg.outliers,
+        &cfg.transients,
     )?;
     if let Some(v) = a.voxel_m {
         cloud = cloud::voxel_downsample(&cloud, v)?;

@@ -155,7 +155,7 @@ fn run_sequence(a: &RegisterArgs, cfg: &Config) -> anyhow::Result<()> {
     std::fs::create_dir_all(&out).map_err(|e| cloud::CloudError::io(&out, e))?;
     let mut registrar = open_device(&cfg.registration.icp)?;
     let bar = crate::progress::scan_bar(scans.len(), "registering");
-    let reg = pipeline::register_scans(
+    let mut reg = pipeline::register_scans(
         &input,
         &scans,
         &cfg.registration,
@@ -163,6 +163,13 @@ fn run_sequence(a: &RegisterArgs, cfg: &Config) -> anyhow::Result<()> {
         &mut |done, _| bar.set_position(done as u64),
     )?;
     bar.finish_and_clear();
+    pipeline::clear_transients_from_map(
+        &mut reg,
+        &input,
+        scans,
+        &cfg.registration,
+        &cfg.transients,
+    )?;
     pipeline::write_registration(&reg, &out)?;
     crate::print::registration(&reg);
     crate::print::registration_written(&reg, &out);

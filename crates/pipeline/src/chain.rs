@@ -126,7 +126,12 @@ pub fn scans_to_verdict(
 
     // 2. Semantic map of the scans placed by their registered poses.
     observer.stage_started(2, "semantic map of the registered scans");
-    let cloud = place_and_merge(&input.scans, scans, Some(&registration.poses))?;
+    let cloud = place_and_merge(
+        &input.scans,
+        scans,
+        Some(&registration.poses),
+        &cfg.transients,
+    )?;
     let map = build_map(&cloud, &cfg.semantic)?;
     observer.mapped(&map);
 

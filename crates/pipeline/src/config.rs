@@ -25,6 +25,9 @@ pub struct Config {
     pub plan: sim::PlanConfig,
     /// Statistical outlier removal of every scan read (isolated returns in mid-air).
     pub outliers: crate::OutlierConfig,
+    /// Moving things (people walking past) seen by one scan of a sequence, dropped when the
+    /// scans are merged.
+    pub transients: crate::TransientConfig,
     /// How `semsim scan --survey` chooses the stop-and-scan poses.
     pub survey: scanner::SurveyConfig,
 }
@@ -70,6 +73,9 @@ impl Config {
         self.outliers
             .validate()
             .map_err(|e| section("outliers", &e))?;
+        self.transients
+            .validate()
+            .map_err(|e| section("transients", &e))?;
         self.survey.validate().map_err(|e| section("survey", &e))?;
         Ok(())
     }

@@ -78,8 +78,10 @@ pub use no_echo::{
 pub use outliers::{find_outliers, remove_outliers, OutlierConfig, OUTLIER_MIN_POINTS};
 pub use plot::{line_chart, plot_rmse, Series};
 pub use register::{
-    open_registrar, register_scans, write_registration, PairReport, Registration, ScanRow,
+    clear_transients_from_map, open_registrar, register_scans, write_registration, PairReport,
+    Registration, ScanRow,
 };
+pub use registration::{drop_transients, find_transients, TransientConfig};
 pub use scan_folder::{
     read_sequence, write_scan_folder, ScanFolderSummary, ScanSource, SequenceInput,
 };

@@ -3,8 +3,10 @@
 
 use crate::error::{to_json, Result};
 use crate::scan_folder::SequenceInput;
+use crate::scans::place_scans;
 use crate::truth::relative_pose_errors;
 use cloud::{NamedPose, PointCloud};
+use registration::TransientConfig;
 use registration::{IcpResult, Registrar, SequenceConfig, SequenceResult};
 use serde::Serialize;
 use std::path::Path;
@@ -102,6 +104,29 @@ fn scan_row(name: &str, r: Option<&IcpResult>, err: Option<&(f64, f64)>) -> Scan
         error_m: err.map(|e| e.0),
         error_deg: err.map(|e| e.1),
     }
+}
+
+/// Rebuilds the registration's map (the growing map the scans were registered against) from
+/// the scans placed at their registered poses without what moved between them
+/// ([`crate::drop_transients`]), as the registration grew it: each scan downsampled to
+/// `scan_voxel_m`, added, and the map downsampled to `map_voxel_m` again. This is the map
+/// `register` writes.
+pub fn clear_transients_from_map(
+    reg: &mut Registration,
+    input: &SequenceInput,
+    scans: Vec<PointCloud>,
+    cfg: &SequenceConfig,
+    transients: &TransientConfig,
+) -> Result<()> {
+    let placed = place_scans(&input.scans, scans, Some(&reg.poses), transients)?;
+    let mut map = PointCloud::default();
+    for scan in placed {
+        let scan = cloud::voxel_downsample(&scan, cfg.scan_voxel_m)?;
+        map.points.extend(scan.points);
+        map = cloud::voxel_downsample(&map, cfg.map_voxel_m)?;
+    }
+    reg.sequence.map = map;
+    Ok(())
 }
 
 /// Writes `poses.txt`, `map.pcd` and `registration.json` into `out` (which must exist).

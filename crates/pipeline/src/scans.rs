@@ -6,6 +6,7 @@ use crate::outliers::OutlierConfig;
 use crate::scan_folder::{expand_files, ScanSource};
 use cloud::{NamedPose, PointCloud};
 use glam::{DAffine3, DVec3};
+use registration::TransientConfig;
 use std::path::{Path, PathBuf};
 
 /// Reads scans, dropping missing returns, no-echo readings (a sensor's fixed range for "no
@@ -100,6 +101,7 @@ fn read_one(file: &Path, origin: &mut Option<DVec3>) -> Result<PointCloud> {
                 &sources,
                 clouds,
                 recorded_poses(&sources, &poses).as_deref(),
+                &TransientConfig::default(),
             )?
         }
     };
@@ -129,12 +131,35 @@ fn within_range(scan: &PointCloud, max_range_m: f32) -> PointCloud {
 }
 
 /// Places each scan with its pose (the pose named by the scan's name, else the pose at the
-/// same position) and merges them; labels are kept if every scan has them.
+/// same position), drops what moved between them (with poses: [`crate::drop_transients`],
+/// reported on standard error with the count) and merges them; labels are kept if every scan
+/// has them.
 pub fn place_and_merge(
     sources: &[ScanSource],
     scans: Vec<PointCloud>,
     poses: Option<&[NamedPose]>,
+    transients: &TransientConfig,
 ) -> Result<PointCloud> {
+    let placed = place_scans(sources, scans, poses, transients)?;
+    let mut merged = PointCloud::default();
+    let mut labels = Vec::new();
+    let mut all_labelled = true;
+    for mut scan in placed {
+        all_labelled &= scan.labels.is_some();
+        labels.extend(scan.labels.take().unwrap_or_default());
+        merged.points.extend(scan.points);
+    }
+    merged.labels = all_labelled.then_some(labels);
+    Ok(merged)
+}
+
+/// The scans of [`place_and_merge`], placed and without what moved, not merged.
+pub(crate) fn place_scans(
+    sources: &[ScanSource],
+    scans: Vec<PointCloud>,
+    poses: Option<&[NamedPose]>,
+    transients: &TransientConfig,
+) -> Result<Vec<PointCloud>> {
     if let Some(p) = poses {
         let by_name = sources
             .iter()
@@ -147,9 +172,7 @@ pub fn place_and_merge(
             )));
         }
     }
-    let mut merged = PointCloud::default();
-    let mut labels = Vec::new();
-    let mut all_labelled = true;
+    let mut placed = Vec::with_capacity(scans.len());
     for (k, (f, mut scan)) in sources.iter().zip(scans).enumerate() {
         if let Some(p) = poses {
             let pose = p
@@ -160,23 +183,34 @@ pub fn place_and_merge(
                 .ok_or_else(|| PipelineError::bad_input(format!("no pose for {}", f.name)))?;
             scan.transform(&pose);
         }
-        all_labelled &= scan.labels.is_some();
-        labels.extend(scan.labels.take().unwrap_or_default());
-        merged.points.extend(scan.points);
+        placed.push(scan);
     }
-    merged.labels = all_labelled.then_some(labels);
-    Ok(merged)
+    // Scans placed by their poses know where their sensors stood: what one saw and another saw
+    // through moved in between.
+    if poses.is_some() {
+        let dropped;
+        (placed, dropped) = crate::drop_transients(placed, transients);
+        for (f, n) in sources.iter().zip(dropped).filter(|(_, n)| *n > 0) {
+            eprintln!(
+                "note: {} ({}): {n} points of something that moved (seen by this scan only, where another scan saw through) dropped",
+                f.file.display(),
+                f.name
+            );
+        }
+    }
+    Ok(placed)
 }
 
 /// Reads the scans (as [`read_scans_with`] does, with `outliers`), places each by the pose
 /// file `poses` (if given; else by the poses the files record, as E57 scans do) and merges
-/// them.
+/// them, without what moved between placed scans (`transients`).
 pub fn merge_scan_files(
     files: &[PathBuf],
     poses: Option<&Path>,
     max_range_m: Option<f64>,
     options: &interop::ReadOptions,
     outliers: &OutlierConfig,
+    transients: &TransientConfig,
 ) -> Result<PointCloud> {
     let expanded = expand_files(files, options)?;
     let named = match poses {
@@ -184,11 +218,13 @@ pub fn merge_scan_files(
         None => recorded_poses(&expanded.scans, &expanded.own_poses),
     };
     let scans = read_scans_with(&expanded.scans, max_range_m, outliers)?;
-    place_and_merge(&expanded.scans, scans, named.as_deref()).map_err(|e| match (e, poses) {
-        (PipelineError::BadInput(msg), Some(p)) => {
-            PipelineError::BadInput(format!("{}: {msg}", p.display()))
+    place_and_merge(&expanded.scans, scans, named.as_deref(), transients).map_err(|e| {
+        match (e, poses) {
+            (PipelineError::BadInput(msg), Some(p)) => {
+                PipelineError::BadInput(format!("{}: {msg}", p.display()))
+            }
+            (e, _) => e,
         }
-        (e, _) => e,
     })
 }
 
@@ -236,7 +272,8 @@ mod tests {
                 world_from_scan: DAffine3::IDENTITY,
             },
         ];
-        let m = place_and_merge(&files, vec![a, b], Some(&poses)).expect("merges");
+        let off = TransientConfig::default();
+        let m = place_and_merge(&files, vec![a, b], Some(&poses), &off).expect("merges");
         assert_eq!(m.points, vec![Vec3::X, Vec3::new(0.0, 1.0, 1.0)]);
         let with_ext = vec![NamedPose {
             name: "a.pcd".into(),
@@ -246,6 +283,7 @@ mod tests {
             &files[..1],
             vec![PointCloud::from_points(vec![Vec3::X])],
             Some(&with_ext),
+            &off,
         )
         .expect("a pose named with the file's extension matches");
         assert_eq!(m.points, vec![Vec3::new(1.0, 0.0, 1.0)]);

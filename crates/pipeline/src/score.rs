@@ -48,8 +48,19 @@ pub fn score_map_file(
     let observed = if scans.is_empty() {
         None
     } else {
-        let merged =
-            merge_scan_files(scans, poses, None, &Default::default(), &Default::default())?;
+        // Every return, moving or not, as the scans saw them: the truth is what was seen.
+        let every_return = crate::TransientConfig {
+            enabled: false,
+            ..Default::default()
+        };
+        let merged = merge_scan_files(
+            scans,
+            poses,
+            None,
+            &Default::default(),
+            &Default::default(),
+            &every_return,
+        )?;
         evaluate::check_ground_truth_in_frame(&merged, &building, input_from_building.inverse())?;
         Some(merged)
     };

@@ -11,6 +11,9 @@
 //! - [`IcpConfig`] holds every setting; its defaults are GICP on 10 cm voxels with a 1 m
 //!   correspondence gate that adapts to 3 x RMSE (never below 0.15 m), and
 //!   [`IcpConfig::point_to_point`] is the paper's method at full resolution.
+//! - [`drop_transients`] takes out of registered scans what moved between them (a person
+//!   walking past one scan): points no other scan saw, in space another scan saw through
+//!   ([`TransientConfig`]).
 //! - [`BucketGrid`] and [`KdTree`] implement [`NearestNeighbors`].
 //! - [`Device`] (`IcpConfig::device`: `auto`, `cpu`, `gpu`) says where the iterations run;
 //!   a [`Registrar`] keeps the device open (and, on a GPU, the target uploaded) across
@@ -89,6 +92,7 @@ mod registrar;
 mod result;
 mod sequence;
 mod target;
+mod transients;
 
 pub use config::{
     Device, IcpConfig, Method, NnBackend, ParseDeviceError, ParseMethodError, RobustKernel,
@@ -102,3 +106,4 @@ pub use registrar::{register, register_to, Registrar};
 pub use result::{IcpResult, IterationReport};
 pub use sequence::{register_sequence, register_sequence_with, SequenceConfig, SequenceResult};
 pub use target::Target;
+pub use transients::{drop_transients, find_transients, TransientConfig};

@@ -1,11 +1,14 @@
 //! The obstacles, columns and beams in the semantic net: one entity each (the box fitted to its
-//! points, its hull and clearance), and their relations: every one `available_inside` the floor
+//! points, its hull and clearance; a partial-height wall found among them is a wall of one
+//! solid box), and their relations: every one `available_inside` the floor
 //! (the floor's space holds it); an obstacle or column `above` the floor (and the floor `under`
 //! it), a beam `under` the ceiling (and the ceiling `above` it); and `near` every door's free
 //! space whose footprint lies within `near_m` of its own.
 
 use super::{Ids, NetConfig};
-use crate::map::{Entity, ObstacleInfo, OrientedBox, Relation, RelationType, SemanticMap};
+use crate::map::{
+    Entity, ObstacleInfo, OrientedBox, Relation, RelationType, SemanticMap, WallInfo,
+};
 use crate::obstacles::DetectedObstacle;
 use cloud::EntityClass;
 use glam::DVec2;
@@ -29,6 +32,9 @@ pub(crate) fn add_obstacles(
     for (id, o) in (first..).zip(obstacles) {
         let geometry = box_of(o);
         let support = o.support as f64;
+        // A partial-height wall is a wall (one solid box); the rest carry their hull.
+        let is_wall = o.class == EntityClass::Wall;
+        let half = o.dir * (o.size[0] / 2.0);
         map.entities.push(Entity {
             id,
             class: o.class,
@@ -37,11 +43,17 @@ pub(crate) fn add_obstacles(
             // More points, more certainty: half at 50 points, 0.95 at ~1000.
             confidence: (support / (support + 50.0)).clamp(0.0, 1.0),
             rules: o.rules.clone(),
-            wall: None,
+            wall: is_wall.then(|| WallInfo {
+                segment_m: [(o.center - half).to_array(), (o.center + half).to_array()],
+                thickness_m: o.size[1],
+                thickness_measured: true,
+                z_range_m: [o.z_range.0, o.z_range.1],
+                solid_boxes: vec![geometry],
+            }),
             door: None,
             opening: None,
             stairs: None,
-            obstacle: Some(ObstacleInfo {
+            obstacle: (!is_wall).then(|| ObstacleInfo {
                 z_range_m: [o.z_range.0, o.z_range.1],
                 clearance_m: o.z_range.0 - floor_z,
                 hull_m: o.hull.iter().map(|q| q.to_array()).collect(),

@@ -30,6 +30,9 @@
 //!    most `column_max_across_m` across is a `column`; a high cluster at least
 //!    `beam_min_length_m` long and twice as long as wide is a `beam` (its bottom is above head
 //!    height by construction: the robot passes under it); anything else is an `obstacle`.
+//! 7. A thin, long cluster at least `partition_min_height_m` tall whose face is seen from the
+//!    floor up to its top along most of its length is a partial-height `wall` ([`partitions`]):
+//!    a partition under the projection band the wall stage looks at.
 
 mod backing;
 mod classify;
@@ -38,6 +41,7 @@ mod fit;
 
 pub use fit::intersection_area as convex_intersection_area;
 mod merge;
+mod partitions;
 
 use crate::error::Result;
 use crate::image_frame::{pixel_center, pixel_range, ImageFrame};
@@ -50,6 +54,7 @@ use cloud::{check_range, EntityClass};
 use cluster::{components, BandGrid};
 use glam::{DVec2, Vec3};
 use merge::{absorb_parts, drop_wall_slivers, join_collinear};
+use partitions::classify_partition;
 use serde::{Deserialize, Serialize};
 
 /// Configuration of the obstacle, column and beam stage.
@@ -97,6 +102,22 @@ pub struct ObstacleConfig {
     /// Thin things do stand against walls (pipes, radiators, skirting), but at this depth
     /// they are the wall to a robot.
     pub sliver_max_across_m: f64,
+    /// A partial-height wall is at most this thick: walls and partitions are 0.05-0.25 m;
+    /// a cabinet, a shelf or a car is deeper (and one seen from its front only reaches back
+    /// to the wall behind it, step 5).
+    pub partition_max_thickness_m: f64,
+    /// ... at least this long (and four times as long as thick) ...
+    pub partition_min_length_m: f64,
+    /// ... at least this high above the floor: a partition or a parapet is 1.0-1.8 m; lower,
+    /// it is a kerb or a bench to a robot, an obstacle all the same.
+    pub partition_min_height_m: f64,
+    /// ... its face seen down to this height above the floor: a wall stands on the floor,
+    /// while a car's body is 0.2-0.3 m clear of it between the wheels, and furniture stands
+    /// on legs or a recessed plinth ...
+    pub partition_max_bottom_m: f64,
+    /// ... and up to its top, along at least this fraction of its length (a row of things side
+    /// by side has gaps; a wall's face is hidden in places by what stands before it).
+    pub partition_min_standing: f64,
 }
 
 impl Default for ObstacleConfig {
@@ -115,6 +136,11 @@ impl Default for ObstacleConfig {
             max_vertical_gap_m: 0.3,
             max_top_step_m: 0.1,
             sliver_max_across_m: 0.2,
+            partition_max_thickness_m: 0.25,
+            partition_min_length_m: 1.0,
+            partition_min_height_m: 1.0,
+            partition_max_bottom_m: 0.15,
+            partition_min_standing: 0.7,
         }
     }
 }
@@ -139,6 +165,22 @@ impl ObstacleConfig {
             ("obstacles.max_vertical_gap_m", self.max_vertical_gap_m),
             ("obstacles.max_top_step_m", self.max_top_step_m),
             ("obstacles.sliver_max_across_m", self.sliver_max_across_m),
+            (
+                "obstacles.partition_max_thickness_m",
+                self.partition_max_thickness_m,
+            ),
+            (
+                "obstacles.partition_min_length_m",
+                self.partition_min_length_m,
+            ),
+            (
+                "obstacles.partition_min_height_m",
+                self.partition_min_height_m,
+            ),
+            (
+                "obstacles.partition_max_bottom_m",
+                self.partition_max_bottom_m,
+            ),
         ] {
             check_range(name, v, 0.0, 100.0, "within 0..100 m")?;
         }
@@ -148,6 +190,13 @@ impl ObstacleConfig {
             1.0,
             1e6,
             "within 1..1e6",
+        )?;
+        check_range(
+            "obstacles.partition_min_standing",
+            self.partition_min_standing,
+            0.0,
+            1.0,
+            "a fraction within 0..1",
         )?;
         check_range(
             "obstacles.min_points",
@@ -318,6 +367,8 @@ pub(crate) fn find_obstacles(
     back_onto_walls(&mut out, sc.walls, &frame, &seen, sc.floor);
     for o in &mut out {
         classify(o, sc.floor, sc.ceiling, frame.resolution_m, c);
+        // 7. A thin slab standing on the floor along its length: a partial-height wall.
+        classify_partition(o, sc, [&low_grid, &high_grid], &frame, c);
     }
     out
 }

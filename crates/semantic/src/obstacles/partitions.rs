@@ -1,0 +1,183 @@
+//! Partial-height walls (see the `obstacles` module, step 7): a partition 1.2-1.8 m high, a
+//! parapet, a screen stops under the projection band the wall stage looks at, so it reaches
+//! this stage as a thin cluster. It is a wall when it stands like one: thin and long, at least
+//! `partition_min_height_m` tall, and its face seen from the floor up to its top along most of
+//! its length. A car's side is as thin and long seen from one side, but its body is clear of
+//! the floor between the wheels; a shelf's or a desk's front stands on legs or a plinth set
+//! back; a row of things side by side has gaps.
+
+use super::cluster::BandGrid;
+use super::{DetectedObstacle, ObstacleConfig, ObstacleScene};
+use crate::image_frame::{pixel_center, pixel_range, ImageFrame};
+use cloud::EntityClass;
+use glam::DVec2;
+
+/// Bins along a partition's length in which its face is looked for.
+const BIN_M: f64 = 0.1;
+
+/// Makes `o` a wall if it stands as a partial-height wall does (see the module docs); its last
+/// rule says why.
+pub(super) fn classify_partition(
+    o: &mut DetectedObstacle,
+    sc: &ObstacleScene,
+    grids: [&BandGrid; 2],
+    frame: &ImageFrame,
+    c: &ObstacleConfig,
+) {
+    let [length, across] = o.size;
+    let height = o.z_range.1 - sc.floor;
+    if o.overhead
+        || o.class != EntityClass::Obstacle
+        || across > c.partition_max_thickness_m
+        || length < c.partition_min_length_m
+        || length < 4.0 * across
+        || height < c.partition_min_height_m
+    {
+        return;
+    }
+    let standing = standing_fraction(o, sc, grids, frame, c);
+    if standing < c.partition_min_standing {
+        return;
+    }
+    o.class = EntityClass::Wall;
+    o.rules.truncate(2);
+    o.rules.push(format!(
+        "a partial-height wall: {length:.2} m long, {across:.2} m thick, {height:.2} m high; its face seen from within {:.2} m of the floor up to its top along {:.0} % of its length (a wall stands on the floor along {:.0} % at least)",
+        c.partition_max_bottom_m,
+        100.0 * standing,
+        100.0 * c.partition_min_standing
+    ));
+}
+
+/// The fraction of `o`'s length (bins of [`BIN_M`]) where its points come down to within
+/// `partition_max_bottom_m` of the floor and up to within `max_vertical_gap_m` of its top.
+fn standing_fraction(
+    o: &DetectedObstacle,
+    sc: &ObstacleScene,
+    grids: [&BandGrid; 2],
+    frame: &ImageFrame,
+    c: &ObstacleConfig,
+) -> f64 {
+    let bins = (o.size[0] / BIN_M).ceil().max(1.0) as usize;
+    let (mut low, mut high) = (vec![false; bins], vec![false; bins]);
+    let (bottom_below, top_above) = (
+        sc.floor + c.partition_max_bottom_m,
+        o.z_range.1 - c.max_vertical_gap_m,
+    );
+    let half = DVec2::new(o.size[0] / 2.0, o.size[1] / 2.0) + frame.resolution_m / 2.0;
+    let reach = DVec2::splat(half.length());
+    let Some((c0, c1, r0, r1)) = pixel_range(frame, o.center - reach, o.center + reach) else {
+        return 0.0;
+    };
+    let w = frame.width_px as usize;
+    for row in r0..=r1 {
+        for col in c0..=c1 {
+            let q = pixel_center(frame, col as f64, row as f64) - o.center;
+            if q.dot(o.dir).abs() > half.x || q.dot(o.dir.perp()).abs() > half.y {
+                continue;
+            }
+            for grid in grids {
+                for &i in grid.points(row * w + col) {
+                    let p = sc.points[i as usize];
+                    let s = (DVec2::new(p.x as f64, p.y as f64) - o.center).dot(o.dir);
+                    let bin = ((s + o.size[0] / 2.0) / BIN_M).floor();
+                    if !(0.0..bins as f64).contains(&bin) {
+                        continue;
+                    }
+                    let z = p.z as f64;
+                    low[bin as usize] |= z <= bottom_below;
+                    high[bin as usize] |= z >= top_above;
+                }
+            }
+        }
+    }
+    let standing = low.iter().zip(&high).filter(|(l, h)| **l && **h).count();
+    standing as f64 / bins as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::find_obstacles;
+    use super::*;
+    use glam::Vec3;
+
+    /// Both faces of a slab 0.08 m thick along x from `x0` to `x1` at `y`, sampled every 2 cm
+    /// from `z0` to `z1`.
+    fn slab(x0: f32, x1: f32, y: f32, z0: f32, z1: f32) -> Vec<Vec3> {
+        let mut out = Vec::new();
+        let (nx, nz) = (((x1 - x0) / 0.02) as usize, ((z1 - z0) / 0.02) as usize);
+        for i in 0..=nx {
+            for k in 0..=nz {
+                for face in [-0.04, 0.04] {
+                    out.push(Vec3::new(
+                        x0 + i as f32 * 0.02,
+                        y + face,
+                        z0 + k as f32 * 0.02,
+                    ));
+                }
+            }
+        }
+        out
+    }
+
+    fn classes(points: &[Vec3]) -> Vec<(EntityClass, String)> {
+        let explained = vec![false; points.len()];
+        let image = ImageFrame {
+            origin_m: [0.0, 8.0],
+            resolution_m: 0.05,
+            width_px: 160,
+            height_px: 160,
+        };
+        let scene = ObstacleScene {
+            points,
+            explained: &explained,
+            floor: 0.0,
+            ceiling: 3.0,
+            image: &image,
+            walls: &[],
+            keep_out: &[],
+        };
+        find_obstacles(&scene, &ObstacleConfig::default(), 1 << 20)
+            .into_iter()
+            .map(|o| (o.class, o.rules.last().cloned().unwrap_or_default()))
+            .collect()
+    }
+
+    #[test]
+    fn a_thin_slab_standing_on_the_floor_is_a_partial_height_wall() {
+        let found = classes(&slab(1.0, 3.0, 2.0, 0.09, 1.4));
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
+        assert!(found[0].1.contains("partial-height wall"), "{found:?}");
+    }
+
+    #[test]
+    fn a_thin_slab_clear_of_the_floor_or_low_or_short_stays_an_obstacle() {
+        for (what, points) in [
+            // A car's side: its body 0.25 m above the floor between the wheels.
+            ("clear of the floor", slab(1.0, 4.0, 2.0, 0.25, 1.3)),
+            // A bench back or a kerb: under the partition height.
+            ("low", slab(1.0, 3.0, 2.0, 0.09, 0.8)),
+            // As long as it is thick: a post.
+            ("short", slab(1.0, 1.3, 2.0, 0.09, 1.4)),
+        ] {
+            let found = classes(&points);
+            assert_eq!(found.len(), 1, "{what}: {found:?}");
+            assert_eq!(found[0].0, EntityClass::Obstacle, "{what}: {found:?}");
+        }
+    }
+
+    #[test]
+    fn a_slab_with_gaps_at_the_floor_is_no_wall() {
+        // A row of shelves on legs: the face comes down to the floor only at the legs.
+        let mut points = slab(1.0, 3.0, 2.0, 0.3, 1.6);
+        for x in [1.0, 1.5, 2.0, 2.5, 3.0] {
+            points.extend(slab(x, x + 0.04, 2.0, 0.09, 0.3));
+        }
+        let found = classes(&points);
+        assert!(
+            found.iter().all(|(c, _)| *c != EntityClass::Wall),
+            "{found:?}"
+        );
+    }
+}

@@ -163,13 +163,7 @@ fn run_sequence(a: &RegisterArgs, cfg: &Config) -> anyhow::Result<()> {
         &mut |done, _| bar.set_position(done as u64),
     )?;
     bar.finish_and_clear();
-    pipeline::clear_transients_from_map(
-        &mut reg,
-        &input,
-        scans,
-        &cfg.registration,
-        &cfg.transients,
-    )?;
+    pipeline::clear_transients_from_map(&mut reg, &input, scans, &cfg.transients)?;
     pipeline::write_registration(&reg, &out)?;
     crate::print::registration(&reg);
     crate::print::registration_written(&reg, &out);

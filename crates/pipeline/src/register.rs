@@ -3,12 +3,14 @@
 
 use crate::error::{to_json, Result};
 use crate::scan_folder::SequenceInput;
-use crate::scans::place_scans;
+use crate::scans::{place_scans, report_transients};
 use crate::truth::relative_pose_errors;
 use cloud::{NamedPose, PointCloud};
+use glam::Vec3;
 use registration::TransientConfig;
 use registration::{IcpResult, Registrar, SequenceConfig, SequenceResult};
 use serde::Serialize;
+use std::collections::HashSet;
 use std::path::Path;
 
 /// A registered sequence: the result and one row per scan.
@@ -106,28 +108,54 @@ fn scan_row(name: &str, r: Option<&IcpResult>, err: Option<&(f64, f64)>) -> Scan
     }
 }
 
-/// Rebuilds the registration's map (the growing map the scans were registered against) from
-/// the scans placed at their registered poses without what moved between them
-/// ([`crate::drop_transients`]), as the registration grew it: each scan downsampled to
-/// `scan_voxel_m`, added, and the map downsampled to `map_voxel_m` again. This is the map
-/// `register` writes.
+/// Takes out of the registration's map (the growing map the scans were registered against)
+/// what moved between the scans: the scans placed at their registered poses vote
+/// ([`crate::find_transients`]), and a map point goes where its cell of [`TRANSIENT_CELL_M`]
+/// holds transient points and no other (the map keeps its density elsewhere). This is the
+/// map `register` writes.
 pub fn clear_transients_from_map(
     reg: &mut Registration,
     input: &SequenceInput,
     scans: Vec<PointCloud>,
-    cfg: &SequenceConfig,
     transients: &TransientConfig,
 ) -> Result<()> {
-    let placed = place_scans(&input.scans, scans, Some(&reg.poses), transients)?;
-    let mut map = PointCloud::default();
-    for scan in placed {
-        let scan = cloud::voxel_downsample(&scan, cfg.scan_voxel_m)?;
-        map.points.extend(scan.points);
-        map = cloud::voxel_downsample(&map, cfg.map_voxel_m)?;
+    let keep_all = TransientConfig {
+        enabled: false,
+        ..transients.clone()
+    };
+    let placed = place_scans(&input.scans, scans, Some(&reg.poses), &keep_all)?;
+    let found = crate::find_transients(&placed, transients);
+    let counts: Vec<usize> = found.iter().map(Vec::len).collect();
+    report_transients(&input.scans, &counts);
+    if counts.iter().all(|&n| n == 0) {
+        return Ok(());
     }
-    reg.sequence.map = map;
+    let cell = |p: Vec3| (p / TRANSIENT_CELL_M).floor().as_ivec3();
+    let mut moved = HashSet::new();
+    for (scan, gone) in placed.iter().zip(&found) {
+        moved.extend(gone.iter().map(|&i| cell(scan.points[i])));
+    }
+    for (scan, gone) in placed.iter().zip(&found) {
+        let mut gone = gone.iter().peekable();
+        for (i, p) in scan.points.iter().enumerate() {
+            if gone.peek() == Some(&&i) {
+                gone.next();
+            } else if p.is_finite() {
+                moved.remove(&cell(*p));
+            }
+        }
+    }
+    let keep: Vec<usize> = (0..reg.sequence.map.len())
+        .filter(|&i| !moved.contains(&cell(reg.sequence.map.points[i])))
+        .collect();
+    reg.sequence.map = reg.sequence.map.select(&keep);
     Ok(())
 }
+
+/// The cells in which [`clear_transients_from_map`] compares transient and other points:
+/// twice the map's default voxel, so that a map point (a voxel's centroid) lies in the cell
+/// of the points it stands for.
+pub const TRANSIENT_CELL_M: f32 = 0.1;
 
 /// Writes `poses.txt`, `map.pcd` and `registration.json` into `out` (which must exist).
 pub fn write_registration(reg: &Registration, out: &Path) -> Result<()> {

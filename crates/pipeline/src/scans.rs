@@ -190,15 +190,20 @@ pub(crate) fn place_scans(
     if poses.is_some() {
         let dropped;
         (placed, dropped) = crate::drop_transients(placed, transients);
-        for (f, n) in sources.iter().zip(dropped).filter(|(_, n)| *n > 0) {
-            eprintln!(
-                "note: {} ({}): {n} points of something that moved (seen by this scan only, where another scan saw through) dropped",
-                f.file.display(),
-                f.name
-            );
-        }
+        report_transients(sources, &dropped);
     }
     Ok(placed)
+}
+
+/// Says on standard error how many points of something that moved each scan lost.
+pub(crate) fn report_transients(sources: &[ScanSource], dropped: &[usize]) {
+    for (f, n) in sources.iter().zip(dropped).filter(|(_, n)| **n > 0) {
+        eprintln!(
+            "note: {} ({}): {n} points of something that moved (seen by this scan only, where another scan saw through) dropped",
+            f.file.display(),
+            f.name
+        );
+    }
 }
 
 /// Reads the scans (as [`read_scans_with`] does, with `outliers`), places each by the pose

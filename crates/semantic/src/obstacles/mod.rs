@@ -118,6 +118,10 @@ pub struct ObstacleConfig {
     /// ... and up to its top, along at least this fraction of its length (a row of things side
     /// by side has gaps; a wall's face is hidden in places by what stands before it).
     pub partition_min_standing: f64,
+    /// A slab along a wall nearer to its face than this is a cabinet's or shelf's front, not
+    /// a partition: 0.7 m, about the narrowest passage a person walks (building codes ask
+    /// 0.8-0.9 m for a corridor).
+    pub partition_min_passage_m: f64,
 }
 
 impl Default for ObstacleConfig {
@@ -141,6 +145,7 @@ impl Default for ObstacleConfig {
             partition_min_height_m: 1.0,
             partition_max_bottom_m: 0.15,
             partition_min_standing: 0.7,
+            partition_min_passage_m: 0.7,
         }
     }
 }
@@ -180,6 +185,10 @@ impl ObstacleConfig {
             (
                 "obstacles.partition_max_bottom_m",
                 self.partition_max_bottom_m,
+            ),
+            (
+                "obstacles.partition_min_passage_m",
+                self.partition_min_passage_m,
             ),
         ] {
             check_range(name, v, 0.0, 100.0, "within 0..100 m")?;

@@ -4,7 +4,9 @@
 //! `partition_min_height_m` tall, and its face seen from the floor up to its top along most of
 //! its length. A car's side is as thin and long seen from one side, but its body is clear of
 //! the floor between the wheels; a shelf's or a desk's front stands on legs or a plinth set
-//! back; a row of things side by side has gaps.
+//! back; a row of things side by side has gaps. A slab along a wall, nearer to it than a
+//! passage is wide (`partition_min_passage_m`), divides no space: it is the front of a cabinet
+//! or a shelf against that wall, seen from the room.
 
 use super::cluster::BandGrid;
 use super::{DetectedObstacle, ObstacleConfig, ObstacleScene};
@@ -35,6 +37,9 @@ pub(super) fn classify_partition(
     {
         return;
     }
+    if faces_a_wall(o, sc, c.partition_min_passage_m) {
+        return;
+    }
     let standing = standing_fraction(o, sc, grids, frame, c);
     if standing < c.partition_min_standing {
         return;
@@ -47,6 +52,19 @@ pub(super) fn classify_partition(
         100.0 * standing,
         100.0 * c.partition_min_standing
     ));
+}
+
+/// Whether `o` runs along a wall (within 10 degrees, beside its extent) nearer to its face
+/// than `passage_m`.
+fn faces_a_wall(o: &DetectedObstacle, sc: &ObstacleScene, passage_m: f64) -> bool {
+    let max_cos = 10f64.to_radians().cos();
+    sc.walls.iter().any(|w| {
+        let (s, d) = w.line.coords(o.center);
+        o.dir.dot(w.line.dir).abs() >= max_cos
+            && s >= 0.0
+            && s <= w.length
+            && d.abs() - w.thickness / 2.0 - o.size[1] / 2.0 < passage_m
+    })
 }
 
 /// The fraction of `o`'s length (bins of [`BIN_M`]) where its points come down to within
@@ -121,6 +139,13 @@ mod tests {
     }
 
     fn classes(points: &[Vec3]) -> Vec<(EntityClass, String)> {
+        classes_with_walls(points, &[])
+    }
+
+    fn classes_with_walls(
+        points: &[Vec3],
+        walls: &[crate::walls::WallFit],
+    ) -> Vec<(EntityClass, String)> {
         let explained = vec![false; points.len()];
         let image = ImageFrame {
             origin_m: [0.0, 8.0],
@@ -134,7 +159,7 @@ mod tests {
             floor: 0.0,
             ceiling: 3.0,
             image: &image,
-            walls: &[],
+            walls,
             keep_out: &[],
         };
         find_obstacles(&scene, &ObstacleConfig::default(), 1 << 20)
@@ -179,5 +204,31 @@ mod tests {
             found.iter().all(|(c, _)| *c != EntityClass::Wall),
             "{found:?}"
         );
+    }
+
+    #[test]
+    fn a_slab_along_a_wall_nearer_than_a_passage_is_a_cabinet_front() {
+        // A wall along y = 3 (0.15 m thick), x 0..6.
+        let wall = |y: f64| crate::walls::WallFit {
+            line: crate::points::Line2 {
+                origin: DVec2::new(0.0, y),
+                dir: DVec2::X,
+            },
+            length: 6.0,
+            thickness: 0.15,
+            measured: true,
+            faces: vec![-0.075, 0.075],
+            free_side: -1.0,
+            z_range: (0.0, 3.0),
+            support: 1000,
+            coverage: 1.0,
+            rules: Vec::new(),
+        };
+        // The front of a 0.45 m deep cabinet against it, and a partition 1.5 m from it.
+        let front = slab(1.0, 3.0, 2.5, 0.09, 1.4);
+        let found = classes_with_walls(&front, &[wall(3.0)]);
+        assert_eq!(found[0].0, EntityClass::Obstacle, "{found:?}");
+        let found = classes_with_walls(&front, &[wall(4.0)]);
+        assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
     }
 }

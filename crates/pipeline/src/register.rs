@@ -110,7 +110,7 @@ fn scan_row(name: &str, r: Option<&IcpResult>, err: Option<&(f64, f64)>) -> Scan
 
 /// Takes out of the registration's map (the growing map the scans were registered against)
 /// what moved between the scans: the scans placed at their registered poses vote
-/// ([`crate::find_transients`]), and a map point goes where its cell of [`TRANSIENT_CELL_M`]
+/// ([`crate::find_transients`]), and a map point goes where its 10 cm cell
 /// holds transient points and no other (the map keeps its density elsewhere). This is the
 /// map `register` writes.
 pub fn clear_transients_from_map(
@@ -155,7 +155,7 @@ pub fn clear_transients_from_map(
 /// The cells in which [`clear_transients_from_map`] compares transient and other points:
 /// twice the map's default voxel, so that a map point (a voxel's centroid) lies in the cell
 /// of the points it stands for.
-pub const TRANSIENT_CELL_M: f32 = 0.1;
+const TRANSIENT_CELL_M: f32 = 0.1;
 
 /// Writes `poses.txt`, `map.pcd` and `registration.json` into `out` (which must exist).
 pub fn write_registration(reg: &Registration, out: &Path) -> Result<()> {

@@ -38,8 +38,9 @@ pub struct TransientConfig {
     /// same thing. 0.15 m: the registration's residue (1-3 cm) and a 0.5 degree laser's sample
     /// spacing out to ~15 m are well within it; a person walks 0.15 m in 0.1 s.
     pub persist_m: f64,
-    /// The range images' bins, degrees in azimuth and elevation: about a rotating laser's
-    /// angular step (0.25-1 degree), so most bins hold a return.
+    /// The range images' bins, degrees in azimuth and elevation: at least a rotating laser's
+    /// angular step (0.25-1 degree), so that most bins hold a return (with finer bins than the
+    /// sampling, too few of the nine round a point hold one and nothing is ever seen through).
     pub bin_deg: f64,
     /// Another scan's returns must lie this far beyond the point at least ...
     pub margin_m: f64,
@@ -55,7 +56,7 @@ impl Default for TransientConfig {
         TransientConfig {
             enabled: true,
             persist_m: 0.15,
-            bin_deg: 0.5,
+            bin_deg: 1.0,
             margin_m: 0.15,
             margin_per_m: 0.02,
             min_bins_seen: 5,

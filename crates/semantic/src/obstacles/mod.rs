@@ -122,6 +122,10 @@ pub struct ObstacleConfig {
     /// a partition: 0.7 m, about the narrowest passage a person walks (building codes ask
     /// 0.8-0.9 m for a corridor).
     pub partition_min_passage_m: f64,
+    /// ... and the floor is seen beside it on both sides along at least this fraction of its
+    /// length: it divides space, while the face of a block (a car, a crate, a cabinet seen from
+    /// one side) has the block's unseen footprint behind it.
+    pub partition_min_floor_both_sides: f64,
 }
 
 impl Default for ObstacleConfig {
@@ -146,6 +150,7 @@ impl Default for ObstacleConfig {
             partition_max_bottom_m: 0.15,
             partition_min_standing: 0.7,
             partition_min_passage_m: 0.7,
+            partition_min_floor_both_sides: 0.5,
         }
     }
 }
@@ -199,6 +204,13 @@ impl ObstacleConfig {
             1.0,
             1e6,
             "within 1..1e6",
+        )?;
+        check_range(
+            "obstacles.partition_min_floor_both_sides",
+            self.partition_min_floor_both_sides,
+            0.0,
+            1.0,
+            "a fraction within 0..1",
         )?;
         check_range(
             "obstacles.partition_min_standing",
@@ -377,7 +389,7 @@ pub(crate) fn find_obstacles(
     for o in &mut out {
         classify(o, sc.floor, sc.ceiling, frame.resolution_m, c);
         // 7. A thin slab standing on the floor along its length: a partial-height wall.
-        classify_partition(o, sc, [&low_grid, &high_grid], &frame, c);
+        classify_partition(o, sc, [&low_grid, &high_grid], &seen, &frame, c);
     }
     out
 }

@@ -4,7 +4,9 @@
 //! `partition_min_height_m` tall, and its face seen from the floor up to its top along most of
 //! its length. A car's side is as thin and long seen from one side, but its body is clear of
 //! the floor between the wheels; a shelf's or a desk's front stands on legs or a plinth set
-//! back; a row of things side by side has gaps. A slab along a wall, nearer to it than a
+//! back; a row of things side by side has gaps. A partition divides space: the floor is seen
+//! beside it on both sides (`partition_min_floor_both_sides` of its length), while a face of a
+//! block (a car, a crate, a cabinet) has the block's unseen footprint behind it. A slab along a wall, nearer to it than a
 //! passage is wide (`partition_min_passage_m`), divides no space: it is the front of a cabinet
 //! or a shelf against that wall, seen from the room.
 
@@ -23,6 +25,7 @@ pub(super) fn classify_partition(
     o: &mut DetectedObstacle,
     sc: &ObstacleScene,
     grids: [&BandGrid; 2],
+    floor_seen: &[bool],
     frame: &ImageFrame,
     c: &ObstacleConfig,
 ) {
@@ -40,6 +43,10 @@ pub(super) fn classify_partition(
     if faces_a_wall(o, sc, c.partition_min_passage_m) {
         return;
     }
+    let both_sides = floor_both_sides(o, floor_seen, frame);
+    if both_sides < c.partition_min_floor_both_sides {
+        return;
+    }
     let standing = standing_fraction(o, sc, grids, frame, c);
     if standing < c.partition_min_standing {
         return;
@@ -53,6 +60,36 @@ pub(super) fn classify_partition(
         100.0 * c.partition_min_standing
     ));
 }
+
+/// The fraction of `o`'s length (bins of [`BIN_M`]) where the floor was seen on both sides of
+/// it within [`BESIDE_M`] of its faces (cells of `frame`, `floor_seen`).
+fn floor_both_sides(o: &DetectedObstacle, floor_seen: &[bool], frame: &ImageFrame) -> f64 {
+    let bins = (o.size[0] / BIN_M).ceil().max(1.0) as usize;
+    let w = frame.width_px as usize;
+    let seen = |q: DVec2| {
+        frame
+            .pixel_of(q.x, q.y)
+            .is_some_and(|(col, row)| floor_seen[row as usize * w + col as usize])
+    };
+    let across = o.dir.perp();
+    let both = (0..bins)
+        .filter(|&k| {
+            let s = -o.size[0] / 2.0 + (k as f64 + 0.5) * BIN_M;
+            [-1.0, 1.0].iter().all(|side| {
+                let steps = (BESIDE_M / frame.resolution_m).ceil().max(1.0) as usize;
+                (1..=steps).any(|j| {
+                    let d = o.size[1] / 2.0 + j as f64 * frame.resolution_m;
+                    seen(o.center + o.dir * s + across * (side * d))
+                })
+            })
+        })
+        .count();
+    both as f64 / bins as f64
+}
+
+/// How far beside a partition's faces the floor is looked for: a laser at 0.5 m sees the floor
+/// up to a few decimetres from the foot of a 1.5 m partition on its own side.
+const BESIDE_M: f64 = 0.5;
 
 /// Whether `o` runs along a wall (within 10 degrees, beside its extent) nearer to its face
 /// than `passage_m`.
@@ -138,14 +175,37 @@ mod tests {
         out
     }
 
+    /// The floor of the 8 x 8 m test area sampled every 5 cm, but where `hidden` (x0, y0, x1,
+    /// y1) covers it.
+    fn floor(hidden: Option<[f32; 4]>) -> Vec<Vec3> {
+        let mut out = Vec::new();
+        for i in 0..160 {
+            for j in 0..160 {
+                let (x, y) = (i as f32 * 0.05, j as f32 * 0.05);
+                if hidden.is_some_and(|[x0, y0, x1, y1]| x >= x0 && x <= x1 && y >= y0 && y <= y1) {
+                    continue;
+                }
+                out.push(Vec3::new(x, y, 0.0));
+            }
+        }
+        out
+    }
+
     fn classes(points: &[Vec3]) -> Vec<(EntityClass, String)> {
         classes_with_walls(points, &[])
     }
 
+    /// The classes of what `points` (and the whole floor) hold, with `walls`.
     fn classes_with_walls(
         points: &[Vec3],
         walls: &[crate::walls::WallFit],
     ) -> Vec<(EntityClass, String)> {
+        let mut all = floor(None);
+        all.extend_from_slice(points);
+        classes_in(&all, walls)
+    }
+
+    fn classes_in(points: &[Vec3], walls: &[crate::walls::WallFit]) -> Vec<(EntityClass, String)> {
         let explained = vec![false; points.len()];
         let image = ImageFrame {
             origin_m: [0.0, 8.0],
@@ -230,5 +290,18 @@ mod tests {
         assert_eq!(found[0].0, EntityClass::Obstacle, "{found:?}");
         let found = classes_with_walls(&front, &[wall(4.0)]);
         assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
+    }
+
+    #[test]
+    fn the_face_of_a_block_is_no_wall() {
+        // A crate 1.5 m high seen from its south side only: the floor behind its face, under
+        // the crate, was never seen.
+        let mut points = floor(Some([1.0, 2.0, 3.0, 3.8]));
+        points.extend(slab(1.0, 3.0, 2.0, 0.09, 1.5));
+        let found = classes_in(&points, &[]);
+        assert!(
+            found.iter().all(|(c, _)| *c != EntityClass::Wall),
+            "{found:?}"
+        );
     }
 }

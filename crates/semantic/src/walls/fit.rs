@@ -3,7 +3,8 @@
 
 use super::extent::find_extent;
 use super::faces::refine_line;
-use super::support::{SupportProfile, BIN_M};
+use super::orientation::{FaceOrientation, MIN_ALONG};
+use super::support::{SupportProfile, BIN_M, HEAD_HEIGHT_M};
 use super::{WallConfig, WallFit};
 use crate::merge::Segment;
 use crate::points::{quantile, Line2};
@@ -55,12 +56,16 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
         &faces,
         sc.floor,
     );
+    let mut orientation = FaceOrientation::new(hi - lo, &faces);
     sc.index
         .for_each_near_line(sc.points, &line, lo, hi, hw + strip.1, |i, s, d| {
             let z = sc.z(i);
             if !crossed(s, z) {
                 let face = z >= z_lo && z <= z_hi && on_face(d, &faces);
                 profile.add(((s - lo) / BIN_M) as usize, d, z, face);
+                if z > sc.floor + 0.1 && z < sc.floor + HEAD_HEIGHT_M {
+                    orientation.add(s - lo, d);
+                }
             }
             if z >= z_lo && z <= z_hi && on_face(d, &faces) && !crossed(s, z) {
                 zs.push(z);
@@ -84,6 +89,11 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
     // row of pillars or a beam over them.
     let (standing, open, bare) = profile.fractions();
     if standing == 0.0 || open + bare > standing {
+        return None;
+    }
+    // Its face is a plane along it, not the sides of a corner it cuts through.
+    let along = orientation.along_fraction();
+    if along.is_some_and(|f| f < MIN_ALONG) {
         return None;
     }
     let support = zs.len() as u64;
@@ -120,7 +130,10 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
         standing * 100.0,
         open * 100.0,
         bare * 100.0
-    )];
+    ), match along {
+        Some(f) => format!("face points below head height run along it in {:.0} % of its 20 cm stretches (the sides of a corner cut through would not)", f * 100.0),
+        None => "too few face points below head height to tell their direction".into(),
+    }];
     let mut fit = WallFit {
         line: Line2 {
             origin: start,

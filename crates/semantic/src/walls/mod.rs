@@ -22,6 +22,9 @@
 //! 5. Support ([`support`]): a wall's face is seen below head height, and nothing is seen
 //!    through it there; a prerequisite open underneath along more of its length than it
 //!    stands (a beam, a row of pillars, a beam over pillars) is no wall.
+//! 6. Orientation ([`orientation`]): below head height, the points near its face run along it
+//!    in at least half of its 20 cm stretches; a line cut through the corner of a pillar, a
+//!    cabinet or a car has the corner's sides crossing its face band instead.
 //!
 //! Duplicates (the same wall found twice) merge into the longer one. Collinear walls join
 //! across a stretch of up to `max_join_gap_m` through which nothing was seen: a wall runs on
@@ -36,6 +39,7 @@ mod faces;
 mod fit;
 mod glimpses;
 mod joins;
+mod orientation;
 mod piers;
 mod support;
 

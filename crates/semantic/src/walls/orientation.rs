@@ -1,0 +1,167 @@
+//! Face orientation: does the surface a candidate's face points lie on run along it?
+//!
+//! A wall's face is a plane along the candidate: its points, seen from above, form a thin
+//! strip parallel to the line. The projection image also yields lines cut through the corner of
+//! a pillar or a cabinet, across the end of a car or along a diagonal of clutter; their "face"
+//! band holds points of surfaces that cross the line at an angle (the two sides of a corner, at
+//! about 45 degrees), enough of them at every height to pass the other tests. So, below head
+//! height, per stretch of [`BIN_M`] along the candidate, the points near the face (within
+//! [`BAND_M`]) are reduced to their principal direction in the horizontal plane; a stretch whose
+//! direction is within [`MAX_ANGLE_DEG`] of the line runs along it. A candidate on which fewer
+//! than [`MIN_ALONG`] of the stretches with points run along it is no wall.
+
+/// Stretches along the candidate: twice the support bins (a corner's side must show its slope
+/// across the 6 cm band, i.e. over at least 6 cm along).
+const BIN_M: f64 = 0.2;
+/// Points this far either side of a face: twice the faces' tolerance (3 cm), so that a crossing
+/// surface's slope shows and a wall's face noise (1-2 cm) stays inside.
+const BAND_M: f64 = 0.06;
+/// Fewest points in a stretch to give a direction.
+const MIN_POINTS: usize = 5;
+/// A stretch whose points run within this of the line runs along it (a face's points along a
+/// 20 cm stretch spread over its 20 cm along and a few centimetres across: a few degrees).
+const MAX_ANGLE_DEG: f64 = 20.0;
+/// ... and spread along it at least this many times more (variance) than across: a face's points
+/// over 20 cm along and 1-2 cm across are some thirty times; a corner's two sides once or twice.
+const MIN_ELONGATION: f64 = 4.0;
+/// Fewest stretches running along it, as a fraction of those with points: half (something
+/// standing against a wall crosses its band in places; a corner's sides cross it everywhere).
+pub(crate) const MIN_ALONG: f64 = 0.5;
+
+/// Per face and stretch: count and sums for the points' covariance in (along, across).
+#[derive(Clone, Copy, Default)]
+struct Moments {
+    n: usize,
+    s: f64,
+    d: f64,
+    ss: f64,
+    dd: f64,
+    sd: f64,
+}
+
+impl Moments {
+    fn add(&mut self, s: f64, d: f64) {
+        self.n += 1;
+        self.s += s;
+        self.d += d;
+        self.ss += s * s;
+        self.dd += d * d;
+        self.sd += s * d;
+    }
+
+    /// True if the points run along the line: their principal direction within
+    /// [`MAX_ANGLE_DEG`] of it, and their spread along that direction at least [`MIN_ELONGATION`]
+    /// times the spread across (the two sides of a corner meeting in the band spread both ways).
+    fn runs_along(&self) -> bool {
+        let n = self.n as f64;
+        let (ms, md) = (self.s / n, self.d / n);
+        let (css, cdd, csd) = (
+            self.ss / n - ms * ms,
+            self.dd / n - md * md,
+            self.sd / n - ms * md,
+        );
+        // Principal axis of a 2x2 covariance: half the angle of (css - cdd, 2 csd).
+        let angle = (0.5 * (2.0 * csd).atan2(css - cdd)).to_degrees().abs();
+        let (mean, half) = ((css + cdd) / 2.0, ((css - cdd) / 2.0).hypot(csd));
+        angle <= MAX_ANGLE_DEG && mean + half >= MIN_ELONGATION * (mean - half)
+    }
+}
+
+/// The points near a candidate's faces below head height, by stretch.
+pub(crate) struct FaceOrientation {
+    faces: Vec<f64>,
+    /// `bins[face][stretch]`.
+    bins: Vec<Vec<Moments>>,
+}
+
+impl FaceOrientation {
+    /// For a candidate `length_m` long with these face offsets.
+    pub fn new(length_m: f64, faces: &[f64]) -> FaceOrientation {
+        let n = ((length_m / BIN_M).ceil() as usize).clamp(1, 1_000_000);
+        FaceOrientation {
+            faces: faces.to_vec(),
+            bins: vec![vec![Moments::default(); n]; faces.len()],
+        }
+    }
+
+    /// Adds a point `s` along the candidate (from its start) and `d` off its line, which lies
+    /// below head height and above the floor.
+    pub fn add(&mut self, s: f64, d: f64) {
+        if s < 0.0 {
+            return;
+        }
+        let k = (s / BIN_M) as usize;
+        for (f, bins) in self.faces.iter().zip(&mut self.bins) {
+            if (d - f).abs() <= BAND_M {
+                if let Some(m) = bins.get_mut(k) {
+                    m.add(s - k as f64 * BIN_M, d - f);
+                }
+            }
+        }
+    }
+
+    /// The fraction of the stretches with points (on the face with the most points) that run
+    /// along the line; `None` where no stretch has enough points to tell.
+    pub fn along_fraction(&self) -> Option<f64> {
+        let face = self
+            .bins
+            .iter()
+            .max_by_key(|bins| bins.iter().map(|m| m.n).sum::<usize>())?;
+        let seen: Vec<&Moments> = face.iter().filter(|m| m.n >= MIN_POINTS).collect();
+        if seen.is_empty() {
+            return None;
+        }
+        let along = seen.iter().filter(|m| m.runs_along()).count();
+        Some(along as f64 / seen.len() as f64)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_face_runs_along_and_a_pillar_cut_diagonally_does_not() {
+        // A wall's face at offset 0.1: points every 2 cm along, 1 cm of noise across.
+        let mut wall = FaceOrientation::new(2.0, &[0.1]);
+        for i in 0..100 {
+            let s = i as f64 * 0.02;
+            wall.add(s, 0.1 + 0.01 * ((i % 3) as f64 - 1.0));
+        }
+        assert_eq!(wall.along_fraction(), Some(1.0));
+        // The line cut diagonally through a pillar: the side of the pillar crosses the band at
+        // 45 degrees (points on it every 1 cm); and where a line cuts a corner at about 60
+        // degrees to both sides, the corner's two sides meet in the band (a V).
+        let mut side = FaceOrientation::new(1.0, &[0.0]);
+        let mut corner = FaceOrientation::new(1.0, &[0.0]);
+        for i in 0..100 {
+            let t = i as f64 * 0.01;
+            for k in 0..5 {
+                let s = 0.2 * k as f64 + t * 0.2;
+                side.add(s, t * 0.2 - 0.1);
+            }
+            corner.add(t, 2.0 * (t - 0.5).abs() - 0.05);
+        }
+        assert_eq!(side.along_fraction(), Some(0.0));
+        assert_eq!(corner.along_fraction(), Some(0.0));
+        // Nothing near the face, or too few points: no verdict.
+        let mut empty = FaceOrientation::new(1.0, &[0.0]);
+        empty.add(0.5, 0.5);
+        empty.add(0.5, 0.0);
+        assert_eq!(empty.along_fraction(), None);
+    }
+
+    #[test]
+    fn the_face_with_most_points_decides() {
+        // Two faces 0.2 m apart: the left one seen along its length, the right one only by
+        // a few points of something crossing it.
+        let mut w = FaceOrientation::new(1.0, &[-0.1, 0.1]);
+        for i in 0..50 {
+            w.add(i as f64 * 0.02, -0.1);
+        }
+        for i in 0..8 {
+            w.add(0.5 + i as f64 * 0.01, 0.06 + i as f64 * 0.01);
+        }
+        assert_eq!(w.along_fraction(), Some(1.0));
+    }
+}

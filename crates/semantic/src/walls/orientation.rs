@@ -16,8 +16,10 @@ const BIN_M: f64 = 0.2;
 /// Points this far either side of a face: twice the faces' tolerance (3 cm), so that a crossing
 /// surface's slope shows and a wall's face noise (1-2 cm) stays inside.
 const BAND_M: f64 = 0.06;
-/// Fewest points in a stretch to give a direction.
+/// Fewest points in a stretch to give a direction ...
 const MIN_POINTS: usize = 5;
+/// ... spread along it over at least this (half the stretch).
+const MIN_SPREAD_M: f64 = 0.1;
 /// A stretch whose points run within this of the line runs along it (a face's points along a
 /// 20 cm stretch spread over its 20 cm along and a few centimetres across: a few degrees).
 const MAX_ANGLE_DEG: f64 = 20.0;
@@ -29,9 +31,11 @@ const MIN_ELONGATION: f64 = 4.0;
 pub(crate) const MIN_ALONG: f64 = 0.5;
 
 /// Per face and stretch: count and sums for the points' covariance in (along, across).
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy)]
 struct Moments {
     n: usize,
+    s_min: f64,
+    s_max: f64,
     s: f64,
     d: f64,
     ss: f64,
@@ -39,9 +43,33 @@ struct Moments {
     sd: f64,
 }
 
+impl Default for Moments {
+    fn default() -> Self {
+        Moments {
+            n: 0,
+            s_min: f64::INFINITY,
+            s_max: f64::NEG_INFINITY,
+            s: 0.0,
+            d: 0.0,
+            ss: 0.0,
+            dd: 0.0,
+            sd: 0.0,
+        }
+    }
+}
+
 impl Moments {
+    /// True if the stretch's points tell a direction: enough of them, spread along at least
+    /// half the stretch (a sparse scan's points on a far wall stand in one or two vertical
+    /// columns per stretch, one beam each: no horizontal direction to read).
+    fn tells(&self) -> bool {
+        self.n >= MIN_POINTS && self.s_max - self.s_min >= MIN_SPREAD_M
+    }
+
     fn add(&mut self, s: f64, d: f64) {
         self.n += 1;
+        self.s_min = self.s_min.min(s);
+        self.s_max = self.s_max.max(s);
         self.s += s;
         self.d += d;
         self.ss += s * s;
@@ -107,7 +135,7 @@ impl FaceOrientation {
             .bins
             .iter()
             .max_by_key(|bins| bins.iter().map(|m| m.n).sum::<usize>())?;
-        let seen: Vec<&Moments> = face.iter().filter(|m| m.n >= MIN_POINTS).collect();
+        let seen: Vec<&Moments> = face.iter().filter(|m| m.tells()).collect();
         if seen.is_empty() {
             return None;
         }
@@ -144,6 +172,15 @@ mod tests {
         }
         assert_eq!(side.along_fraction(), Some(0.0));
         assert_eq!(corner.along_fraction(), Some(0.0));
+        // A far wall in a sparse scan: one column of returns per stretch (many heights, one
+        // place along, 1 cm of noise across): no direction to read, no verdict.
+        let mut far = FaceOrientation::new(1.0, &[0.0]);
+        for k in 0..5 {
+            for i in 0..20 {
+                far.add(0.2 * k as f64 + 0.1, 0.01 * ((i % 3) as f64 - 1.0));
+            }
+        }
+        assert_eq!(far.along_fraction(), None);
         // Nothing near the face, or too few points: no verdict.
         let mut empty = FaceOrientation::new(1.0, &[0.0]);
         empty.add(0.5, 0.5);

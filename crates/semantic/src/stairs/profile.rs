@@ -7,6 +7,9 @@ use crate::points::{linear_fit, quantile};
 use glam::DVec2;
 use rayon::prelude::*;
 
+/// Returns up to this far above the grid's top level still lie on it (the levels' tolerance).
+const ABOVE_TOP_M: f64 = 0.035;
+
 /// A staircase profile along one direction.
 pub(crate) struct Profile {
     pub dir: DVec2,
@@ -53,7 +56,7 @@ pub(crate) fn profile(
             running
         })
         .collect();
-    let (rise0, offset) = level_grid(&maxima, c)?;
+    let (rise0, offset, top_level) = level_grid(&maxima, c)?;
     let mut highest: Vec<f64> = env.iter().map(|e| e.1).collect();
     highest.sort_by(|x, y| y.total_cmp(x));
     let top_height = *highest.get(1)?;
@@ -65,12 +68,34 @@ pub(crate) fn profile(
     // The edges are fitted to every point: a step's nosing has fewer neighbours than its tread
     // and riser, and the fit's violations bear the odd mixed pixel in front of it.
     let fit_env = envelope(all, dir, s_lo, nb, c.run_m[0] / 2.0);
-    let fit = [n0, n0 - 1.0, n0 + 1.0]
-        .into_iter()
-        .filter(|&n| n >= c.min_steps as f64 && n <= 64.0)
-        .filter(|&n| (c.rise_m[0]..=c.rise_m[1]).contains(&(top_height / n)))
-        .filter_map(|n| fit_steps(&fit_env, n as u32, top_height / n, c))
-        .reduce(|a, b| if b.best > a.best { b } else { a })?;
+    // A few returns above the top (mixed pixels between a landing's edge and the wall behind
+    // it, along rays that rise past the edge) set the top height too high, by two steps or
+    // more; then the highest level on the grid of levels is taken as the top as well, fitted
+    // to the envelope under it (those returns, above the model, would count against it).
+    let grid_top = offset + top_level * rise0;
+    let under: Vec<(f64, f64)> = if (top_level - n0).abs() >= 2.0 {
+        fit_env
+            .iter()
+            .copied()
+            .filter(|e| e.1 <= grid_top + ABOVE_TOP_M)
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let fit = [
+        (n0, top_height, &fit_env),
+        (n0 - 1.0, top_height, &fit_env),
+        (n0 + 1.0, top_height, &fit_env),
+        (top_level, grid_top, &under),
+    ]
+    .into_iter()
+    .filter(|&(n, _, env)| n >= c.min_steps as f64 && n <= 64.0 && !env.is_empty())
+    .filter(|&(n, top, _)| (c.rise_m[0]..=c.rise_m[1]).contains(&(top / n)))
+    .filter_map(|(n, top, env)| fit_steps(env, n as u32, top / n, c))
+    // (of the fits with a bin on most levels: a count too high by a step or two leaves its
+    // upper levels empty)
+    .filter(|f| f.found as f64 >= 0.6 * f.n as f64 && f.best > 0.0)
+    .reduce(|a, b| if b.best > a.best { b } else { a })?;
     let Fit {
         n,
         rise,
@@ -189,9 +214,10 @@ fn fit_steps(env: &[(f64, f64)], n: u32, rise: f64, c: &StairsConfig) -> Option<
     })
 }
 
-/// The rise and offset of a set of heights that pile up at whole multiples of one rise: the
-/// peaks of their histogram (1 cm bins, 3 cm window) fitted to the grid `offset + k rise`.
-fn level_grid(heights: &[f64], c: &StairsConfig) -> Option<(f64, f64)> {
+/// The rise and offset of a set of heights that pile up at whole multiples of one rise, and
+/// the highest multiple with a peak on it: the peaks of their histogram (1 cm bins, 3 cm
+/// window) fitted to the grid `offset + k rise`.
+fn level_grid(heights: &[f64], c: &StairsConfig) -> Option<(f64, f64, f64)> {
     let bin = 0.01;
     let n = ((c.max_height_m / bin).ceil() as usize + 2).min(100_000);
     let mut hist = vec![0usize; n];
@@ -217,7 +243,7 @@ fn level_grid(heights: &[f64], c: &StairsConfig) -> Option<(f64, f64)> {
     let mut candidates: Vec<f64> = peaks.windows(2).map(|p| p[1] - p[0]).collect();
     candidates.push(peaks[0] + 0.01);
     candidates.retain(|r| *r >= c.rise_m[0] && *r <= c.rise_m[1]);
-    let mut best: Option<(f64, f64, f64)> = None; // score, rise, offset
+    let mut best: Option<(f64, f64, f64, f64)> = None; // score, rise, offset, top level
     for r0 in candidates {
         let (mut rise, mut offset) = (r0, 0.0);
         let mut ks: Vec<f64> = Vec::new();
@@ -242,8 +268,68 @@ fn level_grid(heights: &[f64], c: &StairsConfig) -> Option<(f64, f64)> {
         let score = ks.len() as f64 - 0.5 * (top - ks.len() as f64);
         let enough = ks.len() >= c.min_steps as usize && ks.first().is_some_and(|&k| k <= 2.0);
         if enough && best.is_none_or(|b| score > b.0) {
-            best = Some((score, rise, offset));
+            best = Some((score, rise, offset, top));
         }
     }
-    best.map(|b| (b.1, b.2))
+    best.map(|b| (b.1, b.2, b.3))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A straight flight climbing +X from x = 0: `steps` steps of `rise` x `run`, a landing
+    /// 1.1 m deep, 1.2 m wide; points every 2 cm on treads and risers, 10 cm across.
+    fn flight(steps: u32, rise: f64, run: f64) -> Vec<(DVec2, f64)> {
+        let mut pts = Vec::new();
+        let across = |pts: &mut Vec<(DVec2, f64)>, x: f64, z: f64| {
+            for k in 0..12 {
+                pts.push((DVec2::new(x, -0.6 + 0.1 * k as f64), z));
+            }
+        };
+        for k in 0..steps {
+            let (x0, top) = (k as f64 * run, (k + 1) as f64 * rise);
+            let depth = if k + 1 == steps { run + 1.1 } else { run };
+            for i in 0..(rise / 0.02) as usize {
+                across(&mut pts, x0, top - rise + 0.02 * i as f64);
+            }
+            for i in 0..(depth / 0.02) as usize {
+                across(&mut pts, x0 + 0.02 * i as f64, top);
+            }
+        }
+        pts
+    }
+
+    /// Regression: office-1's 10-step flight (rise 0.16 m) was not found at all: mixed pixels
+    /// along rays rising past its landing's edge stood 0.2-0.4 m above the landing, so the top
+    /// height read as 12 steps, whose fit left the upper levels empty and was refused.
+    #[test]
+    fn returns_above_the_landing_do_not_add_steps() {
+        let c = StairsConfig::default();
+        let mut pts = flight(10, 0.16, 0.27);
+        // A veil over the landing: streaks of returns along rays rising past its edge, each
+        // return 1 cm above and 2 cm along the one before (so they continue each other as a
+        // surface's returns do), 0.2-0.26 m above it, between the heights an 11th and a 12th
+        // step would have.
+        for k in 0..6 {
+            let x = 2.9 + 0.12 * k as f64;
+            for i in 0..7 {
+                let q = DVec2::new(x + 0.02 * i as f64, -0.2 + 0.05 * k as f64);
+                pts.push((q, 1.8 + 0.01 * i as f64));
+            }
+        }
+        let p = profile(&pts, &pts, DVec2::X, &c).expect("a staircase");
+        assert_eq!(p.steps, 10);
+        assert!((p.rise - 0.16).abs() < 0.01, "rise {}", p.rise);
+        assert!((p.run - 0.27).abs() < 0.02, "run {}", p.run);
+        // The same flight without the veil, for reference.
+        let clean = profile(
+            &flight(10, 0.16, 0.27),
+            &flight(10, 0.16, 0.27),
+            DVec2::X,
+            &c,
+        )
+        .expect("a staircase");
+        assert_eq!(clean.steps, 10);
+    }
 }

@@ -105,9 +105,6 @@ pub(crate) fn profile(
         best,
     } = fit;
     let nf = n as f64;
-    if (found as f64) < 0.6 * nf || best <= 0.0 {
-        return None;
-    }
     Some(Profile {
         dir,
         rise,
@@ -301,7 +298,7 @@ mod tests {
     }
 
     /// Regression: office-1's 10-step flight (rise 0.16 m) was not found at all: mixed pixels
-    /// along rays rising past its landing's edge stood 0.2-0.4 m above the landing, so the top
+    /// along rays rising past its landing's edge stood 0.05-0.4 m above the landing, so the top
     /// height read as 12 steps, whose fit left the upper levels empty and was refused.
     #[test]
     fn returns_above_the_landing_do_not_add_steps() {
@@ -323,13 +320,8 @@ mod tests {
         assert!((p.rise - 0.16).abs() < 0.01, "rise {}", p.rise);
         assert!((p.run - 0.27).abs() < 0.02, "run {}", p.run);
         // The same flight without the veil, for reference.
-        let clean = profile(
-            &flight(10, 0.16, 0.27),
-            &flight(10, 0.16, 0.27),
-            DVec2::X,
-            &c,
-        )
-        .expect("a staircase");
+        let bare = flight(10, 0.16, 0.27);
+        let clean = profile(&bare, &bare, DVec2::X, &c).expect("a staircase");
         assert_eq!(clean.steps, 10);
     }
 }

@@ -32,7 +32,8 @@
 //! ends then move on to its face points glimpsed beyond a stretch of up to
 //! `max_glimpse_gap_m` that nobody saw ([`glimpses`]: through the doorway of a room not
 //! entered). A stretch no longer than a column is wide that stands free (the floor seen past
-//! both ends) is a column, not a wall ([`piers`]).
+//! both ends) is a column, not a wall; so is a row of such stretches, cut where the floor is
+//! seen deep in the wall's body with no face in front of it: pillars in a row ([`piers`]).
 
 mod extent;
 mod faces;
@@ -52,7 +53,7 @@ use fit::fit_wall;
 use glam::DVec2;
 use glimpses::extend_to_glimpses;
 use joins::merge_through_gaps;
-use piers::is_free_standing_pier;
+use piers::{is_free_standing_pier, is_row_of_piers};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -283,6 +284,8 @@ pub(crate) fn identify_walls(
     extend_to_glimpses(&mut kept, sc, c);
     // A pillar's face standing free with the floor seen past both ends is a column.
     kept.retain(|w| !is_free_standing_pier(w, sc));
+    // Pillars in a row, the floor seen between them where a wall's body would hide it, too.
+    kept.retain(|w| !is_row_of_piers(w, sc, c.face_tolerance_m));
     let mut measured: Vec<f64> = kept
         .iter()
         .filter(|w| w.measured)

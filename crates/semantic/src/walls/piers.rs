@@ -3,7 +3,16 @@
 //! stand at the edge of a doorway, or run on behind what hid them; a stretch no longer than a
 //! column is wide with the floor seen along its line beyond both ends stands free, and is a
 //! column (left to the obstacles stage), not a wall.
+//!
+//! A row of pillars is such piers in line: the Hough transform joins their faces into one
+//! segment, and the face tests see a wall face at every pillar. What no wall shows is the floor
+//! seen deep inside its body (more than the faces' noise behind the face, where a wall's body
+//! would hide it) between the pillars, with no face in front of it (the floor is seen through
+//! a glass wall's body too, but so is its face). So the candidate is cut wherever the floor is
+//! seen in its body and its face is not, and if every piece is no longer than a column is wide and stands free at both ends
+//! (the floor seen in the body on both sides), the candidate is a row of columns.
 
+use super::support::HEAD_HEIGHT_M;
 use super::WallFit;
 use crate::scene::Scene;
 
@@ -18,6 +27,97 @@ const BODY_DEPTH_M: f64 = 0.2;
 const MIN_FLOOR_POINTS: usize = 5;
 /// Floor points lie within this of the floor height (the laser's range noise is 1-2 cm).
 const FLOOR_TOL_M: f64 = 0.04;
+
+/// The floor is seen in the body this far inside it at least: behind a one-sided wall's face,
+/// or inside either face of a measured wall (the faces' noise is 1-3 cm, registration adds a
+/// few more).
+const DEEP_M: f64 = 0.06;
+/// Pieces are cut in bins this long along the wall.
+const ROW_BIN_M: f64 = 0.1;
+/// Floor points a bin shows in the body to cut the wall there (one is a stray return) ...
+const MIN_CUT_POINTS: usize = 2;
+/// ... with fewer face points than this below head height (as many are a face seen: a glass
+/// wall's; fewer are mixed pixels or a pillar's edge).
+const MAX_CUT_FACE_POINTS: usize = 5;
+/// The most bins looked at (a cap against absurd lengths).
+const MAX_BINS: usize = 1_000_000;
+
+/// True if `w` (before one-sided walls are moved to their centre lines) is a row of piers: cut
+/// wherever the floor is seen deep in its body and its face (within `face_tolerance_m`) is not
+/// seen below head height, every piece is at most a column wide and has
+/// such a cut (or the floor past the wall's end) on both sides.
+pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) -> bool {
+    // 1. Floor points deep in the body and face points below head height, per bin, from a
+    //    column's width before the start to as far past the end.
+    let reach = MAX_COLUMN_M;
+    let n = (((w.length + 2.0 * reach) / ROW_BIN_M).ceil() as usize).clamp(1, MAX_BINS);
+    let mut floor_in_body = vec![0usize; n];
+    let mut face = vec![0usize; n];
+    let faces: Vec<f64> = if w.measured {
+        w.faces.clone()
+    } else {
+        vec![0.0]
+    };
+    let half = w.thickness / 2.0;
+    let depth = if w.measured { half } else { BODY_DEPTH_M } + face_tolerance_m;
+    sc.index.for_each_near_line(
+        sc.points,
+        &w.line,
+        -reach,
+        w.length + reach,
+        depth,
+        |i, s, d| {
+            let k = ((s + reach) / ROW_BIN_M).floor();
+            if k < 0.0 || k as usize >= n {
+                return;
+            }
+            let (k, above_floor) = (k as usize, sc.z(i) - sc.floor);
+            let inside = if w.measured {
+                d.abs() <= half - DEEP_M.min(half / 2.0)
+            } else {
+                (DEEP_M..=BODY_DEPTH_M).contains(&(-w.free_side * d))
+            };
+            if inside && above_floor.abs() <= FLOOR_TOL_M {
+                floor_in_body[k] += 1;
+            }
+            if above_floor > 0.1
+                && above_floor < HEAD_HEIGHT_M
+                && faces.iter().any(|f| (d - f).abs() <= face_tolerance_m)
+            {
+                face[k] += 1;
+            }
+        },
+    );
+    let cut: Vec<bool> = (0..n)
+        .map(|k| floor_in_body[k] >= MIN_CUT_POINTS && face[k] < MAX_CUT_FACE_POINTS)
+        .collect();
+    // 2. The pieces between cuts that overlap the wall: each short, with a cut on both sides.
+    let (first, last) = (
+        (reach / ROW_BIN_M).round() as usize,
+        (((reach + w.length) / ROW_BIN_M).ceil() as usize).min(n),
+    );
+    let mut pieces = 0;
+    let mut k = 0;
+    while k < n {
+        if cut[k] {
+            k += 1;
+            continue;
+        }
+        let start = k;
+        while k < n && !cut[k] {
+            k += 1;
+        }
+        if k <= first || start >= last {
+            continue; // a piece wholly beyond the wall's ends
+        }
+        let free_both = start > 0 && k < n;
+        if !free_both || (k - start) as f64 * ROW_BIN_M > MAX_COLUMN_M {
+            return false;
+        }
+        pieces += 1;
+    }
+    pieces >= 1
+}
 
 /// True if `w` (before one-sided walls are moved to their centre lines: `w.line` is the face
 /// of a one-sided wall) is no longer than a column and the floor is seen where its body would
@@ -51,4 +151,91 @@ fn free_past(w: &WallFit, s0: f64, s1: f64, sc: &Scene) -> bool {
             }
         });
     n >= MIN_FLOOR_POINTS
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::points::{Line2, XyIndex};
+    use glam::{DVec2, Vec3};
+
+    /// A one-sided wall's face along y = 0 from x = 0 to `length`, free space at y < 0.
+    fn face(length: f64) -> WallFit {
+        WallFit {
+            line: Line2::through(DVec2::ZERO, DVec2::new(length, 0.0)),
+            length,
+            thickness: 0.0,
+            measured: false,
+            faces: Vec::new(),
+            free_side: -1.0,
+            z_range: (0.0, 3.0),
+            support: 100,
+            coverage: 1.0,
+            rules: Vec::new(),
+        }
+    }
+
+    /// Floor points on a 5 cm grid over x in [-2, 6], y in [-1, 1] where `solid` is false, and
+    /// face points on y = 0 at heights 0.2..1.8 where `faced` is true.
+    fn cloud(solid: impl Fn(f64, f64) -> bool, faced: impl Fn(f64) -> bool) -> Vec<Vec3> {
+        let mut points = Vec::new();
+        for i in 0..160 {
+            for j in 0..40 {
+                let (x, y) = (
+                    -2.0 + i as f64 * 0.05 + 0.025,
+                    -1.0 + j as f64 * 0.05 + 0.025,
+                );
+                if !solid(x, y) {
+                    points.push(Vec3::new(x as f32, y as f32, 0.0));
+                }
+            }
+            let x = -2.0 + i as f64 * 0.05 + 0.025;
+            if faced(x) {
+                for k in 0..9 {
+                    points.push(Vec3::new(x as f32, 0.0, 0.2 + k as f32 * 0.2));
+                }
+            }
+        }
+        points
+    }
+
+    fn row_of_piers(points: &[Vec3], w: &WallFit) -> bool {
+        let index = XyIndex::new(points, DVec2::splat(-3.0), DVec2::splat(7.0), 0.25);
+        let sc = Scene {
+            points,
+            index: &index,
+            upright: &index,
+            band_index: &index,
+            floor: 0.0,
+            ceiling: 3.0,
+            band: (1.0, 1.5),
+            middle: DVec2::ZERO,
+        };
+        is_row_of_piers(w, &sc, 0.03)
+    }
+
+    #[test]
+    fn pillars_in_a_row_with_the_floor_seen_between_them_are_no_wall() {
+        // Four 0.48 m pillars 0.875 m apart (0.395 m gaps), their faces on y = 0.
+        let pillar = |x: f64| (0..4).any(|k| (x - 0.24 - k as f64 * 0.875).abs() <= 0.24);
+        let points = cloud(|x, y| y > 0.0 && y < 0.48 && pillar(x), pillar);
+        assert!(row_of_piers(&points, &face(3.105)));
+    }
+
+    #[test]
+    fn a_wall_with_a_doorway_or_a_glass_wall_is_no_row_of_piers() {
+        // A 5 m wall with a 0.9 m doorway: the floor is seen in its body there, but the pieces
+        // either side are 2 m and 2.1 m long.
+        let wall = |x: f64| (0.0..=5.0).contains(&x) && !(2.0..2.9).contains(&x);
+        let points = cloud(|x, y| y > 0.0 && y < 0.2 && wall(x), wall);
+        assert!(!row_of_piers(&points, &face(5.0)));
+        // A glass wall: the floor seen through its body everywhere, its face too.
+        let points = cloud(|_, _| false, |x| (0.0..=5.0).contains(&x));
+        assert!(!row_of_piers(&points, &face(5.0)));
+        // The same pillars' faces without the floor seen between them (nothing seen behind
+        // the row: a wall with a few returns missing) stand as one piece.
+        let pillar = |x: f64| (0..4).any(|k| (x - 0.24 - k as f64 * 0.875).abs() <= 0.24);
+        let points = cloud(|x, y| y > 0.0 && y < 0.48 && x > 0.0 && x < 3.1, pillar);
+        assert!(!row_of_piers(&points, &face(3.105)));
+    }
 }

@@ -82,11 +82,18 @@ pub(crate) fn profile(
     } else {
         Vec::new()
     };
+    // Levels between the true ones (a side face's top edge sampled sparsely next to each
+    // riser, clutter beside the flight) can make the grid of levels lock onto a fraction of
+    // the rise: a grid at half the rise holds every true level, one at two thirds every second
+    // one. The counts for twice and one and a half times the grid's rise are fitted too.
+    let (n_half, n_two_thirds) = ((n0 / 2.0).round(), (n0 * 2.0 / 3.0).round());
     let fit = [
         (n0, top_height, &fit_env),
         (n0 - 1.0, top_height, &fit_env),
         (n0 + 1.0, top_height, &fit_env),
         (top_level, grid_top, &under),
+        (n_two_thirds, top_height, &fit_env),
+        (n_half, top_height, &fit_env),
     ]
     .into_iter()
     .filter(|&(n, _, env)| n >= c.min_steps as f64 && n <= 64.0 && !env.is_empty())
@@ -323,5 +330,39 @@ mod tests {
         let bare = flight(10, 0.16, 0.27);
         let clean = profile(&bare, &bare, DVec2::X, &c).expect("a staircase");
         assert_eq!(clean.steps, 10);
+    }
+
+    /// Regression: hall-4's upper flight (4 steps of 0.17 m, seen on its side face from the
+    /// floor) was not found: the side face's top edge, sampled sparsely, stood at heights
+    /// between the treads' in the first centimetres of each step, and the grid of levels locked
+    /// onto two thirds of the rise (its levels hold every true one but the odd ones), so the
+    /// counts fitted were 5 to 7, all refused.
+    #[test]
+    fn levels_between_the_treads_do_not_hide_the_rise() {
+        let c = StairsConfig::default();
+        let (rise, run) = (0.17, 0.27);
+        let grid = rise * 2.0 / 3.0;
+        let mut pts = Vec::new();
+        for k in 0..4 {
+            let (x0, top) = (k as f64 * run, (k + 1) as f64 * rise);
+            // The grid's level between this step's foot and its tread, over its first 8 cm.
+            let between = ((top - rise) / grid).floor() * grid + grid;
+            let depth = if k == 3 { run + 1.1 } else { run };
+            let mut x = x0;
+            while x < x0 + depth {
+                let z = if x < x0 + 0.08 && between < top - 0.02 {
+                    between
+                } else {
+                    top
+                };
+                for j in 0..12 {
+                    pts.push((DVec2::new(x, -0.6 + 0.1 * j as f64), z));
+                }
+                x += 0.02;
+            }
+        }
+        let p = profile(&pts, &pts, DVec2::X, &c).expect("a staircase");
+        assert_eq!(p.steps, 4);
+        assert!((p.rise - rise).abs() < 0.01, "rise {}", p.rise);
     }
 }

@@ -8,6 +8,22 @@ use crate::points::quantile;
 use crate::scene::Scene;
 use glam::DVec2;
 
+/// Points on the steps that give a staircase its width: fewer and it is taken from all of its
+/// blob's points.
+const MIN_WIDTH_POINTS: usize = 20;
+
+/// True if a point `s` along the flight's direction at height `z` (above its foot) lies on
+/// one of its steps: within the step's run, above the step below (by 2 cm) and at most 3 cm
+/// over its tread.
+fn on_a_step(p: &Profile, s: f64, z: f64) -> bool {
+    let k = ((s - p.front1) / p.run).floor();
+    if k < 0.0 || k >= f64::from(p.steps) {
+        return false;
+    }
+    let top = (k + 1.0) * p.rise;
+    z > top - p.rise + 0.02 && z <= top + 0.03
+}
+
 /// The staircase of the best profile: its width, landing and start from the blob's points;
 /// `None` if it is no staircase people could climb (see the module docs).
 pub(crate) fn finish(
@@ -17,7 +33,20 @@ pub(crate) fn finish(
     c: &StairsConfig,
 ) -> Option<DetectedStairs> {
     let dir = p.dir;
-    let mut ts: Vec<f64> = pts.iter().map(|(q, _)| dir.perp_dot(*q)).collect();
+    // The width from the points on the flight's steps (a tread, a riser or a side face between
+    // a step's height and the one below: as `per_step` counts them below), not from all of the
+    // blob's (a desk or chairs beside the flight join its blob at other heights); from all of
+    // them where too few are on the steps.
+    let on_steps: Vec<f64> = pts
+        .iter()
+        .filter(|(q, z)| on_a_step(&p, q.dot(dir), *z))
+        .map(|(q, _)| dir.perp_dot(*q))
+        .collect();
+    let mut ts: Vec<f64> = if on_steps.len() >= MIN_WIDTH_POINTS {
+        on_steps
+    } else {
+        pts.iter().map(|(q, _)| dir.perp_dot(*q)).collect()
+    };
     let mut t0 = quantile(&mut ts, 0.01).unwrap_or(0.0);
     let mut t1 = quantile(&mut ts, 0.99).unwrap_or(0.0);
     let mut width_rule = format!("{:.2} m wide across its points", t1 - t0);
@@ -133,8 +162,7 @@ pub(crate) fn finish(
         if k >= per_step.len() {
             continue;
         }
-        let top = (k + 1) as f64 * p.rise;
-        per_step[k] += usize::from(*z > top - p.rise + 0.02 && *z <= top + 0.03);
+        per_step[k] += usize::from(on_a_step(&p, q.dot(dir), *z));
     }
     // Seen from its side only, the lowest step's side face is a low strip at grazing angles
     // that clutter in the room hides first; the floor hidden under the whole footprint (checked
@@ -221,5 +249,81 @@ fn floor_density(sc: &Scene, dir: DVec2, s: (f64, f64), t: (f64, f64)) -> f64 {
         0.0
     } else {
         n as f64 / (cells.len() as f64 * 0.01)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::points::XyIndex;
+    use glam::Vec3;
+
+    /// Regression: office-3's 8-step flight joined one blob with a desk and its chairs 0.4 m
+    /// beside it; its width, taken over all of the blob's points, spanned the desk, and the
+    /// floor seen under the desk read as floor under the flight, so it was no staircase.
+    #[test]
+    fn a_desk_beside_a_flight_does_not_widen_it() {
+        let (rise, run) = (0.17, 0.27);
+        // The flight: 4 steps climbing +X from x = 0, 1 m wide (y 0..1); treads and risers
+        // every 2 cm.
+        let mut blob: Vec<(DVec2, f64)> = Vec::new();
+        for k in 0..4 {
+            let (x0, top) = (k as f64 * run, (k + 1) as f64 * rise);
+            for j in 0..50 {
+                let y = 0.01 + 0.02 * j as f64;
+                for i in 0..(rise / 0.02) as usize {
+                    blob.push((DVec2::new(x0, y), top - rise + 0.02 * i as f64));
+                }
+                for i in 0..(run / 0.02) as usize {
+                    blob.push((DVec2::new(x0 + 0.02 * i as f64, y), top));
+                }
+            }
+        }
+        // A desk beside it (y -1.2..-0.4, top 0.72 m) on four legs.
+        for i in 0..54 {
+            for j in 0..40 {
+                blob.push((DVec2::new(0.02 * i as f64, -1.2 + 0.02 * j as f64), 0.72));
+            }
+        }
+        for (x, y) in [(0.0, -1.2), (1.06, -1.2), (0.0, -0.42), (1.06, -0.42)] {
+            for i in 0..35 {
+                blob.push((DVec2::new(x, y), 0.02 * i as f64));
+            }
+        }
+        // The cloud: the blob over a floor seen everywhere but under the flight.
+        let mut points: Vec<Vec3> = blob
+            .iter()
+            .map(|(q, z)| Vec3::new(q.x as f32, q.y as f32, *z as f32))
+            .collect();
+        for i in 0..100 {
+            for j in 0..100 {
+                let (x, y) = (-1.0 + 0.04 * i as f64, -2.0 + 0.04 * j as f64);
+                if !((0.0..1.08).contains(&x) && (0.0..1.0).contains(&y)) {
+                    points.push(Vec3::new(x as f32, y as f32, 0.0));
+                }
+            }
+        }
+        let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(4.0), 0.25);
+        let sc = Scene {
+            points: &points,
+            index: &index,
+            upright: &index,
+            band_index: &index,
+            floor: 0.0,
+            ceiling: 2.5,
+            band: (1.0, 1.5),
+            middle: DVec2::ZERO,
+        };
+        let p = Profile {
+            dir: DVec2::X,
+            rise,
+            run,
+            front1: 0.0,
+            steps: 4,
+            found: 4,
+            score: 4.0,
+        };
+        let stairs = finish(&blob, p, &sc, &StairsConfig::default()).expect("a staircase");
+        assert!((stairs.width - 1.0).abs() < 0.05, "width {}", stairs.width);
     }
 }

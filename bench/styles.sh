@@ -70,8 +70,10 @@ def row(name, evs, poses):
     beams = sum(e.get("walls_on_beams_or_columns", 0) for e in evs)
     errs = [e["wall_endpoint_error_mean_m"] for e in evs if e.get("wall_endpoint_error_mean_m") is not None]
     err = sum(errs) / len(errs) if errs else float("nan")
+    bm = total(evs, "beams")
     return (f"| {name} | {poses} | {f1(w):.3f} | {f1(d):.3f} | {exact}/{st['expected']} | "
-            f"{false_stairs} | {recall:.3f} ({o['matched']}/{o['expected']}) | {beams} | {100 * err:.1f} |")
+            f"{false_stairs} | {recall:.3f} ({o['matched']}/{o['expected']}) | {beams} | {100 * err:.1f} | "
+            f"{bm['matched']}/{bm['expected']} ({bm['detected']}) |")
 
 lines = [
     "# The semantic map on every generator style",
@@ -82,11 +84,13 @@ lines = [
     "F1 and recall are over all buildings of the style (summed counts); stairs exact: staircases",
     "found with the true step count / staircases the scans saw; false stairs: staircases",
     "reported where there is none; beams as walls: walls reported on a beam or a row of pillars;",
-    "endpoint error: mean of the buildings' mean wall endpoint errors.",
+    "endpoint error: mean of the buildings' mean wall endpoint errors; beams found: true beams, ducts",
+    "and pipes matched / seen (beams the map reports).",
     "",
 ]
 header = ("| building | poses | walls F1 | doors F1 | stairs exact | false stairs | "
-          "obstacles recall | beams as walls | endpoint error (cm) |\n|---|---|---|---|---|---|---|---|---|")
+          "obstacles recall | beams as walls | endpoint error (cm) | beams found (reported) |\n"
+          "|---|---|---|---|---|---|---|---|---|---|")
 for style in styles:
     lines += [f"## {style}", "", header]
     evs, all_poses, failed = [], 0, 0
@@ -96,7 +100,7 @@ for style in styles:
         poses = sum(1 for n in os.listdir(scans) if n.endswith(".pcd")) if os.path.isdir(scans) else 0
         if os.path.exists(os.path.join(d, "failed.txt")):
             what = open(os.path.join(d, "failed.txt")).read().strip()
-            lines.append(f"| seed {seed} | {poses} | failed at `{what}` (see `{d}/log.txt`) | | | | | | |")
+            lines.append(f"| seed {seed} | {poses} | failed at `{what}` (see `{d}/log.txt`) | | | | | | | |")
             failed += 1
             continue
         ev = json.load(open(os.path.join(d, "eval.json")))

@@ -16,6 +16,9 @@
 //!    follow each other within `max_vertical_gap_m` (a shelf taller than head height, a column
 //!    up to the ceiling; not the beam over a car). The high points it climbed through are its
 //!    own; the rest cluster as the high band.
+//!    A high cluster filling little of its box, wider than a member is, may be a frame of
+//!    beams and the ducts under them, joined where they cross: split into its members
+//!    ([`frames`]).
 //! 4. Each cluster's box: the smallest-area rectangle around its footprint's convex hull
 //!    ([`fit`]; along a wall instead if that is at most 15 % larger), z from its points; a
 //!    bottom near the floor stands on it.
@@ -38,6 +41,7 @@ mod backing;
 mod classify;
 mod cluster;
 mod fit;
+mod frames;
 
 pub use fit::intersection_area as convex_intersection_area;
 mod merge;
@@ -52,6 +56,7 @@ use backing::{back_onto_walls, floor_seen};
 use classify::{classify, fit_cluster};
 use cloud::{check_range, EntityClass};
 use cluster::{components, BandGrid};
+use frames::{split_frame, MAX_FRAME_FILL, MIN_FRAME_ACROSS_M};
 use glam::{DVec2, Vec3};
 use merge::{absorb_parts, drop_wall_slivers, join_collinear};
 use partitions::classify_partition;
@@ -356,14 +361,14 @@ pub(crate) fn find_obstacles(
     //    connect (a beam carried by pillars is one beam), but their points are the column's.
     let tops = high_grid.tops(z_of);
     let occupied = |k: usize| high_grid.count(k) >= c.min_cell_points;
-    for cells in components(w, h, 2, occupied, |a, b| (tops[a] - tops[b]).abs() <= step) {
+    let fit_high = |cells: &[usize]| -> Option<DetectedObstacle> {
         let members: Vec<u32> = cells
             .iter()
             .flat_map(|&k| high_grid.points(k).iter().copied())
             .filter(|&i| !consumed[i as usize])
             .collect();
         if members.len() < c.min_points {
-            continue;
+            return None;
         }
         let mut zs: Vec<f64> = members
             .iter()
@@ -371,8 +376,19 @@ pub(crate) fn find_obstacles(
             .collect();
         let bottom = quantile(&mut zs, 0.02).unwrap_or(z_head);
         let top = zs.iter().copied().fold(f64::MIN, f64::max);
-        if let Some(o) = fit_cluster(sc, &members, cells.len(), (bottom, top), true, &frame, c) {
-            out.push(o);
+        fit_cluster(sc, &members, cells.len(), (bottom, top), true, &frame, c)
+    };
+    for cells in components(w, h, 2, occupied, |a, b| (tops[a] - tops[b]).abs() <= step) {
+        let Some(o) = fit_high(&cells) else {
+            continue;
+        };
+        // A frame of beams and the ducts under them is its members (see `frames`).
+        let frame_members = (o.fill <= MAX_FRAME_FILL && o.size[1] >= MIN_FRAME_ACROSS_M)
+            .then(|| split_frame(&cells, o.dir, &tops, &frame))
+            .flatten();
+        match frame_members {
+            Some(groups) => out.extend(groups.iter().filter_map(|g| fit_high(g))),
+            None => out.push(o),
         }
     }
     // 5-6. Put together, then classed.

@@ -30,6 +30,26 @@ impl Scene<'_> {
         self.points[i].z as f64
     }
 
+    /// A scene whose every index is `index` (tests: flat clouds that need no separate bands).
+    #[cfg(test)]
+    pub fn with_one_index<'a>(
+        points: &'a [Vec3],
+        index: &'a XyIndex,
+        floor: f64,
+        ceiling: f64,
+    ) -> Scene<'a> {
+        Scene {
+            points,
+            index,
+            upright: index,
+            band_index: index,
+            floor,
+            ceiling,
+            band: (floor + 1.0, floor + 1.5),
+            middle: DVec2::ZERO,
+        }
+    }
+
     /// True for a point on the floor or the ceiling.
     pub fn on_slab(&self, i: usize, tol: f64) -> bool {
         let z = self.z(i);

@@ -304,16 +304,7 @@ mod tests {
             }
         }
         let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(4.0), 0.25);
-        let sc = Scene {
-            points: &points,
-            index: &index,
-            upright: &index,
-            band_index: &index,
-            floor: 0.0,
-            ceiling: 2.5,
-            band: (1.0, 1.5),
-            middle: DVec2::ZERO,
-        };
+        let sc = Scene::with_one_index(&points, &index, 0.0, 2.5);
         let p = Profile {
             dir: DVec2::X,
             rise,

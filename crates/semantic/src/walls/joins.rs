@@ -115,16 +115,7 @@ mod tests {
     fn collinear_pieces_pointing_away_from_each_other_join_across_an_unseen_gap() {
         let points: Vec<Vec3> = Vec::new();
         let index = XyIndex::new(&points, DVec2::splat(-10.0), DVec2::splat(10.0), 0.5);
-        let sc = Scene {
-            points: &points,
-            index: &index,
-            upright: &index,
-            band_index: &index,
-            floor: 0.0,
-            ceiling: 2.5,
-            band: (1.0, 1.5),
-            middle: DVec2::ZERO,
-        };
+        let sc = Scene::with_one_index(&points, &index, 0.0, 2.5);
         let c = WallConfig::default();
         for flip in [false, true] {
             // [4.8 -> 9] and [4.2 -> 1.4]: 0.6 m apart, nothing seen through the gap.

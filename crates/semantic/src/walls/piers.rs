@@ -201,16 +201,7 @@ mod tests {
 
     fn row_of_piers(points: &[Vec3], w: &WallFit) -> bool {
         let index = XyIndex::new(points, DVec2::splat(-3.0), DVec2::splat(7.0), 0.25);
-        let sc = Scene {
-            points,
-            index: &index,
-            upright: &index,
-            band_index: &index,
-            floor: 0.0,
-            ceiling: 3.0,
-            band: (1.0, 1.5),
-            middle: DVec2::ZERO,
-        };
+        let sc = Scene::with_one_index(points, &index, 0.0, 3.0);
         is_row_of_piers(w, &sc, 0.03)
     }
 

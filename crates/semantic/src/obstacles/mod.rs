@@ -12,6 +12,8 @@
 //!    `max_top_step_m`: a surface's top changes little from cell to cell, while where one thing
 //!    stands beside another (a chair's seat by a desk, a car by a pillar, a duct under a beam)
 //!    the top steps.
+//!    Two things side by side joined by a few cells in the gap between them (mixed pixels,
+//!    a registration's smear) are cut apart at the neck ([`necks`]).
 //! 3. A low cluster's top climbs through the points above head height in its cells while they
 //!    follow each other within `max_vertical_gap_m` (a shelf taller than head height, a column
 //!    up to the ceiling; not the beam over a car). The high points it climbed through are its
@@ -46,6 +48,7 @@ mod frames;
 
 pub use fit::intersection_area as convex_intersection_area;
 mod merge;
+mod necks;
 mod partitions;
 
 use crate::image_frame::{pixel_center, pixel_range, ImageFrame};
@@ -60,6 +63,7 @@ pub use config::ObstacleConfig;
 use frames::{split_frame, MAX_FRAME_FILL, MIN_FRAME_ACROSS_M};
 use glam::{DVec2, Vec3};
 use merge::{absorb_parts, drop_wall_slivers, join_collinear};
+use necks::split_at_necks;
 use partitions::classify_partition;
 
 /// An obstacle, column or beam found in the cloud.
@@ -151,7 +155,10 @@ pub(crate) fn find_obstacles(
     // 2-3. Low clusters, their tops climbing into the high band.
     let tops = low_grid.tops(z_of);
     let occupied = |k: usize| low_grid.count(k) >= c.min_cell_points;
-    for cells in components(w, h, 2, occupied, |a, b| (tops[a] - tops[b]).abs() <= step) {
+    let low_clusters = components(w, h, 2, occupied, |a, b| (tops[a] - tops[b]).abs() <= step)
+        .into_iter()
+        .flat_map(|cells| split_at_necks(cells, &frame));
+    for cells in low_clusters {
         let members: Vec<u32> = cells
             .iter()
             .flat_map(|&k| low_grid.points(k).iter().copied())

@@ -1,0 +1,165 @@
+//! Things side by side, joined by a few cells: two parked cars 0.7 m apart, pillars in a row.
+//! The laser's mixed pixels between them (returns along rays grazing one, between it and the
+//! other), and the smear of a registration, leave an occupied cell here and there in the gap,
+//! and cells up to two apart join, so the two are one cluster. Across the gap, the cluster is
+//! a neck: cut into one-cell slices along either axis of its box, the slices in the gap hold a
+//! few cells where those through either thing hold many. A cluster is cut at its thinnest such
+//! neck with enough of it on both sides to be a thing (`MIN_SIDE_M`), and the parts are cut
+//! again; the cells of the neck are left out (stray returns, not a thing).
+
+use super::fit::{convex_hull, min_area_rect};
+use crate::image_frame::{pixel_center, ImageFrame};
+use glam::DVec2;
+
+/// A slice is a neck if it holds at most this fraction of the cells of the cluster's typical
+/// slice (the median) ...
+const NECK_SHARE: f64 = 0.25;
+/// ... with at least this much of the cluster, in slices fuller than a neck's, on each side
+/// (an obstacle the stage scores is over 0.3 m across).
+const MIN_SIDE_M: f64 = 0.3;
+/// Cuts at most this deep (a row of pillars is a few cuts; a cap against pathological input).
+const MAX_DEPTH: usize = 8;
+
+/// `cells` (indices into `frame`'s grid, row-major) cut at their necks (see the module docs).
+pub(super) fn split_at_necks(cells: Vec<usize>, frame: &ImageFrame) -> Vec<Vec<usize>> {
+    let mut out = Vec::new();
+    split(cells, frame, 0, &mut out);
+    out
+}
+
+fn split(cells: Vec<usize>, frame: &ImageFrame, depth: usize, out: &mut Vec<Vec<usize>>) {
+    let w = frame.width_px as usize;
+    let centre = |k: usize| pixel_center(frame, (k % w) as f64, (k / w) as f64);
+    let pts: Vec<DVec2> = cells.iter().map(|&k| centre(k)).collect();
+    let axes = min_area_rect(&convex_hull(&pts), &[]).map(|(_, d, _)| [d, d.perp()]);
+    let cut = match axes {
+        Some(axes) if depth < MAX_DEPTH => axes
+            .iter()
+            .filter_map(|&d| neck(&pts, d, frame.resolution_m))
+            .min_by(|a, b| a.0.total_cmp(&b.0)),
+        _ => None,
+    };
+    let Some((_, d, from, to)) = cut else {
+        out.push(cells);
+        return;
+    };
+    let (mut below, mut above) = (Vec::new(), Vec::new());
+    for (&k, p) in cells.iter().zip(&pts) {
+        let s = p.dot(d);
+        if s < from {
+            below.push(k);
+        } else if s > to {
+            above.push(k);
+        }
+    }
+    split(below, frame, depth + 1, out);
+    split(above, frame, depth + 1, out);
+}
+
+/// The thinnest neck of the cells at `pts` across direction `d`: (its share of the median
+/// slice, `d`, and the span along `d` it covers); `None` if there is none.
+fn neck(pts: &[DVec2], d: DVec2, cell_m: f64) -> Option<(f64, DVec2, f64, f64)> {
+    let s: Vec<f64> = pts.iter().map(|p| p.dot(d)).collect();
+    let lo = s.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = s.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
+        return None;
+    }
+    let n = (((hi - lo) / cell_m).round() as usize + 1).min(100_000);
+    let mut count = vec![0usize; n];
+    for v in &s {
+        count[(((v - lo) / cell_m).round() as usize).min(n - 1)] += 1;
+    }
+    let mut full: Vec<usize> = count.iter().copied().filter(|&c| c > 0).collect();
+    full.sort_unstable();
+    let median = *full.get(full.len() / 2)? as f64;
+    let thin = |i: usize| count[i] as f64 <= NECK_SHARE * median;
+    let side = (MIN_SIDE_M / cell_m).round() as usize;
+    // Slices fuller than a neck's before each slice, and after it.
+    let mut before = vec![0usize; n + 1];
+    for i in 0..n {
+        before[i + 1] = before[i] + usize::from(!thin(i));
+    }
+    let mut best: Option<(f64, usize)> = None;
+    for i in 0..n {
+        let after = before[n] - before[i + 1];
+        if thin(i) && before[i] >= side && after >= side {
+            let share = count[i] as f64 / median;
+            if best.is_none_or(|b| share < b.0) {
+                best = Some((share, i));
+            }
+        }
+    }
+    let (share, i) = best?;
+    // The neck: the run of thin slices around the thinnest one.
+    let (mut a, mut b) = (i, i);
+    while a > 0 && thin(a - 1) {
+        a -= 1;
+    }
+    while b + 1 < n && thin(b + 1) {
+        b += 1;
+    }
+    let at = |j: usize| lo + j as f64 * cell_m;
+    Some((share, d, at(a) - cell_m / 2.0, at(b) + cell_m / 2.0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grid() -> ImageFrame {
+        ImageFrame {
+            origin_m: [0.0, 6.0],
+            resolution_m: 0.1,
+            width_px: 100,
+            height_px: 60,
+        }
+    }
+
+    /// The cells whose centres `inside` holds.
+    fn cells(frame: &ImageFrame, inside: impl Fn(DVec2) -> bool) -> Vec<usize> {
+        let w = frame.width_px as usize;
+        (0..w * frame.height_px as usize)
+            .filter(|&k| inside(pixel_center(frame, (k % w) as f64, (k / w) as f64)))
+            .collect()
+    }
+
+    #[test]
+    fn two_cars_joined_by_a_few_stray_cells_are_cut_apart() {
+        let frame = grid();
+        // Two cars 1.8 x 4.5 m, 0.7 m apart along x; a line of stray cells across the gap.
+        let car = |p: DVec2, x0: f64| p.x > x0 && p.x < x0 + 1.8 && p.y > 0.5 && p.y < 5.0;
+        let stray = |p: DVec2| p.x > 2.8 && p.x < 3.5 && (p.y - 2.05).abs() < 0.05;
+        let all = cells(&frame, |p| car(p, 1.0) || car(p, 3.5) || stray(p));
+        let parts = split_at_necks(all, &frame);
+        assert_eq!(
+            parts.len(),
+            2,
+            "{:?}",
+            parts.iter().map(Vec::len).collect::<Vec<_>>()
+        );
+        assert!(
+            parts.iter().all(|p| p.len() == 18 * 45),
+            "{:?}",
+            parts.iter().map(Vec::len).collect::<Vec<_>>()
+        );
+    }
+
+    #[test]
+    fn a_table_with_a_chair_at_its_side_or_an_l_shaped_desk_stays_whole() {
+        let frame = grid();
+        // A 1.4 x 0.8 m table with a 0.45 m chair against its long side.
+        let table = |p: DVec2| p.x > 2.0 && p.x < 3.4 && p.y > 2.0 && p.y < 2.8;
+        let chair = |p: DVec2| p.x > 2.5 && p.x < 2.95 && p.y > 1.55 && p.y <= 2.0;
+        assert_eq!(
+            split_at_necks(cells(&frame, |p| table(p) || chair(p)), &frame).len(),
+            1
+        );
+        // An L: 2 x 0.8 m and 0.8 x 1.6 m.
+        let l = |p: DVec2| {
+            (p.x > 2.0 && p.x < 4.0 && p.y > 2.0 && p.y < 2.8)
+                || (p.x > 2.0 && p.x < 2.8 && p.y > 2.8 && p.y < 4.4)
+        };
+        assert_eq!(split_at_necks(cells(&frame, l), &frame).len(), 1);
+    }
+}

@@ -15,7 +15,7 @@
 //! landing where something stands beyond it.
 use super::envelope::{envelope, BIN_M};
 use super::plausible::finish;
-use super::profile::profile;
+use super::profile::{profile, profile_near};
 use super::{DetectedStairs, StairsConfig};
 use crate::scene::Scene;
 use glam::DVec2;
@@ -71,7 +71,9 @@ pub(super) fn two_flights(
         upper.retain(|(q, _)| q.dot(dir) < end);
         upper_all.retain(|(q, _)| q.dot(dir) < end);
     }
-    let second = profile(&upper, &upper_all, dir, c).and_then(|p| finish(&upper, p, sc, c));
+    let rise = first.as_ref().map(|f| f.rise);
+    let second =
+        profile_near(&upper, &upper_all, dir, c, rise).and_then(|p| finish(&upper, p, sc, c));
     match (first, second) {
         (Some(first), Some(mut second)) => {
             second.base = base;

@@ -39,6 +39,24 @@ pub(crate) fn profile(
     dir: DVec2,
     c: &StairsConfig,
 ) -> Option<Profile> {
+    profile_near(pts, all, dir, c, None)
+}
+
+/// A fit's rise this close (as a fraction) to the rise of the flight below is the same rise.
+const SAME_RISE: f64 = 0.15;
+
+/// [`profile`], for a flight whose risers should match `rise_hint` (the upper flight of a
+/// staircase whose lower flight was found: a staircase's risers are uniform). Its step count
+/// from the top height over that rise is fitted too, and of the fits within [`SAME_RISE`] of it
+/// the one nearest to it wins: seen from the floor below, an upper flight shows only its risers
+/// and side face, and a count one higher or lower can fit them about as well.
+pub(crate) fn profile_near(
+    pts: &[(DVec2, f64)],
+    all: &[(DVec2, f64)],
+    dir: DVec2,
+    c: &StairsConfig,
+    rise_hint: Option<f64>,
+) -> Option<Profile> {
     let bin = 0.01;
     let mut s: Vec<f64> = all.iter().map(|(q, _)| q.dot(dir)).collect();
     let s_lo = quantile(&mut s.clone(), 0.005)? - 0.05;
@@ -87,22 +105,38 @@ pub(crate) fn profile(
     // the rise: a grid at half the rise holds every true level, one at two thirds every second
     // one. The counts for twice and one and a half times the grid's rise are fitted too.
     let (n_half, n_two_thirds) = ((n0 / 2.0).round(), (n0 * 2.0 / 3.0).round());
-    let fit = [
+    let n_hint = rise_hint.map_or(0.0, |r| (top_height / r).round());
+    let mut counts = vec![
         (n0, top_height, &fit_env),
         (n0 - 1.0, top_height, &fit_env),
         (n0 + 1.0, top_height, &fit_env),
         (top_level, grid_top, &under),
         (n_two_thirds, top_height, &fit_env),
         (n_half, top_height, &fit_env),
-    ]
-    .into_iter()
-    .filter(|&(n, _, env)| n >= c.min_steps as f64 && n <= 64.0 && !env.is_empty())
-    .filter(|&(n, top, _)| (c.rise_m[0]..=c.rise_m[1]).contains(&(top / n)))
-    .filter_map(|(n, top, env)| fit_steps(env, n as u32, top / n, c))
-    // (of the fits with a bin on most levels: a count too high by a step or two leaves its
-    // upper levels empty)
-    .filter(|f| f.found as f64 >= 0.6 * f.n as f64 && f.best > 0.0)
-    .reduce(|a, b| if b.best > a.best { b } else { a })?;
+        (n_hint, top_height, &fit_env),
+    ];
+    counts.dedup_by(|a, b| a.0 == b.0 && a.1 == b.1 && std::ptr::eq(a.2, b.2));
+    let fits: Vec<Fit> = counts
+        .into_iter()
+        .filter(|&(n, _, env)| n >= c.min_steps as f64 && n <= 64.0 && !env.is_empty())
+        .filter(|&(n, top, _)| (c.rise_m[0]..=c.rise_m[1]).contains(&(top / n)))
+        .filter_map(|(n, top, env)| fit_steps(env, n as u32, top / n, c))
+        // (of the fits with a bin on most levels: a count too high by a step or two leaves
+        // its upper levels empty)
+        .filter(|f| f.found as f64 >= 0.6 * f.n as f64 && f.best > 0.0)
+        .collect();
+    let off = |f: &Fit, r: f64| (f.rise - r).abs() / r;
+    let near = rise_hint.and_then(|r| {
+        fits.iter()
+            .filter(|f| off(f, r) <= SAME_RISE)
+            .min_by(|a, b| off(a, r).total_cmp(&off(b, r)))
+    });
+    let fit = near
+        .or_else(|| {
+            fits.iter()
+                .reduce(|a, b| if b.best > a.best { b } else { a })
+        })?
+        .clone();
     let Fit {
         n,
         rise,
@@ -124,6 +158,7 @@ pub(crate) fn profile(
 }
 
 /// The stair model fitted to the envelope for one step count.
+#[derive(Clone)]
 struct Fit {
     n: u32,
     rise: f64,
@@ -364,5 +399,41 @@ mod tests {
         let p = profile(&pts, &pts, DVec2::X, &c).expect("a staircase");
         assert_eq!(p.steps, 4);
         assert!((p.rise - rise).abs() < 0.01, "rise {}", p.rise);
+    }
+
+    /// Regression: the upper flights of hall-3's and hall-8's mid-landing staircases (4 steps of
+    /// 0.16 m, 3 of 0.18 m), seen from the floor below on their risers and side faces only, fitted
+    /// one step more better; the lower flight's rise decides (a staircase's risers are uniform).
+    #[test]
+    fn the_rise_of_the_flight_below_decides_between_counts_that_fit_alike() {
+        let c = StairsConfig::default();
+        // A side face's stepped top edge, 3 steps of 0.18 x 0.26 m and a 1.1 m landing, sampled
+        // every 2 cm along; over the first `lead` of each step the edge shows at the level a
+        // 4-step flight to the same top would have there (a riser's foot, clutter).
+        let (rise, run): (f64, f64) = (0.18, 0.26);
+        let four = 3.0 * rise / 4.0;
+        let lead = 0.08;
+        let mut pts = Vec::new();
+        let mut x: f64 = 0.0;
+        while x < 3.0 * run + 1.1 {
+            let k = (x / run).floor().min(2.0);
+            let top = (k + 1.0) * rise;
+            let between = ((k * rise) / four).floor() * four + four;
+            let z = if x - k * run < lead && between < top - 0.02 {
+                between
+            } else {
+                top
+            };
+            for j in 0..10 {
+                pts.push((DVec2::new(x, 0.1 * j as f64), z));
+            }
+            x += 0.02;
+        }
+        let p = profile_near(&pts, &pts, DVec2::X, &c, Some(0.175)).expect("a flight");
+        assert_eq!(p.steps, 3);
+        assert!((p.rise - rise).abs() < 0.01, "rise {}", p.rise);
+        // A hint no count fits within 15 % of leaves the choice to the fits' scores.
+        let far = profile_near(&pts, &pts, DVec2::X, &c, Some(0.30)).map(|p| p.steps);
+        assert_eq!(far, profile(&pts, &pts, DVec2::X, &c).map(|p| p.steps));
     }
 }

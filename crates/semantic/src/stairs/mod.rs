@@ -33,6 +33,7 @@ use crate::image_frame::ImageFrame;
 mod config;
 mod envelope;
 mod flights;
+mod levels;
 mod plausible;
 mod profile;
 mod surface;

@@ -136,21 +136,11 @@ fn span(v: &[f64]) -> f64 {
 mod tests {
     use super::*;
 
-    /// A 10 x 6 m grid of 10 cm cells.
-    fn grid() -> ImageFrame {
-        ImageFrame {
-            origin_m: [0.0, 6.0],
-            resolution_m: 0.1,
-            width_px: 100,
-            height_px: 60,
-        }
-    }
-
     /// Beams along y at x = 1, 4, 7 (0.4 m wide, tops 2.8 m),
     /// a duct along x at y = 3 (0.5 m wide, top 2.5 m) passing under them.
     #[test]
     fn beams_and_a_duct_under_them_are_split_into_their_members() {
-        let frame = grid();
+        let frame = crate::obstacles::test_grid();
         let w = 100;
         let mut tops = vec![f32::MIN; 100 * 60];
         let mut cells = Vec::new();
@@ -187,7 +177,7 @@ mod tests {
 
     #[test]
     fn a_slab_or_a_single_beam_is_no_frame() {
-        let frame = grid();
+        let frame = crate::obstacles::test_grid();
         let tops = vec![2.8f32; 100 * 60];
         let beam: Vec<usize> = (0..60)
             .flat_map(|r| (10..14).map(move |c| r * 100 + c))

@@ -291,6 +291,17 @@ fn wall_cells(frame: &ImageFrame, walls: &[WallFit], margin: f64) -> Vec<bool> {
     excluded
 }
 
+/// A 10 x 6 m grid of 10 cm cells (the frames' and necks' tests).
+#[cfg(test)]
+pub(crate) fn test_grid() -> ImageFrame {
+    ImageFrame {
+        origin_m: [0.0, 6.0],
+        resolution_m: 0.1,
+        width_px: 100,
+        height_px: 60,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

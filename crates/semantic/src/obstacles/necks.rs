@@ -107,15 +107,6 @@ fn neck(pts: &[DVec2], d: DVec2, cell_m: f64) -> Option<(f64, DVec2, f64, f64)> 
 mod tests {
     use super::*;
 
-    fn grid() -> ImageFrame {
-        ImageFrame {
-            origin_m: [0.0, 6.0],
-            resolution_m: 0.1,
-            width_px: 100,
-            height_px: 60,
-        }
-    }
-
     /// The cells whose centres `inside` holds.
     fn cells(frame: &ImageFrame, inside: impl Fn(DVec2) -> bool) -> Vec<usize> {
         let w = frame.width_px as usize;
@@ -126,7 +117,7 @@ mod tests {
 
     #[test]
     fn two_cars_joined_by_a_few_stray_cells_are_cut_apart() {
-        let frame = grid();
+        let frame = crate::obstacles::test_grid();
         // Two cars 1.8 x 4.5 m, 0.7 m apart along x; a line of stray cells across the gap.
         let car = |p: DVec2, x0: f64| p.x > x0 && p.x < x0 + 1.8 && p.y > 0.5 && p.y < 5.0;
         let stray = |p: DVec2| p.x > 2.8 && p.x < 3.5 && (p.y - 2.05).abs() < 0.05;
@@ -147,7 +138,7 @@ mod tests {
 
     #[test]
     fn a_table_with_a_chair_at_its_side_or_an_l_shaped_desk_stays_whole() {
-        let frame = grid();
+        let frame = crate::obstacles::test_grid();
         // A 1.4 x 0.8 m table with a 0.45 m chair against its long side.
         let table = |p: DVec2| p.x > 2.0 && p.x < 3.4 && p.y > 2.0 && p.y < 2.8;
         let chair = |p: DVec2| p.x > 2.5 && p.x < 2.95 && p.y > 1.55 && p.y <= 2.0;

@@ -25,6 +25,11 @@ const SERVER_TIMEOUT: Duration = Duration::from_secs(90);
 /// How long the browser script may take (software WebGL on a loaded machine is slow); the
 /// script has its own, shorter, per-step time limits and says which step failed.
 const BROWSER_TIMEOUT: Duration = Duration::from_secs(240);
+/// One browser at a time: the two tests here each drive a page rendered by software WebGL, and
+/// the test harness runs them side by side; on a 2-core machine each slows the other (CI saw
+/// the driven page's clock not advance half a simulated second within 60 s twice in eight runs,
+/// in the step that overlaps the other test's page).
+static ONE_BROWSER_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
 /// The default building with no scripted commands: the robot waits in the corridor at
 /// (10, 0) facing east (+x), with 9 m of corridor ahead of it and the corridor's north wall
@@ -198,6 +203,10 @@ fn console_renders_and_drives_in_a_real_browser() {
     let Some(chromium) = oracles::program("chromium") else {
         return;
     };
+    // (a test that failed while holding the lock leaves it poisoned; the next may still run)
+    let _one = ONE_BROWSER_AT_A_TIME
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
     let d = Dir::new();
     d.write("scenario.toml", SCENARIO);
     d.write("sheet.pcd", sheet_pcd());
@@ -313,6 +322,10 @@ fn a_recorded_run_replays_in_a_real_browser_with_its_doors() {
     let Some(chromium) = oracles::program("chromium") else {
         return;
     };
+    // (a test that failed while holding the lock leaves it poisoned; the next may still run)
+    let _one = ONE_BROWSER_AT_A_TIME
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
     let d = Dir::new();
     d.run(&["simulate", "--out", "run"]).ok();
     // The door that swung most, and when it was at its widest (doors.csv, as recorded).

@@ -1,7 +1,8 @@
 //! Clusters of unexplained points: an XY occupancy grid per height band, each cell's top, and
 //! the connected components of the occupied cells whose tops join (see the `obstacles` module).
 
-use crate::image_frame::ImageFrame;
+use crate::image_frame::{pixel_center, ImageFrame};
+use glam::DVec2;
 
 /// The points of one height band bucketed by grid cell (compressed rows), and which cells are
 /// occupied by enough of them.
@@ -61,6 +62,31 @@ impl BandGrid {
             })
             .collect()
     }
+}
+
+/// The centres (map frame) of the grid cells `cells` (indices into `frame`'s grid, row-major).
+pub(super) fn cell_centres(cells: &[usize], frame: &ImageFrame) -> Vec<DVec2> {
+    let w = frame.width_px as usize;
+    cells
+        .iter()
+        .map(|&k| pixel_center(frame, (k % w) as f64, (k / w) as f64))
+        .collect()
+}
+
+/// `values` counted in slices `cell_m` wide, the first centred on the smallest: that smallest
+/// value and the counts; `None` for no values.
+pub(super) fn slice_counts(values: &[f64], cell_m: f64) -> Option<(f64, Vec<usize>)> {
+    let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    if hi < lo {
+        return None;
+    }
+    let n = (((hi - lo) / cell_m).round() as usize + 1).min(1_000_000);
+    let mut count = vec![0usize; n];
+    for v in values {
+        count[(((v - lo) / cell_m).round() as usize).min(n - 1)] += 1;
+    }
+    Some((lo, count))
 }
 
 /// The connected components of the cells for which `occupied` holds, each a list of cell

@@ -9,8 +9,8 @@
 //! beam's); the duct's pieces between beams are joined again along their line afterwards (as
 //! any duct that a beam cuts, see `merge`). Cells on no member stay together (a lamp).
 
-use super::cluster::components;
-use crate::image_frame::{pixel_center, ImageFrame};
+use super::cluster::{cell_centres, components, slice_counts};
+use crate::image_frame::ImageFrame;
 use glam::DVec2;
 
 /// A cluster is looked at as a frame only if its cells fill at most this fraction of its box
@@ -35,20 +35,20 @@ pub(super) fn split_frame(
 ) -> Option<Vec<Vec<usize>>> {
     let w = frame.width_px as usize;
     let cell_m = frame.resolution_m;
-    let centre = |k: usize| pixel_center(frame, (k % w) as f64, (k / w) as f64);
+    let centres = cell_centres(cells, frame);
     // 1. The members along each axis: runs of 1-cell lines across it holding cells along at
     //    least half of the extent along it.
     let mut bands: Vec<(usize, f64, f64)> = Vec::new(); // (axis, from, to) across the axis
     for (axis, d) in [dir, dir.perp()].into_iter().enumerate() {
-        let along: Vec<f64> = cells.iter().map(|&k| centre(k).dot(d)).collect();
-        let across: Vec<f64> = cells.iter().map(|&k| centre(k).perp_dot(d)).collect();
-        let extent = span(&along) + cell_m;
-        let lo = across.iter().copied().fold(f64::INFINITY, f64::min);
-        let n = ((span(&across) / cell_m).round() as usize + 1).min(1_000_000);
-        let mut count = vec![0usize; n];
-        for t in &across {
-            count[(((t - lo) / cell_m).round() as usize).min(n - 1)] += 1;
-        }
+        let along: Vec<f64> = centres.iter().map(|p| p.dot(d)).collect();
+        let across: Vec<f64> = centres.iter().map(|p| p.perp_dot(d)).collect();
+        let (Some((_, along_slices)), Some((lo, count))) =
+            (slice_counts(&along, cell_m), slice_counts(&across, cell_m))
+        else {
+            return None;
+        };
+        let extent = along_slices.len() as f64 * cell_m;
+        let n = count.len();
         let full = |i: usize| count[i] as f64 * cell_m >= MIN_MEMBER_SHARE * extent;
         let mut i = 0;
         while i < n {
@@ -74,8 +74,7 @@ pub(super) fn split_frame(
         return None;
     }
     // 2. The bands each cell lies on.
-    let on = |k: usize| -> Vec<usize> {
-        let p = centre(k);
+    let on = |p: DVec2| -> Vec<usize> {
         (0..bands.len())
             .filter(|&b| {
                 let (axis, from, to) = bands[b];
@@ -84,7 +83,7 @@ pub(super) fn split_frame(
             })
             .collect()
     };
-    let on_cells: Vec<Vec<usize>> = cells.iter().map(|&k| on(k)).collect();
+    let on_cells: Vec<Vec<usize>> = centres.iter().map(|&p| on(p)).collect();
     // 3. Each member's height: the median top of its cells on no other member.
     let height: Vec<f32> = (0..bands.len())
         .map(|b| {
@@ -121,20 +120,10 @@ pub(super) fn split_frame(
     Some(out)
 }
 
-/// Largest minus smallest of `v` (0 for none).
-fn span(v: &[f64]) -> f64 {
-    let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
-    let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    if hi >= lo {
-        hi - lo
-    } else {
-        0.0
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::image_frame::pixel_center;
 
     /// Beams along y at x = 1, 4, 7 (0.4 m wide, tops 2.8 m),
     /// a duct along x at y = 3 (0.5 m wide, top 2.5 m) passing under them.

@@ -7,8 +7,9 @@
 //! neck with enough of it on both sides to be a thing (`MIN_SIDE_M`), and the parts are cut
 //! again; the cells of the neck are left out (stray returns, not a thing).
 
+use super::cluster::{cell_centres, slice_counts};
 use super::fit::{convex_hull, min_area_rect};
-use crate::image_frame::{pixel_center, ImageFrame};
+use crate::image_frame::ImageFrame;
 use glam::DVec2;
 
 /// A slice is a neck if it holds at most this fraction of the cells of the cluster's typical
@@ -28,9 +29,7 @@ pub(super) fn split_at_necks(cells: Vec<usize>, frame: &ImageFrame) -> Vec<Vec<u
 }
 
 fn split(cells: Vec<usize>, frame: &ImageFrame, depth: usize, out: &mut Vec<Vec<usize>>) {
-    let w = frame.width_px as usize;
-    let centre = |k: usize| pixel_center(frame, (k % w) as f64, (k / w) as f64);
-    let pts: Vec<DVec2> = cells.iter().map(|&k| centre(k)).collect();
+    let pts = cell_centres(&cells, frame);
     let axes = min_area_rect(&convex_hull(&pts), &[]).map(|(_, d, _)| [d, d.perp()]);
     let cut = match axes {
         Some(axes) if depth < MAX_DEPTH => axes
@@ -60,16 +59,8 @@ fn split(cells: Vec<usize>, frame: &ImageFrame, depth: usize, out: &mut Vec<Vec<
 /// slice, `d`, and the span along `d` it covers); `None` if there is none.
 fn neck(pts: &[DVec2], d: DVec2, cell_m: f64) -> Option<(f64, DVec2, f64, f64)> {
     let s: Vec<f64> = pts.iter().map(|p| p.dot(d)).collect();
-    let lo = s.iter().copied().fold(f64::INFINITY, f64::min);
-    let hi = s.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
-        return None;
-    }
-    let n = (((hi - lo) / cell_m).round() as usize + 1).min(100_000);
-    let mut count = vec![0usize; n];
-    for v in &s {
-        count[(((v - lo) / cell_m).round() as usize).min(n - 1)] += 1;
-    }
+    let (lo, count) = slice_counts(&s, cell_m)?;
+    let n = count.len();
     let mut full: Vec<usize> = count.iter().copied().filter(|&c| c > 0).collect();
     full.sort_unstable();
     let median = *full.get(full.len() / 2)? as f64;
@@ -106,6 +97,7 @@ fn neck(pts: &[DVec2], d: DVec2, cell_m: f64) -> Option<(f64, DVec2, f64, f64)> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::image_frame::pixel_center;
 
     /// The cells whose centres `inside` holds.
     fn cells(frame: &ImageFrame, inside: impl Fn(DVec2) -> bool) -> Vec<usize> {

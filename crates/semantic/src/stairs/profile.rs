@@ -116,7 +116,14 @@ pub(crate) fn profile_near(
         (n_half, top_height, &fit_env),
         (n_hint, top_height, &fit_env),
     ];
-    counts.dedup_by(|a, b| a.0 == b.0 && a.1 == b.1 && std::ptr::eq(a.2, b.2));
+    // (each count once: a fit is a grid search, and the stairs stage is the map's slowest)
+    let mut seen = Vec::new();
+    counts.retain(|&(n, top, env)| {
+        let key = (n, top, std::ptr::from_ref(env));
+        let new = !seen.contains(&key);
+        seen.push(key);
+        new
+    });
     let fits: Vec<Fit> = counts
         .into_iter()
         .filter(|&(n, _, env)| n >= c.min_steps as f64 && n <= 64.0 && !env.is_empty())

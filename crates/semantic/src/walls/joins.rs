@@ -91,21 +91,14 @@ pub(crate) fn seen_through(w: &WallFit, s0: f64, s1: f64, sc: &Scene) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::points::{Line2, XyIndex};
+    use crate::points::XyIndex;
     use glam::{DVec2, Vec3};
 
     fn one_sided(from: DVec2, to: DVec2) -> WallFit {
         WallFit {
-            line: Line2::through(from, to),
-            length: from.distance(to),
             thickness: 0.2,
-            measured: false,
-            faces: Vec::new(),
-            free_side: 1.0,
             z_range: (0.0, 2.5),
-            support: 100,
-            coverage: 1.0,
-            rules: Vec::new(),
+            ..WallFit::one_sided(from, to, 1.0)
         }
     }
 

@@ -234,6 +234,26 @@ impl WallFit {
     }
 }
 
+#[cfg(test)]
+impl WallFit {
+    /// A wall seen from one side (thickness not yet resolved), its face from `from` to `to`,
+    /// the free space on `free_side` (+1 left, -1 right), 3 m tall (tests).
+    pub fn one_sided(from: DVec2, to: DVec2, free_side: f64) -> WallFit {
+        WallFit {
+            line: Line2::through(from, to),
+            length: from.distance(to),
+            thickness: 0.0,
+            measured: false,
+            faces: Vec::new(),
+            free_side,
+            z_range: (0.0, 3.0),
+            support: 100,
+            coverage: 1.0,
+            rules: Vec::new(),
+        }
+    }
+}
+
 /// Measures every prerequisite and returns the walls, duplicates merged, thickness of
 /// one-sided walls resolved.
 pub(crate) fn identify_walls(
@@ -339,25 +359,6 @@ fn duplicate(k: &WallFit, w: &WallFit, c: &WallConfig, max_angle_deg: f64) -> bo
 mod tests {
     use super::*;
 
-    /// A one-sided wall (thickness not yet resolved) from `a` to `b`.
-    fn one_sided(a: DVec2, b: DVec2) -> WallFit {
-        WallFit {
-            line: Line2 {
-                origin: a,
-                dir: (b - a).normalize(),
-            },
-            length: a.distance(b),
-            thickness: 0.0,
-            measured: false,
-            faces: Vec::new(),
-            free_side: 1.0,
-            z_range: (0.0, 3.0),
-            support: 100,
-            coverage: 1.0,
-            rules: Vec::new(),
-        }
-    }
-
     /// Regression: a garage's outer wall was found twice, the second time along a line 1 degree
     /// off (16 cm in front of the face at one end, 12 cm behind it at the other: a veil of mixed
     /// pixels under a pipe); walls seen from one side had no thickness at this stage, so the
@@ -365,11 +366,11 @@ mod tests {
     #[test]
     fn one_sided_walls_a_degree_apart_within_a_wall_thickness_are_duplicates() {
         let c = WallConfig::default();
-        let outer = one_sided(DVec2::new(0.0, 0.0), DVec2::new(47.5, 0.0));
-        let copy = one_sided(DVec2::new(32.5, 0.16), DVec2::new(47.5, -0.12));
+        let outer = WallFit::one_sided(DVec2::new(0.0, 0.0), DVec2::new(47.5, 0.0), 1.0);
+        let copy = WallFit::one_sided(DVec2::new(32.5, 0.16), DVec2::new(47.5, -0.12), 1.0);
         assert!(duplicate(&outer, &copy, &c, 4.0));
         // A wall 0.5 m in front of it (a corridor's other side is farther still) is not.
-        let other = one_sided(DVec2::new(32.5, 0.5), DVec2::new(47.5, 0.5));
+        let other = WallFit::one_sided(DVec2::new(32.5, 0.5), DVec2::new(47.5, 0.5), 1.0);
         assert!(!duplicate(&outer, &other, &c, 4.0));
     }
 }

@@ -9,8 +9,8 @@
 //! seen deep inside its body (more than the faces' noise behind the face, where a wall's body
 //! would hide it) between the pillars, with no face in front of it (the floor is seen through
 //! a glass wall's body too, but so is its face). So the candidate is cut wherever the floor is
-//! seen in its body and its face is not, and if every piece is no longer than a column is wide and stands free at both ends
-//! (the floor seen in the body on both sides), the candidate is a row of columns.
+//! seen in its body and its face is not; if every piece is no longer than a column is wide and
+//! stands free at both ends (cut on both sides), the candidate is a row of columns.
 
 use super::support::HEAD_HEIGHT_M;
 use super::WallFit;
@@ -44,8 +44,8 @@ const MAX_BINS: usize = 1_000_000;
 
 /// True if `w` (before one-sided walls are moved to their centre lines) is a row of piers: cut
 /// wherever the floor is seen deep in its body and its face (within `face_tolerance_m`) is not
-/// seen below head height, every piece is at most a column wide and has
-/// such a cut (or the floor past the wall's end) on both sides.
+/// seen below head height, every piece is at most a column wide and has such a cut on both
+/// sides (within the wall or up to a column's width past its ends).
 pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) -> bool {
     // 1. Floor points deep in the body and face points below head height, per bin, from a
     //    column's width before the start to as far past the end.
@@ -156,23 +156,12 @@ fn free_past(w: &WallFit, s0: f64, s1: f64, sc: &Scene) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::points::{Line2, XyIndex};
+    use crate::points::XyIndex;
     use glam::{DVec2, Vec3};
 
     /// A one-sided wall's face along y = 0 from x = 0 to `length`, free space at y < 0.
     fn face(length: f64) -> WallFit {
-        WallFit {
-            line: Line2::through(DVec2::ZERO, DVec2::new(length, 0.0)),
-            length,
-            thickness: 0.0,
-            measured: false,
-            faces: Vec::new(),
-            free_side: -1.0,
-            z_range: (0.0, 3.0),
-            support: 100,
-            coverage: 1.0,
-            rules: Vec::new(),
-        }
+        WallFit::one_sided(DVec2::ZERO, DVec2::new(length, 0.0), -1.0)
     }
 
     /// Floor points on a 5 cm grid over x in [-2, 6], y in [-1, 1] where `solid` is false, and

@@ -194,27 +194,39 @@ impl Layout {
 
     /// Places a staircase if its footprint (grown by a 0.3 m margin to walk round it) is free
     /// on the floor and open above; true if placed.
+    /// The landing at its foot ([`FOOT_LANDING_M`] deep, as wide as the flight) is kept free
+    /// too: a flight is climbed from the front.
     pub fn stairs(&mut self, s: Staircase) -> bool {
         let fp = stairs_footprint(&s);
-        if !self.is_free(&fp.grown(0.3)) || !self.is_open_above(&fp) {
+        let foot = foot_landing(&s);
+        if !self.is_free(&fp.grown(0.3)) || !self.is_free(&foot) || !self.is_open_above(&fp) {
             return false;
         }
         self.taken.push(fp.grown(0.3));
+        self.taken.push(foot);
         self.b.stairs.push(s);
         true
     }
 
     /// Places the flights of one staircase (a flight and the one starting on its landing) if
-    /// all their footprints (grown by 0.3 m) are free and open above; true if placed.
+    /// all their footprints (grown by 0.3 m) and the first flight's foot landing are free and
+    /// open above; true if placed.
     pub fn flights(&mut self, flights: Vec<Staircase>) -> bool {
         let fps: Vec<Footprint> = flights.iter().map(stairs_footprint).collect();
+        let feet: Vec<Footprint> = flights
+            .iter()
+            .filter(|s| s.base_m == 0.0)
+            .map(foot_landing)
+            .collect();
         if !fps
             .iter()
             .all(|fp| self.is_free(&fp.grown(0.3)) && self.is_open_above(fp))
+            || !feet.iter().all(|f| self.is_free(f))
         {
             return false;
         }
         self.taken.extend(fps.iter().map(|fp| fp.grown(0.3)));
+        self.taken.extend(feet);
         self.b.stairs.extend(flights);
         true
     }
@@ -241,6 +253,22 @@ fn stairs_footprint(s: &Staircase) -> Footprint {
             s.start_m[1] + a.sin() * len / 2.0,
         ],
         half: [len / 2.0, s.width_m / 2.0],
+        yaw: a,
+    }
+}
+
+/// How deep the clear landing at a flight's foot is (m): building codes ask at least the
+/// stair's width or about 0.9 m; the generated flights are 0.9-1.3 m wide.
+pub const FOOT_LANDING_M: f64 = 0.9;
+
+/// The floor in front of a flight's first riser kept clear to walk onto it
+/// ([`FOOT_LANDING_M`] deep, as wide as the flight).
+fn foot_landing(s: &Staircase) -> Footprint {
+    let a = s.direction_deg.to_radians();
+    let back = FOOT_LANDING_M / 2.0;
+    Footprint {
+        c: [s.start_m[0] - a.cos() * back, s.start_m[1] - a.sin() * back],
+        half: [back, s.width_m / 2.0],
         yaw: a,
     }
 }

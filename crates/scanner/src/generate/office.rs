@@ -6,7 +6,7 @@
 //! ceilings 2.6-3.1 m: ordinary office floors.
 
 use super::furniture::{cabinet, chair, clutter, table, Place};
-use super::layout::{wall, Footprint, Layout};
+use super::layout::{wall, Footprint, Layout, FOOT_LANDING_M};
 use super::stairs::{flight, two_flights};
 use crate::building::{Building, Door, Hinge, Leaf, Material, Swing, Wall};
 use cloud::Rng;
@@ -138,12 +138,15 @@ pub(super) fn generate(seed: u64) -> Building {
     for (n, &i) in by_size.iter().take(2).enumerate() {
         let room = &rooms[i];
         let east = r.chance(0.5);
+        // The first riser stands a foot landing away from the side wall (a flight is climbed
+        // from the front); the top landing keeps 0.35 m from the far wall.
+        let foot = 0.05 + FOOT_LANDING_M;
         let (x, dir) = if east {
-            (room.x0 + 0.35, 0.0)
+            (room.x0 + foot, 0.0)
         } else {
-            (room.x1 - 0.35, 180.0)
+            (room.x1 - foot, 180.0)
         };
-        let max_len = room.x1 - room.x0 - 0.7;
+        let max_len = room.x1 - room.x0 - foot - 0.35;
         // The largest room's staircase has a landing half-way where it fits.
         let y_for = |width: f64| {
             if room.north {

@@ -5,15 +5,18 @@
 //!    [`BLOCKING_TOP_M`] are walked under); free cells are those farther than the tripod's
 //!    clearance from any blocked one. Free space touching the floor's edge lies outside the
 //!    walls and is dropped.
-//! 2. The reachable free space: the largest connected region (rooms join it through door
-//!    openings wide enough for the tripod; a closed door cuts its room off).
+//! 2. The reachable space: the largest connected region the surveyor passes through (with
+//!    `pass_clearance_m`, less than a standing tripod's: a door left ajar lets a person
+//!    through; a closed door cuts its room off); poses stand on its free cells.
 //! 3. Poses, greedily: first the candidate (cells every `candidate_step_m`) that sees the most
 //!    free floor within `cover_radius_m`, then always the candidate seeing most floor not yet
 //!    seen, among those within `max_step_m` of a chosen pose and in its line of sight and
 //!    sharing at least `min_overlap` of their floor with what was seen, until the gain is
 //!    under `min_gain_m2`. Then every room (a region of free floor with the doors shut)
 //!    reached through an open door and still without a pose gets one: the pose in it that
-//!    shares most with what was seen, linked to a chosen one.
+//!    shares most with what was seen, linked to a chosen one; and every staircase that
+//!    starts on the floor is seen from its foot (a pose in front of its first riser, reached
+//!    over stepping stones where it is far from every pose).
 //! 4. Ordered as a walk: always on to the nearest pose that has an earlier one close by and
 //!    in sight (what registering scan k against scans 0..k-1 needs), so that consecutive
 //!    poses stay close (odometry drifts with distance); each yaw points the way walked.
@@ -39,6 +42,12 @@ pub struct SurveyConfig {
     pub cell_m: f64,
     /// How far a pose stays from anything solid (m): a tripod's legs spread about 0.3 m.
     pub clearance_m: f64,
+    /// How far the surveyor walking between poses stays from anything solid (m): a person
+    /// carrying a folded tripod passes sideways through a door left ajar.
+    pub pass_clearance_m: f64,
+    /// How far from the foot of a staircase a pose may stand to count as seeing it from
+    /// there (m); one more pose stands there if none does.
+    pub stairs_view_m: f64,
     /// How far a scan is counted as covering the floor (m). The laser reaches 30 m, but at
     /// 4 m its 0.5 degree beam spacing already leaves 3.5 cm between points, about what the
     /// semantic stage's grid resolves, and walls farther away are seen at grazing angles.
@@ -64,6 +73,8 @@ impl Default for SurveyConfig {
         SurveyConfig {
             cell_m: 0.1,
             clearance_m: 0.3,
+            pass_clearance_m: 0.2,
+            stairs_view_m: 3.0,
             cover_radius_m: 4.0,
             max_step_m: 2.5,
             candidate_step_m: 0.5,
@@ -83,6 +94,20 @@ impl SurveyConfig {
             0.0,
             2.0,
             "within 0..2 m",
+        )?;
+        check_range(
+            "survey.pass_clearance_m",
+            self.pass_clearance_m,
+            0.0,
+            self.clearance_m,
+            "within 0..clearance_m",
+        )?;
+        check_range(
+            "survey.stairs_view_m",
+            self.stairs_view_m,
+            0.5,
+            30.0,
+            "within 0.5..30 m",
         )?;
         check_range(
             "survey.cover_radius_m",
@@ -135,12 +160,13 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
         },
         msg: msg.into(),
     };
-    // 1. The floor grid and its free cells.
+    // 1. The floor grid, the cells a pose may stand on and those the surveyor passes.
     let g = BuildingGeometry::new(b);
     let grid = floor_grid(b, &g, cfg.cell_m, false);
     let free = grid.clear_of(cfg.clearance_m);
-    // 2. The reachable free space: the largest region inside the walls.
-    let (_, regions) = grid.regions(&free);
+    let passable = grid.clear_of(cfg.pass_clearance_m);
+    // 2. The reachable space: the largest passable region inside the walls.
+    let (_, regions) = grid.regions(&passable);
     let Some(reach) = regions
         .into_iter()
         .filter(|r| !grid.touches_edge(r))
@@ -149,15 +175,29 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
         return Err(no_space(&format!(
             "no free floor inside the walls for a survey: nowhere is {} m clear of walls, \
              boxes and stairs",
-            cfg.clearance_m
+            cfg.pass_clearance_m
         )));
     };
     // 3. Candidates and what each sees of the reachable floor.
     let stride = ((cfg.candidate_step_m / grid.cell).round() as usize).max(1);
+    //    (Every free cell in front of a staircase's foot is one too: the floor there can be
+    //    narrower than the candidates' spacing.)
+    let feet: Vec<Foot> = b
+        .stairs
+        .iter()
+        .filter(|s| s.base_m == 0.0)
+        .filter_map(|s| Foot::new(&grid, s))
+        .collect();
     let candidates: Vec<usize> = reach
         .iter()
         .copied()
-        .filter(|&i| (i % grid.nx).is_multiple_of(stride) && (i / grid.nx).is_multiple_of(stride))
+        .filter(|&i| {
+            free[i]
+                && (((i % grid.nx).is_multiple_of(stride) && (i / grid.nx).is_multiple_of(stride))
+                    || feet
+                        .iter()
+                        .any(|f| f.seen_from(&grid, i, cfg.stairs_view_m)))
+        })
         .collect();
     let targets: Vec<usize> = reach
         .iter()
@@ -222,6 +262,15 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
     // 3b. At least one pose inside every room reached (a doorway's view of a room is not a
     //     survey of it): the room's candidate seeing most of what was seen (registration
     //     needs that overlap), linked to a chosen pose.
+    let linked_to_chosen = |chosen: &[usize], k: usize| {
+        let pk = grid.centre(candidates[k]);
+        chosen.iter().any(|&c| {
+            let pc = grid.centre(candidates[c]);
+            (pc[0] - pk[0]).hypot(pc[1] - pk[1]) <= cfg.max_step_m
+                && grid.sight(candidates[c], candidates[k])
+        })
+    };
+    let shared = |k: usize| sees[k].iter().filter(|&&t| seen[t as usize]).count();
     let rooms = floor_grid(b, &g, cfg.cell_m, true);
     let (room_of_cell, _) = rooms.regions(&rooms.clear_of(cfg.clearance_m));
     let room = |k: usize| room_of_cell[candidates[k]];
@@ -231,17 +280,42 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
         has_pose.dedup();
         let next = (0..candidates.len())
             .filter(|&k| room(k).is_some() && has_pose.binary_search(&room(k)).is_err())
-            .filter(|&k| {
-                let pk = grid.centre(candidates[k]);
-                chosen.iter().any(|&c| {
-                    let pc = grid.centre(candidates[c]);
-                    (pc[0] - pk[0]).hypot(pc[1] - pk[1]) <= cfg.max_step_m
-                        && grid.sight(candidates[c], candidates[k])
-                })
-            })
-            .max_by_key(|&k| sees[k].iter().filter(|&&t| seen[t as usize]).count());
+            .filter(|&k| linked_to_chosen(&chosen, k))
+            .max_by_key(|&k| shared(k));
         let Some(k) = next else { break };
         chosen.push(k);
+    }
+    // 3c. Every staircase that starts on the floor seen from its foot (its risers face a pose
+    //     in front of it; from the side or from above its steps hide each other): where no
+    //     pose stands within `stairs_view_m` of the foot, within 60 degrees of the flight's
+    //     axis and in sight of it, the candidate there sharing most with what was seen.
+    //     Where none of those is linked to a chosen pose, stepping stones: the linked
+    //     candidate nearest to the foot, while each gets nearer.
+    for f in &feet {
+        let sees_foot = |k: usize| f.seen_from(&grid, candidates[k], cfg.stairs_view_m);
+        let to_foot = |k: usize| {
+            let p = grid.centre(candidates[k]);
+            (p[0] - f.start[0]).hypot(p[1] - f.start[1])
+        };
+        while !chosen.iter().any(|&c| sees_foot(c)) {
+            let at_foot = (0..candidates.len())
+                .filter(|&k| sees_foot(k) && linked_to_chosen(&chosen, k))
+                .max_by_key(|&k| shared(k));
+            if let Some(k) = at_foot {
+                chosen.push(k);
+                break;
+            }
+            let nearest = chosen
+                .iter()
+                .map(|&c| to_foot(c))
+                .fold(f64::INFINITY, f64::min);
+            let stone = (0..candidates.len())
+                .filter(|&k| to_foot(k) < nearest - cfg.candidate_step_m)
+                .filter(|&k| linked_to_chosen(&chosen, k))
+                .min_by(|&a, &b| to_foot(a).total_cmp(&to_foot(b)));
+            let Some(k) = stone else { break };
+            chosen.push(k);
+        }
     }
     // 4. The walk: from the first pose, always on to the nearest pose not yet visited that
     //    stands within `max_step_m` of a visited one and in its sight (so it can be
@@ -294,6 +368,36 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
         },
     );
     Ok(order)
+}
+
+/// The foot of a staircase: where its first riser stands and which way it climbs.
+struct Foot {
+    start: [f64; 2],
+    sin_cos: (f64, f64),
+    /// The grid cell 0.3 m in front of the first riser.
+    cell: usize,
+}
+
+impl Foot {
+    fn new(grid: &grid::Grid, s: &crate::building::Staircase) -> Option<Foot> {
+        let (sin, cos) = s.direction_deg.to_radians().sin_cos();
+        let cell = grid.index([s.start_m[0] - cos * 0.3, s.start_m[1] - sin * 0.3])?;
+        Some(Foot {
+            start: s.start_m,
+            sin_cos: (sin, cos),
+            cell,
+        })
+    }
+
+    /// True if a pose at cell `i` sees the flight from its foot: within `view_m` of the first
+    /// riser, within 60 degrees of the flight's axis in front of it, and in sight of the foot.
+    fn seen_from(&self, grid: &grid::Grid, i: usize, view_m: f64) -> bool {
+        let p = grid.centre(i);
+        let v = [p[0] - self.start[0], p[1] - self.start[1]];
+        let (sin, cos) = self.sin_cos;
+        let (d, ahead) = (v[0].hypot(v[1]), -(v[0] * cos + v[1] * sin));
+        d <= view_m && ahead >= 0.5 * d && grid.sight(i, self.cell)
+    }
 }
 
 /// The rooms of `b`: regions of free floor with every door shut, each as the index of the

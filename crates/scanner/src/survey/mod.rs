@@ -15,8 +15,8 @@
 //!    under `min_gain_m2`. Then every room (a region of free floor with the doors shut)
 //!    reached through an open door and still without a pose gets one: the pose in it that
 //!    shares most with what was seen, linked to a chosen one; and every staircase that
-//!    starts on the floor is seen from its foot (a pose in front of its first riser, reached
-//!    over stepping stones where it is far from every pose).
+//!    starts on the floor is seen from its foot (a pose in front of its first riser) where
+//!    a candidate there is linked to a chosen pose.
 //! 4. Ordered as a walk: always on to the nearest pose that has an earlier one close by and
 //!    in sight (what registering scan k against scans 0..k-1 needs), so that consecutive
 //!    poses stay close (odometry drifts with distance); each yaw points the way walked.
@@ -180,8 +180,6 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
     };
     // 3. Candidates and what each sees of the reachable floor.
     let stride = ((cfg.candidate_step_m / grid.cell).round() as usize).max(1);
-    //    (Every free cell in front of a staircase's foot is one too: the floor there can be
-    //    narrower than the candidates' spacing.)
     let feet: Vec<Foot> = b
         .stairs
         .iter()
@@ -192,11 +190,7 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
         .iter()
         .copied()
         .filter(|&i| {
-            free[i]
-                && (((i % grid.nx).is_multiple_of(stride) && (i / grid.nx).is_multiple_of(stride))
-                    || feet
-                        .iter()
-                        .any(|f| f.seen_from(&grid, i, cfg.stairs_view_m)))
+            free[i] && (i % grid.nx).is_multiple_of(stride) && (i / grid.nx).is_multiple_of(stride)
         })
         .collect();
     let targets: Vec<usize> = reach
@@ -289,31 +283,17 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
     //     in front of it; from the side or from above its steps hide each other): where no
     //     pose stands within `stairs_view_m` of the foot, within 60 degrees of the flight's
     //     axis and in sight of it, the candidate there sharing most with what was seen.
-    //     Where none of those is linked to a chosen pose, stepping stones: the linked
-    //     candidate nearest to the foot, while each gets nearer.
+    //     (Where none is linked to a chosen pose, none is added: stepping stones towards the
+    //     foot were tried, and made the office stairs worse; see the README.)
     for f in &feet {
         let sees_foot = |k: usize| f.seen_from(&grid, candidates[k], cfg.stairs_view_m);
-        let to_foot = |k: usize| {
-            let p = grid.centre(candidates[k]);
-            (p[0] - f.start[0]).hypot(p[1] - f.start[1])
-        };
-        while !chosen.iter().any(|&c| sees_foot(c)) {
-            let at_foot = (0..candidates.len())
-                .filter(|&k| sees_foot(k) && linked_to_chosen(&chosen, k))
-                .max_by_key(|&k| shared(k));
-            if let Some(k) = at_foot {
-                chosen.push(k);
-                break;
-            }
-            let nearest = chosen
-                .iter()
-                .map(|&c| to_foot(c))
-                .fold(f64::INFINITY, f64::min);
-            let stone = (0..candidates.len())
-                .filter(|&k| to_foot(k) < nearest - cfg.candidate_step_m)
-                .filter(|&k| linked_to_chosen(&chosen, k))
-                .min_by(|&a, &b| to_foot(a).total_cmp(&to_foot(b)));
-            let Some(k) = stone else { break };
+        if chosen.iter().any(|&c| sees_foot(c)) {
+            continue;
+        }
+        let at_foot = (0..candidates.len())
+            .filter(|&k| sees_foot(k) && linked_to_chosen(&chosen, k))
+            .max_by_key(|&k| shared(k));
+        if let Some(k) = at_foot {
             chosen.push(k);
         }
     }

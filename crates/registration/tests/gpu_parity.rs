@@ -447,9 +447,11 @@ fn gpu_correspondences_equal_the_cpu_grid_search_on_synthetic_and_real_pairs() {
 
 /// The back-face test in the kernel: from the corridor through the half-open door into the
 /// stair room of the default building, the room scan is registered on the GPU as on the CPU
-/// (same transforms, same pair counts in every iteration) and lands within 1 cm of the truth;
-/// with the test off, the room's face of the wall is pulled onto the corridor's face (here
-/// 6.9 cm off on the CPU), so the kernel's test is what holds it.
+/// (same transforms, same pair counts in every iteration) and lands within 1 cm of the truth.
+/// With the test off the GPU pairs what the CPU pairs (the kernel honours the flag; the pairs
+/// across the wall it rejects are counted in). (With the test off the room's face of the wall
+/// was pulled onto the corridor's face, 6.9 cm off; since a cycling loop halves its gate, the
+/// loop recovers from that pull on its own, so the pull is no longer asserted.)
 #[test]
 fn gpu_back_face_test_keeps_the_room_scan_off_the_far_face_of_the_wall() {
     if !gpu_or_skip("gpu_back_face_test") {
@@ -518,10 +520,33 @@ fn gpu_back_face_test_keeps_the_room_scan_off_the_far_face_of_the_wall() {
         );
         assert_eq!(pairs(&gpu, k), pairs(&cpu, k), "scan {k}: pair counts");
     }
-    let pulled = on_gpu(false);
-    let (et, er) = error(&pulled, 2);
-    eprintln!("GPU, back faces kept: room scan {et:.4} m {er:.3} deg from the truth");
-    assert!(et > 0.03, "expected the pull across the wall: {et} m");
+    let kept_gpu = on_gpu(false);
+    let kept_cpu = register_sequence(&scans, &guess, &config(Device::Cpu, false), &mut |_, _| {})
+        .expect("cpu");
+    let first = |r: &SequenceResult, k: usize| pairs(r, k).first().copied().unwrap_or(0);
+    for k in 1..scans.len() {
+        let (dt, dr) = pose_error(&kept_gpu.world_from_scan[k], &kept_cpu.world_from_scan[k]);
+        eprintln!(
+            "back faces kept, scan {k}: GPU vs CPU {dt:.2e} m {dr:.2e} deg; pairs GPU {:?}",
+            pairs(&kept_gpu, k)
+        );
+        assert!(
+            dt < 1e-4 && dr < 1e-3,
+            "back faces kept, scan {k}: {dt} m {dr} deg"
+        );
+        assert_eq!(
+            pairs(&kept_gpu, k),
+            pairs(&kept_cpu, k),
+            "back faces kept, scan {k}"
+        );
+    }
+    // The room scan's first iteration (same start): the test rejects pairs across the wall.
+    assert!(
+        first(&kept_gpu, 2) > first(&gpu, 2),
+        "the back-face test rejected nothing: {} pairs kept, {} with the test",
+        first(&kept_gpu, 2),
+        first(&gpu, 2)
+    );
 }
 
 #[test]

@@ -39,6 +39,8 @@ const GATE_RMSE_FACTOR: f64 = 3.0;
 /// A proposed gate less than this fraction smaller than the current one keeps the current one;
 /// the stop criteria are checked only while the gate is kept.
 const GATE_MIN_SHRINK: f64 = 0.9;
+/// A pose back within this many stop epsilons of the pose two iterations before is a cycle.
+const CYCLE_EPSILONS: f64 = 10.0;
 
 /// A source ready for the loop: its finite (downsampled) points and each point's prior weight
 /// (empty: all 1).
@@ -199,6 +201,8 @@ pub(crate) fn run_loop(
     let mut gate = c.max_correspondence_distance_m;
     let mut reports = Vec::with_capacity(c.max_iterations.min(256));
     let mut prev_rmse: Option<f64> = None;
+    // (the pose two iterations back: a step that undoes the last one is a cycle)
+    let mut before_last: Option<DAffine3> = None;
     let mut converged = false;
     let mut fitness = 0.0;
     for iteration in 0..c.max_iterations {
@@ -234,6 +238,7 @@ pub(crate) fn run_loop(
                 });
             }
         };
+        let last = t;
         t = step * t;
         let rmse = (sq_dist / pairs as f64).sqrt();
         reports.push(IterationReport {
@@ -250,6 +255,7 @@ pub(crate) fn run_loop(
         if proposed < GATE_MIN_SHRINK * gate {
             gate = proposed;
             prev_rmse = None;
+            before_last = None;
             continue;
         }
         let (dt, deg) = motion_size(&step);
@@ -261,6 +267,25 @@ pub(crate) fn run_loop(
             converged = true;
             break;
         }
+        // A cycle on a kept gate: the steps alternate between two poses and no stop criterion
+        // is ever met. The gate is kept because the RMSE stays high, which happens where part
+        // of the scan has no counterpart in the target (a room one scan sees through a doorway
+        // and the other does not): those points, matched to whatever lies within the wide gate,
+        // pull the pose off and the RMSE tells nothing about the overlap's fit. Halving the
+        // gate drops them (a run that converges never cycles, so it is unaffected).
+        let (back_m, back_deg) = before_last.map_or((f64::INFINITY, f64::INFINITY), |b| {
+            motion_size(&(t * b.inverse()))
+        });
+        if back_m < CYCLE_EPSILONS * c.translation_epsilon_m
+            && back_deg < CYCLE_EPSILONS * c.rotation_epsilon_deg
+            && gate > c.final_correspondence_distance_m
+        {
+            gate = (gate / 2.0).max(c.final_correspondence_distance_m);
+            prev_rmse = None;
+            before_last = None;
+            continue;
+        }
+        before_last = Some(last);
         prev_rmse = Some(rmse);
     }
     let rmse_m = reports.last().map_or(f64::NAN, |r| r.rmse_m);

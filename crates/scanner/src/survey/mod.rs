@@ -217,6 +217,15 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
     let Some(first) = (0..candidates.len()).max_by_key(|&k| sees[k].len()) else {
         return Err(no_space("the free floor is too small for a single pose"));
     };
+    // (A candidate within `max_step_m` of a chosen pose and in its sight can be registered.)
+    let linked_to_chosen = |chosen: &[usize], k: usize| {
+        let pk = grid.centre(candidates[k]);
+        chosen.iter().any(|&c| {
+            let pc = grid.centre(candidates[c]);
+            (pc[0] - pk[0]).hypot(pc[1] - pk[1]) <= cfg.max_step_m
+                && grid.sight(candidates[c], candidates[k])
+        })
+    };
     let mut seen = vec![false; targets.len()];
     let mut chosen: Vec<usize> = vec![first];
     for &t in &sees[first] {
@@ -224,22 +233,16 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
     }
     loop {
         let mut best: Option<(usize, usize)> = None;
-        for k in 0..candidates.len() {
-            let gain = sees[k].iter().filter(|&&t| !seen[t as usize]).count();
+        for (k, sees_k) in sees.iter().enumerate() {
+            let gain = sees_k.iter().filter(|&&t| !seen[t as usize]).count();
             if gain == 0 || best.is_some_and(|b| gain <= b.1) {
                 continue;
             }
-            let overlap = (sees[k].len() - gain) as f64 / sees[k].len() as f64;
+            let overlap = (sees_k.len() - gain) as f64 / sees_k.len() as f64;
             if overlap < cfg.min_overlap {
                 continue;
             }
-            let pk = grid.centre(candidates[k]);
-            let linked = chosen.iter().any(|&c| {
-                let pc = grid.centre(candidates[c]);
-                (pc[0] - pk[0]).hypot(pc[1] - pk[1]) <= cfg.max_step_m
-                    && grid.sight(candidates[c], candidates[k])
-            });
-            if linked {
+            if linked_to_chosen(&chosen, k) {
                 best = Some((k, gain));
             }
         }
@@ -256,14 +259,6 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
     // 3b. At least one pose inside every room reached (a doorway's view of a room is not a
     //     survey of it): the room's candidate seeing most of what was seen (registration
     //     needs that overlap), linked to a chosen pose.
-    let linked_to_chosen = |chosen: &[usize], k: usize| {
-        let pk = grid.centre(candidates[k]);
-        chosen.iter().any(|&c| {
-            let pc = grid.centre(candidates[c]);
-            (pc[0] - pk[0]).hypot(pc[1] - pk[1]) <= cfg.max_step_m
-                && grid.sight(candidates[c], candidates[k])
-        })
-    };
     let shared = |k: usize| sees[k].iter().filter(|&&t| seen[t as usize]).count();
     let rooms = floor_grid(b, &g, cfg.cell_m, true);
     let (room_of_cell, _) = rooms.regions(&rooms.clear_of(cfg.clearance_m));

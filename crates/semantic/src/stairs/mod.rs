@@ -36,6 +36,7 @@ mod flights;
 mod levels;
 mod plausible;
 mod profile;
+mod risers;
 mod surface;
 
 use crate::scene::Scene;
@@ -257,13 +258,31 @@ pub(crate) fn find_stairs(
             // direction that shows both, else the first that shows one. (The directions in
             // parallel too: one large blob, a row of parked cars, would otherwise keep one
             // thread busy while the others wait.)
-            let flights: Vec<Vec<DetectedStairs>> = cands
+            let flights: Vec<(bool, Vec<DetectedStairs>)> = cands
                 .par_iter()
-                .filter_map(|&dir| flights::two_flights(&pts, &all, dir, sc, c))
+                .enumerate()
+                .filter_map(|(k, &dir)| {
+                    flights::two_flights(&pts, &all, dir, sc, c).map(|f| (k < walls_cands, f))
+                })
                 .collect();
-            let most = flights.iter().map(Vec::len).max().unwrap_or(0);
-            if let Some(f) = flights.into_iter().find(|f| f.len() == most) {
-                return Some(f);
+            // Of as many flights, a wall's direction first (as for one flight, below). A lone
+            // lower flight (the flight above its landing not found) competes with the search
+            // for one flight below, which compares every direction's fit: the first direction
+            // that shows something beyond a flight's top landing as a second flight's start
+            // need not be the flight's. The larger share of levels found wins (the lone flight
+            // on a tie: a staircase with a mid landing read as one flight misses a level).
+            let most = flights.iter().map(|f| f.1.len()).max().unwrap_or(0);
+            let mut by_flights = flights.into_iter().filter(|f| f.1.len() == most);
+            let chosen = by_flights
+                .clone()
+                .find(|f| f.0)
+                .or_else(|| by_flights.next());
+            let mut lone_lower = None;
+            if let Some((_, f)) = chosen {
+                if most >= 2 || f.iter().any(|s| s.base > 0.0) {
+                    return Some(f);
+                }
+                lone_lower = Some(f);
             }
             let mut profs: Vec<_> = cands
                 .par_iter()
@@ -283,7 +302,13 @@ pub(crate) fn find_stairs(
                     .then(b.score.total_cmp(&a.score))
             });
             let r = profs.into_iter().find_map(|(_, p)| finish(&pts, p, sc, c));
-            r.map(|r| vec![r])
+            match (r, lone_lower) {
+                (Some(r), Some(lone)) if lone.iter().all(|l| l.confidence >= r.confidence) => {
+                    Some(lone)
+                }
+                (Some(r), _) => Some(vec![r]),
+                (None, lone) => lone,
+            }
         })
         .flatten()
         .collect()

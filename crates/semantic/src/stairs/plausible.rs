@@ -12,6 +12,11 @@ use glam::DVec2;
 /// blob's points.
 const MIN_WIDTH_POINTS: usize = 20;
 
+/// A gap across the flight wider than this between points on its steps separates it from
+/// clutter beside it (a flight's treads and risers span its width; a laser's sampling of them
+/// leaves gaps of a few centimetres, a side face seen alone is one line).
+const WIDTH_GAP_M: f64 = 0.3;
+
 /// True if a point `s` along the flight's direction at height `z` (above its foot) lies on
 /// one of its steps: within the step's run, above the step below (by 2 cm) and at most 3 cm
 /// over its tread.
@@ -35,13 +40,16 @@ pub(crate) fn finish(
     let dir = p.dir;
     // The width from the points on the flight's steps (a tread, a riser or a side face between
     // a step's height and the one below: as `per_step` counts them below), not from all of the
-    // blob's (a desk or chairs beside the flight join its blob at other heights); from all of
-    // them where too few are on the steps.
+    // blob's (a desk or chairs beside the flight join its blob at other heights), and of those
+    // the run across the direction holding most of them (clutter beside the flight whose parts
+    // happen to stand at step heights is apart from it); from all of the blob's points where
+    // too few are on the steps.
     let on_steps: Vec<f64> = pts
         .iter()
         .filter(|(q, z)| on_a_step(&p, q.dot(dir), *z))
         .map(|(q, _)| dir.perp_dot(*q))
         .collect();
+    let on_steps = densest_run(on_steps);
     let mut ts: Vec<f64> = if on_steps.len() >= MIN_WIDTH_POINTS {
         on_steps
     } else {
@@ -218,6 +226,22 @@ pub(crate) fn finish(
     })
 }
 
+/// Of coordinates `t`, the run without a gap over [`WIDTH_GAP_M`] holding most of them.
+fn densest_run(mut t: Vec<f64>) -> Vec<f64> {
+    t.sort_unstable_by(f64::total_cmp);
+    let mut best = 0..0;
+    let mut start = 0;
+    for i in 1..=t.len() {
+        if i == t.len() || t[i] - t[i - 1] > WIDTH_GAP_M {
+            if i - start > best.len() {
+                best = start..i;
+            }
+            start = i;
+        }
+    }
+    t[best].to_vec()
+}
+
 /// Points per m² of the floor seen in a ring 0.3-1.3 m around a footprint (`s` along `dir`,
 /// `t` across it): the local density of the scans, counted over the 10 cm cells where the
 /// floor was seen.
@@ -257,6 +281,20 @@ mod tests {
     use super::*;
     use crate::points::XyIndex;
     use glam::Vec3;
+
+    /// Regression: office-6's upper flight (4 steps on a mid landing) was refused: a desk
+    /// beside it, 0.9 m off, had parts at step heights, so the width across the points on the
+    /// steps spanned both (3.1 m), and the floor seen under the desk read as floor under the
+    /// flight. The run of those points without a 0.3 m gap holding most of them is the flight.
+    #[test]
+    fn the_flight_is_the_densest_run_across_it() {
+        let flight = (0..120).map(|i| -6.0 + 0.011 * i as f64);
+        let desk = (0..40).map(|i| -3.7 + 0.02 * i as f64);
+        let t: Vec<f64> = flight.chain([-4.1]).chain(desk).collect();
+        let run = densest_run(t);
+        assert_eq!(run.len(), 120);
+        assert!(run.iter().all(|&t| t < -4.6));
+    }
 
     /// Regression: office-3's 8-step flight joined one blob with a desk and its chairs 0.4 m
     /// beside it; its width, taken over all of the blob's points, spanned the desk, and the

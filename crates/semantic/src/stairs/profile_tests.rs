@@ -1,0 +1,199 @@
+//! Tests of `profile`: fits to synthetic flights and the regressions they pin.
+
+use super::*;
+
+/// A straight flight climbing +X from x = 0: `steps` steps of `rise` x `run`, a landing
+/// 1.1 m deep, 1.2 m wide; points every 2 cm on treads and risers, 10 cm across.
+fn flight(steps: u32, rise: f64, run: f64) -> Vec<(DVec2, f64)> {
+    let mut pts = Vec::new();
+    let across = |pts: &mut Vec<(DVec2, f64)>, x: f64, z: f64| {
+        for k in 0..12 {
+            pts.push((DVec2::new(x, -0.6 + 0.1 * k as f64), z));
+        }
+    };
+    for k in 0..steps {
+        let (x0, top) = (k as f64 * run, (k + 1) as f64 * rise);
+        let depth = if k + 1 == steps { run + 1.1 } else { run };
+        for i in 0..(rise / 0.02) as usize {
+            across(&mut pts, x0, top - rise + 0.02 * i as f64);
+        }
+        for i in 0..(depth / 0.02) as usize {
+            across(&mut pts, x0 + 0.02 * i as f64, top);
+        }
+    }
+    pts
+}
+
+/// Regression: office-1's 10-step flight (rise 0.16 m) was not found at all: mixed pixels
+/// along rays rising past its landing's edge stood 0.05-0.4 m above the landing, so the top
+/// height read as 12 steps, whose fit left the upper levels empty and was refused.
+#[test]
+fn returns_above_the_landing_do_not_add_steps() {
+    let c = StairsConfig::default();
+    let mut pts = flight(10, 0.16, 0.27);
+    // A veil over the landing: streaks of returns along rays rising past its edge, each
+    // return 1 cm above and 2 cm along the one before (so they continue each other as a
+    // surface's returns do), 0.2-0.26 m above it, between the heights an 11th and a 12th
+    // step would have.
+    for k in 0..6 {
+        let x = 2.9 + 0.12 * k as f64;
+        for i in 0..7 {
+            let q = DVec2::new(x + 0.02 * i as f64, -0.2 + 0.05 * k as f64);
+            pts.push((q, 1.8 + 0.01 * i as f64));
+        }
+    }
+    let p = profile(&pts, &pts, DVec2::X, &c).expect("a staircase");
+    assert_eq!(p.steps, 10);
+    assert!((p.rise - 0.16).abs() < 0.01, "rise {}", p.rise);
+    assert!((p.run - 0.27).abs() < 0.02, "run {}", p.run);
+    // The same flight without the veil, for reference.
+    let bare = flight(10, 0.16, 0.27);
+    let clean = profile(&bare, &bare, DVec2::X, &c).expect("a staircase");
+    assert_eq!(clean.steps, 10);
+}
+
+/// Regression: hall-9's 11-step flight (rise 0.158 m), scanned from 23 poses, was not
+/// found: sparse returns 0.2-0.45 m over its top landing (mixed pixels between the
+/// landing's edge and the wall behind it; on no surface, so they set neither the levels
+/// nor the top) each counted as a violation of every fit, and outweighed the steps' support.
+#[test]
+fn returns_high_over_the_landing_do_not_refuse_the_flight() {
+    let c = StairsConfig::default();
+    let pts = flight(11, 0.158, 0.28);
+    let mut all = pts.clone();
+    // 30 bins along the landing (x 3.1-3.7), each with a return 0.2-0.45 m over it.
+    for k in 0..30 {
+        let q = DVec2::new(3.1 + 0.02 * k as f64, 0.1);
+        all.push((q, 11.0 * 0.158 + 0.2 + 0.25 * ((k * 7) % 10) as f64 / 10.0));
+    }
+    let p = profile(&pts, &all, DVec2::X, &c).expect("a staircase");
+    assert_eq!(p.steps, 11);
+    assert!((p.rise - 0.158).abs() < 0.01, "rise {}", p.rise);
+}
+
+/// Regression: hall-4's upper flight (4 steps of 0.17 m, seen on its side face from the
+/// floor) was not found: the side face's top edge, sampled sparsely, stood at heights
+/// between the treads' in the first centimetres of each step, and the grid of levels locked
+/// onto two thirds of the rise (its levels hold every true one but the odd ones), so the
+/// counts fitted were 5 to 7, all refused.
+#[test]
+fn levels_between_the_treads_do_not_hide_the_rise() {
+    let c = StairsConfig::default();
+    let (rise, run) = (0.17, 0.27);
+    let grid = rise * 2.0 / 3.0;
+    let mut pts = Vec::new();
+    for k in 0..4 {
+        let (x0, top) = (k as f64 * run, (k + 1) as f64 * rise);
+        // The grid's level between this step's foot and its tread, over its first 8 cm.
+        let between = ((top - rise) / grid).floor() * grid + grid;
+        let depth = if k == 3 { run + 1.1 } else { run };
+        let mut x = x0;
+        while x < x0 + depth {
+            let z = if x < x0 + 0.08 && between < top - 0.02 {
+                between
+            } else {
+                top
+            };
+            for j in 0..12 {
+                pts.push((DVec2::new(x, -0.6 + 0.1 * j as f64), z));
+            }
+            x += 0.02;
+        }
+    }
+    let p = profile(&pts, &pts, DVec2::X, &c).expect("a staircase");
+    assert_eq!(p.steps, 4);
+    assert!((p.rise - rise).abs() < 0.01, "rise {}", p.rise);
+}
+
+/// Regression: the upper flights of hall-3's and hall-8's mid-landing staircases (4 steps of
+/// 0.16 m, 3 of 0.18 m), seen from the floor below on their risers and side faces only, fitted
+/// one step more better; the lower flight's rise decides (a staircase's risers are uniform).
+#[test]
+fn the_rise_of_the_flight_below_decides_between_counts_that_fit_alike() {
+    let c = StairsConfig::default();
+    // A side face's stepped top edge, 3 steps of 0.18 x 0.26 m and a 1.1 m landing, sampled
+    // every 2 cm along; over the first `lead` of each step the edge shows at the level a
+    // 4-step flight to the same top would have there (a riser's foot, clutter).
+    let (rise, run): (f64, f64) = (0.18, 0.26);
+    let four = 3.0 * rise / 4.0;
+    let lead = 0.08;
+    let mut pts = Vec::new();
+    let mut x: f64 = 0.0;
+    while x < 3.0 * run + 1.1 {
+        let k = (x / run).floor().min(2.0);
+        let top = (k + 1.0) * rise;
+        let between = ((k * rise) / four).floor() * four + four;
+        let z = if x - k * run < lead && between < top - 0.02 {
+            between
+        } else {
+            top
+        };
+        for j in 0..10 {
+            pts.push((DVec2::new(x, 0.1 * j as f64), z));
+        }
+        x += 0.02;
+    }
+    let p = profile_near(&pts, &pts, DVec2::X, &c, Some(0.175)).expect("a flight");
+    assert_eq!(p.steps, 3);
+    assert!((p.rise - rise).abs() < 0.01, "rise {}", p.rise);
+    // A hint no count fits within 15 % of leaves the choice to the fits' scores.
+    let far = profile_near(&pts, &pts, DVec2::X, &c, Some(0.30)).map(|p| p.steps);
+    assert_eq!(far, profile(&pts, &pts, DVec2::X, &c).map(|p| p.steps));
+}
+
+/// Regression: office-1's 10-step flight (0.16 m x 0.267 m), seen by nine scans from a laser
+/// 0.5 m up, was fitted 15 cm early with a 0.252 m run and refused (its top steps held no
+/// points of the model): its side face's stepped edge, smeared a few centimetres before each
+/// front edge by the range noise at grazing incidence, stood above the true model (violations),
+/// and an earlier, shorter model lost only support, which counts a few bins per level. The
+/// risers seen at the true edges now hold the fit there.
+#[test]
+fn a_side_face_smeared_before_each_edge_does_not_shorten_the_run() {
+    let c = StairsConfig::default();
+    let (steps, rise, run) = (10u32, 0.16, 0.267);
+    let mut pts = Vec::new();
+    for k in 0..steps {
+        let (x0, top) = (k as f64 * run, (k + 1) as f64 * rise);
+        // The riser across the width (every 2 cm up, 10 cm across).
+        for i in 0..8 {
+            for j in 0..12 {
+                pts.push((
+                    DVec2::new(x0, -0.6 + 0.1 * j as f64),
+                    top - rise + 0.02 * i as f64,
+                ));
+            }
+        }
+        // Treads under the laser (0.5 m) only; the top one is the landing.
+        let depth = if k + 1 == steps { run + 1.1 } else { run };
+        if top < 0.5 || k + 1 == steps {
+            let mut x = x0;
+            while x < x0 + depth {
+                for j in 0..12 {
+                    pts.push((DVec2::new(x, -0.6 + 0.1 * j as f64), top));
+                }
+                x += 0.02;
+            }
+        }
+        // The side face (y = -0.6) up to the step's top, every 2 cm, its upper 8 cm smeared
+        // up to 4 cm before the step's front edge.
+        let mut x = x0;
+        while x < x0 + run {
+            let mut z = 0.01;
+            while z <= top {
+                let smear = if top - z < 0.08 && x < x0 + 0.03 {
+                    0.04
+                } else {
+                    0.0
+                };
+                pts.push((DVec2::new(x - smear, -0.6), z));
+                z += 0.02;
+            }
+            x += 0.02;
+        }
+    }
+    let p = profile(&pts, &pts, DVec2::X, &c).expect("a staircase");
+    assert_eq!(p.steps, steps);
+    assert!((p.run - run).abs() < 0.005, "run {}", p.run);
+    // (the smear still pulls the edges early, within the band a riser is counted in)
+    assert!(p.front1.abs() < 0.035, "first edge at {}", p.front1);
+}

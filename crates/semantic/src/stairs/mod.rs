@@ -255,7 +255,7 @@ pub(crate) fn find_stairs(
             })
             .collect();
             // A staircase with a landing half-way is its two flights (see `flights`): the
-            // direction that shows both, else the first that shows one. (The directions in
+            // direction that shows both, else one flight (see below). (The directions in
             // parallel too: one large blob, a row of parked cars, would otherwise keep one
             // thread busy while the others wait.)
             let flights: Vec<(bool, Vec<DetectedStairs>)> = cands
@@ -266,23 +266,22 @@ pub(crate) fn find_stairs(
                 })
                 .collect();
             // Of as many flights, a wall's direction first (as for one flight, below). A lone
-            // lower flight (the flight above its landing not found) competes with the search
-            // for one flight below, which compares every direction's fit: the first direction
-            // that shows something beyond a flight's top landing as a second flight's start
-            // need not be the flight's. The larger share of levels found wins (the lone flight
-            // on a tie: a staircase with a mid landing read as one flight misses a level).
+            // flight (the other one not found) competes with the search for one flight below,
+            // which compares every direction's fit: the first direction that shows something
+            // beyond a flight's top landing as a second flight's start, or a level stretch
+            // part way up a flight seen obliquely as a landing, need not be the flight's.
             let most = flights.iter().map(|f| f.1.len()).max().unwrap_or(0);
             let mut by_flights = flights.into_iter().filter(|f| f.1.len() == most);
             let chosen = by_flights
                 .clone()
                 .find(|f| f.0)
                 .or_else(|| by_flights.next());
-            let mut lone_lower = None;
-            if let Some((_, f)) = chosen {
-                if most >= 2 || f.iter().any(|s| s.base > 0.0) {
-                    return Some(f);
+            let mut lone = None;
+            if let Some(f) = chosen {
+                if most >= 2 {
+                    return Some(f.1);
                 }
-                lone_lower = Some(f);
+                lone = Some(f);
             }
             let mut profs: Vec<_> = cands
                 .par_iter()
@@ -301,13 +300,21 @@ pub(crate) fn find_stairs(
                     .then(wb.cmp(wa))
                     .then(b.score.total_cmp(&a.score))
             });
-            let r = profs.into_iter().find_map(|(_, p)| finish(&pts, p, sc, c));
-            match (r, lone_lower) {
-                (Some(r), Some(lone)) if lone.iter().all(|l| l.confidence >= r.confidence) => {
+            let one = profs
+                .into_iter()
+                .find_map(|(on_wall, p)| finish(&pts, p, sc, c).map(|r| (on_wall, r)));
+            // The lone flight wins if it is along a wall's direction or the one flight is not,
+            // and it found as large a share of its levels (on a tie: a staircase with a mid
+            // landing read as one flight misses a level).
+            match (one, lone) {
+                (Some((one_on_wall, one)), Some((lone_on_wall, lone)))
+                    if (lone_on_wall || !one_on_wall)
+                        && lone.iter().all(|l| l.confidence >= one.confidence) =>
+                {
                     Some(lone)
                 }
-                (Some(r), _) => Some(vec![r]),
-                (None, lone) => lone,
+                (Some((_, one)), _) => Some(vec![one]),
+                (None, lone) => lone.map(|l| l.1),
             }
         })
         .flatten()

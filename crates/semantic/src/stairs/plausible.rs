@@ -176,7 +176,15 @@ pub(crate) fn finish(
     // that clutter in the room hides first; the floor hidden under the whole footprint (checked
     // above) stands in for it, and its count still follows from the levels above it.
     let first_checked = usize::from(side_only && per_step.len() > c.min_steps as usize);
-    let weakest = per_step[first_checked..].iter().copied().min().unwrap_or(0);
+    // Where the envelope shows every level of a flight longer than the shortest, one step
+    // may be thinly seen (a side face sampled sparsely between two scans' views: office-3's
+    // third step held 3 returns), but not unseen: the second weakest decides then.
+    let mut counts = per_step[first_checked..].to_vec();
+    counts.sort_unstable();
+    let one_thin = p.found >= p.steps
+        && counts.len() > c.min_steps as usize
+        && counts.first().is_some_and(|&n| n > 0);
+    let weakest = counts.get(usize::from(one_thin)).copied().unwrap_or(0);
     // ... as many as the local point density promises on that much surface.
     let promised = c.min_step_fill * density * p.rise * p.run;
     if weakest < c.min_step_points || (weakest as f64) < promised {

@@ -271,11 +271,11 @@ pub(crate) fn find_stairs(
             // beyond a flight's top landing as a second flight's start, or a level stretch
             // part way up a flight seen obliquely as a landing, need not be the flight's.
             let most = flights.iter().map(|f| f.1.len()).max().unwrap_or(0);
-            let mut by_flights = flights.into_iter().filter(|f| f.1.len() == most);
-            let chosen = by_flights
-                .clone()
-                .find(|f| f.0)
-                .or_else(|| by_flights.next());
+            // (the first along a wall's direction, else the first)
+            let chosen = flights
+                .into_iter()
+                .filter(|f| f.1.len() == most)
+                .min_by_key(|f| !f.0);
             let mut lone = None;
             if let Some(f) = chosen {
                 if most >= 2 {

@@ -16,10 +16,17 @@ pub(super) const PARALLEL_COS: f64 = 0.984_807_753; // cos(10 degrees)
 /// apart by `max_gap_m` at most, absorbed by the low cluster holding most of it (a chair's
 /// backrest by its seat, a car's cabin by its body, a shelf's top by the shelf): the larger
 /// one's box grows to hold the part and its z range to span both.
+///
+/// A part whose top is lower than the host's by more than `max_step_m` must also lie mostly
+/// within the host's footprint itself (its hull), not merely within its box: a lower thing
+/// beside a higher one is a thing of its own. A desk's cluster that took in the backrest of the
+/// chair at its edge, and the mixed pixels between them, has a box reaching over the chair's
+/// seat, while its hull does not cover the seat; a car's tyre is within the car's hull.
 pub(super) fn absorb_parts(
     mut found: Vec<DetectedObstacle>,
     margin_m: f64,
     max_gap_m: f64,
+    max_step_m: f64,
 ) -> Vec<DetectedObstacle> {
     found.sort_by(|a, b| (b.size[0] * b.size[1]).total_cmp(&(a.size[0] * a.size[1])));
     let mut kept: Vec<DetectedObstacle> = Vec::new();
@@ -38,7 +45,9 @@ pub(super) fn absorb_parts(
             }
             let grown = [k.size[0] + 2.0 * margin_m, k.size[1] + 2.0 * margin_m];
             let inside = intersection_area(&part, &rect_corners(k.center, k.dir, grown)) / own;
-            if inside >= 0.5 && host.is_none_or(|h| inside > h.0) {
+            let lower = o.z_range.1 < k.z_range.1 - max_step_m;
+            let on_footprint = !lower || intersection_area(&part, &k.hull) / own >= 0.5;
+            if inside >= 0.5 && on_footprint && host.is_none_or(|h| inside > h.0) {
                 host = Some((inside, n));
             }
         }
@@ -179,11 +188,35 @@ mod tests {
         // The chair's seat 7.5 cm off the desk's long side, its backrest on the desk's side.
         let seat = cluster([0.0, 0.705], DVec2::X, [0.45, 0.45], (0.0, 0.45), false);
         let back = cluster([0.0, 0.5], DVec2::X, [0.45, 0.04], (0.47, 0.87), false);
-        let out = absorb_parts(vec![back, desk, seat], 0.1, 0.3);
+        let out = absorb_parts(vec![back, desk, seat], 0.1, 0.3, 0.1);
         assert_eq!(out.len(), 2, "{out:#?}");
         let chair = out.iter().find(|o| o.center.y > 0.3).expect("the chair");
         assert!((chair.z_range.1 - 0.87).abs() < 1e-9, "{:?}", chair.z_range);
         assert_eq!(chair.support, 200);
+    }
+
+    /// Regression (office styles: 11 chairs were missed): a desk's cluster took in the backrest
+    /// of the chair at its edge and mixed pixels beside it, so its box reached over the chair's
+    /// seat, which was absorbed as a part of the desk.
+    #[test]
+    fn a_seat_under_a_desks_box_but_off_its_footprint_stays_a_thing_of_its_own() {
+        let mut desk = cluster([0.0, 0.175], DVec2::X, [1.4, 1.15], (0.0, 0.87), false);
+        desk.hull = [
+            [-0.7, -0.4],
+            [0.7, -0.4],
+            [0.7, 0.4],
+            [0.225, 0.52],
+            [-0.6, 0.75],
+            [-0.7, 0.4],
+        ]
+        .map(DVec2::from_array)
+        .to_vec();
+        let seat = cluster([0.0, 0.705], DVec2::X, [0.45, 0.45], (0.0, 0.46), false);
+        let out = absorb_parts(vec![desk.clone(), seat.clone()], 0.1, 0.3, 0.1);
+        assert_eq!(out.len(), 2, "{out:#?}");
+        assert!(out.iter().any(|o| o.z_range.1 == 0.46 && o.center.y > 0.6));
+        // A part as high as its host (a step within the tolerance) is absorbed by the box.
+        assert_eq!(absorb_parts(vec![desk, seat], 0.1, 0.3, 0.5).len(), 1);
     }
 
     #[test]

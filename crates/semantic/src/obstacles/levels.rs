@@ -1,0 +1,320 @@
+//! Things of different heights side by side, joined through the cells between them: a chair's
+//! seat (0.45 m) beside a desk (0.75 m), two cabinets of 1.8 and 1.9 m against one wall. Their
+//! tops step by more than `max_top_step_m`, but the laser's mixed pixels in the gap between
+//! them (returns between the one and the other) leave cells whose tops climb from one to the
+//! other by small steps, so the cluster takes both.
+//!
+//! Within a cluster, a level is a height that many cells' tops share (within half a step);
+//! its core is a connected region of such cells as large as a thing the stage scores. Every
+//! other cell goes to the nearest core (through the cluster's cells), and two regions whose
+//! levels differ by more than a step stay apart where they meet along a short junction, no
+//! longer than one thing's side (`MAX_JUNCTION_M`). The parts of one thing meet along its whole
+//! width: a car's cabin (1.4 m) and its bonnet (1.0 m) along the windscreen, 1.6 m and more.
+
+use super::cluster::{cell_centres, components};
+use super::fit::{convex_hull, min_area_rect};
+use crate::image_frame::ImageFrame;
+use std::collections::{HashMap, VecDeque};
+
+/// A level's core is at least this large (m²): a seat 0.45 m square seen in part, the front of
+/// a cabinet 0.35 m deep along 0.3 m. Smaller groups of cells at one height are edges, a
+/// backrest's top or mixed pixels.
+const MIN_CORE_M2: f64 = 0.06;
+/// Two regions at different levels meeting along at most this are two things: a seat, a crate
+/// or a cabinet meets its neighbour along its own side (0.35-0.6 m, a cell more for the grid),
+/// while the parts of one thing meet along its width (a car's, 1.6 m or more).
+const MAX_JUNCTION_M: f64 = 0.8;
+/// Levels are found in a histogram of the cells' tops with bins this tall (the laser's range
+/// noise is 1-3 cm).
+const BIN_M: f64 = 0.02;
+/// At most this many levels per cluster (a cap against pathological input).
+const MAX_LEVELS: usize = 16;
+
+/// `cells` (indices into `frame`'s grid, row-major) split into things of different heights
+/// (see the module docs); `tops` holds every grid cell's top, `step` the largest step of a
+/// top within one thing.
+pub(super) fn split_levels(
+    cells: Vec<usize>,
+    tops: &[f32],
+    frame: &ImageFrame,
+    step: f64,
+) -> Vec<Vec<usize>> {
+    let cell_m = frame.resolution_m;
+    let min_core = (MIN_CORE_M2 / (cell_m * cell_m)).ceil() as usize;
+    if cells.len() < 2 * min_core {
+        return vec![cells];
+    }
+    let top = |k: usize| tops[k] as f64;
+    // 1. The levels and their cores.
+    let cores = cores(&cells, top, frame.width_px as usize, step, min_core);
+    if cores.len() < 2 {
+        return vec![cells];
+    }
+    // 2. Every cell to its nearest core.
+    let region = nearest_core(&cells, &cores, frame.width_px as usize);
+    // 3. Regions joined where their levels are within a step, or where they meet along more
+    //    than one thing's side.
+    let mut parent: Vec<usize> = (0..cores.len()).collect();
+    for a in 0..cores.len() {
+        for b in a + 1..cores.len() {
+            let apart = (cores[a].0 - cores[b].0).abs() > step;
+            let junction = junction(&cells, &region, a, b, frame);
+            let joined = match junction {
+                None => false,
+                Some(len) => !apart || len > MAX_JUNCTION_M,
+            };
+            if joined {
+                let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+                parent[ra] = rb;
+            }
+        }
+    }
+    let mut groups: HashMap<usize, Vec<usize>> = HashMap::new();
+    for (&k, &r) in cells.iter().zip(&region) {
+        groups.entry(find(&mut parent, r)).or_default().push(k);
+    }
+    let mut out: Vec<Vec<usize>> = groups.into_values().collect();
+    out.sort_by_key(|g| g[0]);
+    out
+}
+
+/// The levels of the cells' tops and their cores: (level, the core's cells), each core a
+/// connected region of at least `min_core` cells whose tops lie within half a step of its level.
+fn cores(
+    cells: &[usize],
+    top: impl Fn(usize) -> f64,
+    width: usize,
+    step: f64,
+    min_core: usize,
+) -> Vec<(f64, Vec<usize>)> {
+    let half = step / 2.0;
+    let mut free: Vec<usize> = cells.to_vec();
+    let mut out = Vec::new();
+    for _ in 0..MAX_LEVELS {
+        // The bin whose window of +-half a step holds most of the cells not yet on a level.
+        let mut zs: Vec<f64> = free.iter().map(|&k| top(k)).collect();
+        zs.sort_by(f64::total_cmp);
+        let (Some(&lo), Some(&hi)) = (zs.first(), zs.last()) else {
+            break;
+        };
+        let bins = (((hi - lo) / BIN_M).ceil() as usize + 1).min(100_000);
+        let (mut best, mut best_count) = (lo, 0usize);
+        for b in 0..bins {
+            let z = lo + b as f64 * BIN_M;
+            let a = zs.partition_point(|&v| v < z - half);
+            let c = zs.partition_point(|&v| v <= z + half) - a;
+            if c > best_count {
+                (best, best_count) = (z, c);
+            }
+        }
+        if best_count < min_core {
+            break;
+        }
+        let on: Vec<usize> = free
+            .iter()
+            .copied()
+            .filter(|&k| (top(k) - best).abs() <= half)
+            .collect();
+        free.retain(|&k| (top(k) - best).abs() > half);
+        // Its cores: the connected regions of those cells large enough to be a thing.
+        let in_level: HashMap<usize, ()> = on.iter().map(|&k| (k, ())).collect();
+        let height = on.iter().map(|&k| k / width + 1).max().unwrap_or(0);
+        let regions = components_of(&on, width, height, &in_level);
+        out.extend(
+            regions
+                .into_iter()
+                .filter(|r| r.len() >= min_core)
+                .map(|r| (best, r)),
+        );
+    }
+    out
+}
+
+/// The connected components (cells up to two apart) of `cells`.
+fn components_of(
+    cells: &[usize],
+    width: usize,
+    height: usize,
+    member: &HashMap<usize, ()>,
+) -> Vec<Vec<usize>> {
+    // Over the bounding rows and columns only, so that a small cluster costs little.
+    let (c0, c1) = cells.iter().fold((usize::MAX, 0), |(a, b), &k| {
+        (a.min(k % width), b.max(k % width))
+    });
+    let r0 = cells.iter().map(|&k| k / width).min().unwrap_or(0);
+    let (w, h) = (c1 + 1 - c0, height - r0);
+    let to_global = |k: usize| (k / w + r0) * width + k % w + c0;
+    components(w, h, 2, |k| member.contains_key(&to_global(k)), |_, _| true)
+        .into_iter()
+        .map(|r| r.into_iter().map(to_global).collect())
+        .collect()
+}
+
+/// For each of `cells`, the index of the core it is nearest to through the cells (breadth
+/// first, cells up to two apart connected).
+fn nearest_core(cells: &[usize], cores: &[(f64, Vec<usize>)], width: usize) -> Vec<usize> {
+    let pos: HashMap<usize, usize> = cells.iter().enumerate().map(|(i, &k)| (k, i)).collect();
+    let mut region = vec![usize::MAX; cells.len()];
+    let mut queue = VecDeque::new();
+    for (r, (_, core)) in cores.iter().enumerate() {
+        for k in core {
+            if let Some(&i) = pos.get(k) {
+                region[i] = r;
+                queue.push_back(i);
+            }
+        }
+    }
+    while let Some(i) = queue.pop_front() {
+        let k = cells[i];
+        let (x, y) = ((k % width) as isize, (k / width) as isize);
+        for dy in -2..=2isize {
+            for dx in -2..=2isize {
+                let (nx, ny) = (x + dx, y + dy);
+                if nx < 0 || ny < 0 || nx >= width as isize {
+                    continue;
+                }
+                if let Some(&j) = pos.get(&(ny as usize * width + nx as usize)) {
+                    if region[j] == usize::MAX {
+                        region[j] = region[i];
+                        queue.push_back(j);
+                    }
+                }
+            }
+        }
+    }
+    // (cells no core reaches cannot exist: the cluster is connected; kept with the first)
+    region
+        .iter()
+        .map(|&r| if r == usize::MAX { 0 } else { r })
+        .collect()
+}
+
+/// The length along which regions `a` and `b` meet: the longer side of the rectangle around
+/// their cells next to the other region (or, where none are next to it, within two cells of it),
+/// plus a cell; `None` where they do not meet.
+fn junction(
+    cells: &[usize],
+    region: &[usize],
+    a: usize,
+    b: usize,
+    frame: &ImageFrame,
+) -> Option<f64> {
+    let width = frame.width_px as usize;
+    let of: HashMap<usize, usize> = cells
+        .iter()
+        .zip(region)
+        .filter(|(_, &r)| r == a || r == b)
+        .map(|(&k, &r)| (k, r))
+        .collect();
+    let near_other = |k: usize, r: usize, reach: isize| {
+        let (x, y) = ((k % width) as isize, (k / width) as isize);
+        (-reach..=reach).any(|dy| {
+            (-reach..=reach).any(|dx| {
+                let (nx, ny) = (x + dx, y + dy);
+                nx >= 0
+                    && ny >= 0
+                    && nx < width as isize
+                    && of
+                        .get(&(ny as usize * width + nx as usize))
+                        .is_some_and(|&o| o != r)
+            })
+        })
+    };
+    let meets = [1, 2].into_iter().find_map(|reach| {
+        let m: Vec<usize> = of
+            .iter()
+            .filter(|(&k, &r)| near_other(k, r, reach))
+            .map(|(&k, _)| k)
+            .collect();
+        (!m.is_empty()).then_some(m)
+    })?;
+    let pts = cell_centres(&meets, frame);
+    let (_, _, size) = min_area_rect(&convex_hull(&pts), &[])?;
+    Some(size[0] + frame.resolution_m)
+}
+
+fn find(parent: &mut [usize], mut i: usize) -> usize {
+    while parent[i] != i {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    i
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::image_frame::pixel_center;
+    use glam::DVec2;
+
+    /// The grid's cells where `top` gives a height, and every cell's top.
+    fn scene(frame: &ImageFrame, top: impl Fn(DVec2) -> Option<f32>) -> (Vec<usize>, Vec<f32>) {
+        let w = frame.width_px as usize;
+        let mut tops = vec![f32::MIN; w * frame.height_px as usize];
+        let mut cells = Vec::new();
+        for (k, t) in tops.iter_mut().enumerate() {
+            if let Some(z) = top(pixel_center(frame, (k % w) as f64, (k / w) as f64)) {
+                *t = z;
+                cells.push(k);
+            }
+        }
+        (cells, tops)
+    }
+
+    #[test]
+    fn a_seat_joined_to_a_desk_by_mixed_pixels_is_split_off() {
+        let frame = crate::obstacles::test_grid();
+        // A desk 1.4 x 0.8 m (top 0.76) and a seat 0.45 m square (0.5) 0.1 m off its long
+        // side, with a row of cells between them climbing from the seat to the desk.
+        let (cells, tops) = scene(&frame, |p| {
+            if p.x > 2.0 && p.x < 3.4 && p.y > 2.0 && p.y < 2.8 {
+                Some(0.76)
+            } else if p.x > 2.5 && p.x < 2.95 && p.y > 1.45 && p.y < 1.9 {
+                Some(0.5)
+            } else if (p.y - 1.95).abs() < 0.05 && p.x > 2.5 && p.x < 2.95 {
+                Some(0.5 + (p.x as f32 - 2.5) * 0.6)
+            } else {
+                None
+            }
+        });
+        let y = |k: usize| pixel_center(&frame, 0.0, (k / frame.width_px as usize) as f64).y;
+        let parts = split_levels(cells, &tops, &frame, 0.1);
+        assert_eq!(
+            parts.len(),
+            2,
+            "{:?}",
+            parts.iter().map(Vec::len).collect::<Vec<_>>()
+        );
+        // The seat's part holds the seat's 20 cells and none of the desk's.
+        let seat = parts
+            .iter()
+            .find(|p| p.iter().any(|&k| y(k) < 1.9))
+            .expect("seat");
+        assert_eq!(seat.iter().filter(|&&k| y(k) < 1.9).count(), 20, "{seat:?}");
+        assert!(seat.iter().all(|&k| y(k) < 2.0), "{seat:?}");
+    }
+
+    #[test]
+    fn a_car_whose_cabin_meets_its_bonnet_along_its_width_stays_whole() {
+        let frame = crate::obstacles::test_grid();
+        // A car 4.4 x 1.8 m: body top 1.0, a cabin 2.2 m long over its middle at 1.44.
+        let (cells, tops) = scene(&frame, |p| {
+            if !(p.x > 1.0 && p.x < 5.4 && p.y > 2.0 && p.y < 3.8) {
+                None
+            } else if p.x > 2.1 && p.x < 4.3 {
+                Some(1.44)
+            } else {
+                Some(1.0)
+            }
+        });
+        let n = cells.len();
+        let parts = split_levels(cells, &tops, &frame, 0.1);
+        assert_eq!(
+            parts.len(),
+            1,
+            "{:?}",
+            parts.iter().map(Vec::len).collect::<Vec<_>>()
+        );
+        assert_eq!(parts[0].len(), n);
+    }
+}

@@ -185,9 +185,11 @@ fn nearest_core(cells: &[usize], cores: &[(f64, Vec<usize>)], width: usize) -> V
         .collect()
 }
 
-/// The length along which regions `a` and `b` meet: the longer side of the rectangle around
-/// their cells next to the other region (or, where none are next to it, within two cells of it),
-/// plus a cell; `None` where they do not meet.
+/// The length along which regions `a` and `b` meet: on each side, the longer side of the
+/// rectangle around its cells within two cells of the other region (plus a cell), and of the two
+/// sides the shorter (each side's reach runs two cells past the other's ends); `None` where they
+/// do not meet. Cells up to two apart join one cluster, so two regions running side by side two
+/// cells apart (a car's side face and its cabin) meet along their whole length.
 fn junction(
     cells: &[usize],
     region: &[usize],
@@ -202,10 +204,10 @@ fn junction(
         .filter(|(_, &r)| r == a || r == b)
         .map(|(&k, &r)| (k, r))
         .collect();
-    let near_other = |k: usize, r: usize, reach: isize| {
+    let near_other = |k: usize, r: usize| {
         let (x, y) = ((k % width) as isize, (k / width) as isize);
-        (-reach..=reach).any(|dy| {
-            (-reach..=reach).any(|dx| {
+        (-2..=2isize).any(|dy| {
+            (-2..=2isize).any(|dx| {
                 let (nx, ny) = (x + dx, y + dy);
                 nx >= 0
                     && ny >= 0
@@ -216,17 +218,16 @@ fn junction(
             })
         })
     };
-    let meets = [1, 2].into_iter().find_map(|reach| {
-        let m: Vec<usize> = of
+    let side = |r: usize| -> Option<f64> {
+        let meets: Vec<usize> = of
             .iter()
-            .filter(|(&k, &r)| near_other(k, r, reach))
+            .filter(|(&k, &o)| o == r && near_other(k, o))
             .map(|(&k, _)| k)
             .collect();
-        (!m.is_empty()).then_some(m)
-    })?;
-    let pts = cell_centres(&meets, frame);
-    let (_, _, size) = min_area_rect(&convex_hull(&pts), &[])?;
-    Some(size[0] + frame.resolution_m)
+        let (_, _, size) = min_area_rect(&convex_hull(&cell_centres(&meets, frame)), &[])?;
+        Some(size[0] + frame.resolution_m)
+    };
+    Some(side(a)?.min(side(b)?))
 }
 
 fn find(parent: &mut [usize], mut i: usize) -> usize {

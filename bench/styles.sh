@@ -21,7 +21,8 @@ WORK=${WORK:-bench/work/styles}
 REUSE=${REUSE:-0}
 cargo build --release -q -p semsim
 S=target/release/semsim
-[ "$REUSE" = 1 ] || rm -rf "$WORK"
+# (Only the styles asked for are scanned again: the others' results stay in $WORK.)
+if [ "$REUSE" != 1 ]; then for style in $STYLES; do rm -rf "$WORK/$style"-*; done; fi
 mkdir -p "$WORK"
 for style in $STYLES; do
   for seed in $SEEDS; do

@@ -148,3 +148,28 @@ fn a_door_left_ajar_lets_the_surveyor_into_its_room() {
     let poses = survey_poses(&b, &strict).expect("survey");
     assert!(!both(&poses), "{poses:?}");
 }
+
+/// Office seed 4: the room west of x = 10 is entered through a glass door left ajar (37
+/// degrees) and holds a staircase; no pose in the corridor stands both within `max_step_m` of
+/// a pose inside the room and in its sight. Before the stepping stone the room had no pose and
+/// its staircase was glimpsed from the corridor.
+#[test]
+fn a_room_no_corridor_pose_links_to_gets_a_pose_through_a_stepping_stone() {
+    let gen = GeneratorConfig {
+        style: Style::Office,
+        ..Default::default()
+    };
+    let b = generate_building(4, &gen).expect("valid");
+    let cfg = SurveyConfig::default();
+    let poses = survey_poses(&b, &cfg).expect("survey");
+    let stairs_room = room_of(&b, &cfg, &[b.stairs[2].start_m]).expect("rooms")[0];
+    // (The staircase's first step stands on the room's floor grid only if the room is there.)
+    let foot = [b.stairs[2].start_m[0] - 0.5, b.stairs[2].start_m[1]];
+    let room = stairs_room.or(room_of(&b, &cfg, &[foot]).expect("rooms")[0]);
+    assert!(room.is_some(), "no room at the staircase's foot");
+    let ours = room_of(&b, &cfg, &xy(&poses)).expect("rooms");
+    assert!(
+        ours.contains(&room),
+        "room {room:?} not surveyed: {poses:?}"
+    );
+}

@@ -14,7 +14,9 @@
 //!    sharing at least `min_overlap` of their floor with what was seen, until the gain is
 //!    under `min_gain_m2`. Then every room (a region of free floor with the doors shut)
 //!    reached through an open door and still without a pose gets one: the pose in it that
-//!    shares most with what was seen, linked to a chosen one; and every staircase that
+//!    shares most with what was seen, linked to a chosen one or, where none is (a door
+//!    ajar, poses outside at the wrong angle), to a stepping stone linked to a chosen one
+//!    (a surveyor stands in front of the door first); and every staircase that
 //!    starts on the floor is seen from its foot (a pose in front of its first riser) where
 //!    a candidate there is linked to a chosen pose.
 //! 4. Ordered as a walk: always on to the nearest pose that has an earlier one close by and
@@ -267,11 +269,31 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
         let mut has_pose: Vec<Option<usize>> = chosen.iter().map(|&c| room(c)).collect();
         has_pose.sort_unstable();
         has_pose.dedup();
+        let lacks_pose = |k: usize| room(k).is_some() && has_pose.binary_search(&room(k)).is_err();
         let next = (0..candidates.len())
-            .filter(|&k| room(k).is_some() && has_pose.binary_search(&room(k)).is_err())
+            .filter(|&k| lacks_pose(k))
             .filter(|&k| linked_to_chosen(&chosen, k))
             .max_by_key(|&k| shared(k));
-        let Some(k) = next else { break };
+        if let Some(k) = next {
+            chosen.push(k);
+            continue;
+        }
+        // No such room is linked to a pose directly (its door is narrow or ajar, the poses
+        // outside stand too far or at the wrong angle): a surveyor first stands in front of
+        // the door, or in it. A stepping stone linked to a chosen pose, from which a pose in
+        // the room is linked; the room's pose sharing most with what was seen.
+        let in_room: Vec<usize> = (0..candidates.len()).filter(|&k| lacks_pose(k)).collect();
+        let stone = (0..candidates.len())
+            .filter(|&s| linked_to_chosen(&chosen, s))
+            .flat_map(|s| {
+                in_room
+                    .iter()
+                    .filter(move |&&k| linked_to_chosen(&[s], k))
+                    .map(move |&k| (s, k))
+            })
+            .max_by_key(|&(s, k)| (shared(k), shared(s)));
+        let Some((s, k)) = stone else { break };
+        chosen.push(s);
         chosen.push(k);
     }
     // 3c. Every staircase that starts on the floor seen from its foot (its risers face a pose

@@ -34,6 +34,8 @@
 //! entered). A stretch no longer than a column is wide that stands free (the floor seen past
 //! both ends) is a column, not a wall; so is a row of such stretches, cut where the floor is
 //! seen deep in the wall's body with no face in front of it: pillars in a row ([`piers`]).
+//! Last, every wall must rest on points of its own, not claimed by a longer wall
+//! ([`own_points`]: a line across the corner of two walls has none).
 
 mod extent;
 mod faces;
@@ -41,6 +43,7 @@ mod fit;
 mod glimpses;
 mod joins;
 mod orientation;
+mod own_points;
 mod piers;
 mod support;
 
@@ -53,6 +56,7 @@ use fit::fit_wall;
 use glam::DVec2;
 use glimpses::extend_to_glimpses;
 use joins::merge_through_gaps;
+use own_points::retain_walls_with_own_points;
 use piers::{is_free_standing_pier, is_row_of_piers};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -326,6 +330,8 @@ pub(crate) fn identify_walls(
         }
     }
     kept.retain(|w| w.length >= c.min_length_m);
+    // Every wall rests on points of its own (not a line across two walls' corner).
+    retain_walls_with_own_points(&mut kept, sc, c.face_tolerance_m);
     kept
 }
 

@@ -162,10 +162,11 @@ fn a_room_no_corridor_pose_links_to_gets_a_pose_through_a_stepping_stone() {
     let b = generate_building(4, &gen).expect("valid");
     let cfg = SurveyConfig::default();
     let poses = survey_poses(&b, &cfg).expect("survey");
-    let stairs_room = room_of(&b, &cfg, &[b.stairs[2].start_m]).expect("rooms")[0];
-    // (The staircase's first step stands on the room's floor grid only if the room is there.)
-    let foot = [b.stairs[2].start_m[0] - 0.5, b.stairs[2].start_m[1]];
-    let room = stairs_room.or(room_of(&b, &cfg, &[foot]).expect("rooms")[0]);
+    // The room is the free floor 0.5 m in front of the staircase's first riser.
+    let s = &b.stairs[2];
+    let (sin, cos) = s.direction_deg.to_radians().sin_cos();
+    let foot = [s.start_m[0] - 0.5 * cos, s.start_m[1] - 0.5 * sin];
+    let room = room_of(&b, &cfg, &[foot]).expect("rooms")[0];
     assert!(room.is_some(), "no room at the staircase's foot");
     let ours = room_of(&b, &cfg, &xy(&poses)).expect("rooms");
     assert!(

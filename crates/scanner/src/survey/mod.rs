@@ -269,9 +269,12 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
         let mut has_pose: Vec<Option<usize>> = chosen.iter().map(|&c| room(c)).collect();
         has_pose.sort_unstable();
         has_pose.dedup();
-        let lacks_pose = |k: usize| room(k).is_some() && has_pose.binary_search(&room(k)).is_err();
-        let next = (0..candidates.len())
-            .filter(|&k| lacks_pose(k))
+        let in_room: Vec<usize> = (0..candidates.len())
+            .filter(|&k| room(k).is_some() && has_pose.binary_search(&room(k)).is_err())
+            .collect();
+        let next = in_room
+            .iter()
+            .copied()
             .filter(|&k| linked_to_chosen(&chosen, k))
             .max_by_key(|&k| shared(k));
         if let Some(k) = next {
@@ -282,7 +285,6 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
         // outside stand too far or at the wrong angle): a surveyor first stands in front of
         // the door, or in it. A stepping stone linked to a chosen pose, from which a pose in
         // the room is linked; the room's pose sharing most with what was seen.
-        let in_room: Vec<usize> = (0..candidates.len()).filter(|&k| lacks_pose(k)).collect();
         let stone = (0..candidates.len())
             .filter(|&s| linked_to_chosen(&chosen, s))
             .flat_map(|s| {

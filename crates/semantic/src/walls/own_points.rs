@@ -1,10 +1,11 @@
 //! Own points: every wall rests on points of its own (the issue's "every wall rests on points
 //! of its own"). The walls claim the upright points in their slabs (off the floor and
-//! ceiling, within the wall's height) longest first, as the per-point labels will; a wall
+//! ceiling, within the wall's height) in the walls' order, as the per-point labels will; a wall
 //! most of whose slab's points an earlier wall had already claimed stands on another's
 //! points, not its own: a line cut across the corner where two walls meet, a copy of a wall a
-//! few degrees off it, a door leaf against its wall. It would label almost nothing, and in the simulated world it would add a
-//! solid slab where the scans saw only the other wall: it is dropped.
+//! few degrees off it, a door leaf against its wall. It would label almost nothing, and in the
+//! simulated world it would add a solid slab where the scans saw only the other wall: it is
+//! dropped.
 
 use super::WallFit;
 use crate::scene::Scene;
@@ -13,11 +14,12 @@ use crate::scene::Scene;
 /// longer wall): a wall stands on its own points more than on another's. A wall meeting
 /// another at a corner or a T shares only the other's thickness of its length; a line across
 /// the corner of two walls shares almost all of it. (On the styles bench the true walls hold
-/// 69 % or more; the lines that were no wall 1-26 %.)
+/// 69 % or more; the lines that were no wall under 2 % to 26 %.)
 pub(crate) const MIN_OWN_SHARE: f64 = 0.5;
 
-/// Keeps the walls (ordered longest first) that rest on points of their own; `tol` is the
-/// slab's margin beyond half the wall's thickness. Each kept wall's rules say how many.
+/// Keeps the walls that rest on points of their own, claiming in the order given (the order
+/// the labels use: longest first as fitted); `tol` is the slab's margin beyond half the
+/// wall's thickness. Each kept wall's rules say how many.
 pub(crate) fn retain_walls_with_own_points(walls: &mut Vec<WallFit>, sc: &Scene, tol: f64) {
     let mut claimed = vec![false; sc.points.len()];
     walls.retain_mut(|w| {

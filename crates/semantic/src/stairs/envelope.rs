@@ -84,6 +84,19 @@ pub(super) fn envelope(
     out
 }
 
+/// The envelope from a flight's foot on: the bins before the first one at most a rise high
+/// (`max_rise_m`, and the measurement's few centimetres) left out. A flight's profile starts
+/// with its first step; something higher in front of it (a person walking past the foot,
+/// furniture) is no part of it, and taken as the running maximum's first level it would hide
+/// the lower steps (or read as a landing).
+pub(super) fn from_foot(env: &[(f64, f64)], max_rise_m: f64) -> &[(f64, f64)] {
+    let first = env
+        .iter()
+        .position(|e| e.1 <= max_rise_m + SAME_SURFACE_M)
+        .unwrap_or(env.len());
+    &env[first..]
+}
+
 /// Counts per height level with prefix sums in O(log n).
 struct Fenwick {
     tree: Vec<i64>,

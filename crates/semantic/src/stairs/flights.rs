@@ -13,7 +13,7 @@
 //! least `min_steps`: a staircase's risers are uniform); where the upper one is none, the lower
 //! one is a flight ending on its landing. The upper flight ends at the far edge of its own top
 //! landing where something stands beyond it.
-use super::envelope::{envelope, BIN_M};
+use super::envelope::{envelope, from_foot, BIN_M};
 use super::plausible::finish;
 use super::profile::{profile, profile_near};
 use super::{DetectedStairs, StairsConfig};
@@ -120,6 +120,7 @@ fn mid_landing(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<(f6
     }
     let nb = (((hi - lo) / BIN_M).ceil() as usize + 1).min(100_000);
     let env = envelope(pts, dir, lo, nb, c.run_m[0] / 2.0);
+    let env = from_foot(&env, c.rise_m[1]);
     let least = c.min_steps as f64 * c.rise_m[0];
     // The running maximum; a level stretch starts where it last rose by more than the
     // measurement's few centimetres. It ends in a climb: within a tread's depth the profile

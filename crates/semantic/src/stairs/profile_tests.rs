@@ -197,3 +197,22 @@ fn a_side_face_smeared_before_each_edge_does_not_shorten_the_run() {
     // (the smear still pulls the edges early, within the band a riser is counted in)
     assert!(p.front1.abs() < 0.035, "first edge at {}", p.front1);
 }
+
+/// Regression: office-6's 6-step flight (rise 0.18 m) read as 3 steps on a "landing": a person
+/// walking past its foot left returns 0.5 m up just in front of the first riser, the running
+/// maximum started at that height and hid the first two levels. The profile starts at the
+/// flight's foot, its first bin at most a rise high.
+#[test]
+fn something_high_in_front_of_the_foot_does_not_hide_the_lower_steps() {
+    let c = StairsConfig::default();
+    let mut pts = flight(6, 0.18, 0.28);
+    // A person's streak 2-6 cm in front of the first riser, 0.48-0.52 m up.
+    for k in 0..12 {
+        let q = DVec2::new(-0.06 + 0.004 * k as f64, -0.5 + 0.02 * k as f64);
+        pts.push((q, 0.48 + 0.004 * (k % 10) as f64));
+    }
+    let p = profile(&pts, &pts, DVec2::X, &c).expect("a staircase");
+    assert_eq!(p.steps, 6);
+    assert!((p.rise - 0.18).abs() < 0.01, "rise {}", p.rise);
+    assert!(p.front1.abs() < 0.03, "first front edge at {}", p.front1);
+}

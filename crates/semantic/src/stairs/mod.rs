@@ -29,10 +29,15 @@
 //! `min_width_m` wide; one seen from its side only gets `default_width_m` only where the floor
 //! beside it is hidden (a staircase hides the floor under it; clutter beside a side face does
 //! not).
+//!
+//! A flight whose top riser stands alone one run past its top step (its tread above the laser,
+//! the side face unseen there, so the blobs part it from the flight) gets that step back (see
+//! `extend`).
 
 use crate::image_frame::ImageFrame;
 mod config;
 mod envelope;
+mod extend;
 mod flights;
 mod levels;
 mod plausible;
@@ -319,6 +324,11 @@ pub(crate) fn find_stairs(
             }
         })
         .flatten()
+        .map(|mut st| {
+            // A top riser the blobs parted from its flight (see `extend`).
+            extend::extend_top(&mut st, sc, |i| pixel_of_point[i] != u32::MAX, c);
+            st
+        })
         .collect()
 }
 

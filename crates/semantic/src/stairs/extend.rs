@@ -1,0 +1,148 @@
+//! A flight's top riser, seen alone. From the floor below, an upper flight shows its risers
+//! (their faces turned to the laser) and, where the laser sees it, its side face; its treads
+//! are above the laser. The risers stand a run apart in plan, and where the side face is
+//! unseen near the top the height map's blobs (pixels within two of each other) part them: the
+//! flight's blob ends a step short of its top, and the top riser is a blob of its own, too
+//! small for a staircase. So each flight is looked at one run past its top step's front: a
+//! riser standing there is one more step. A riser is points on a face across the flight
+//! (spread over at least half its width), between its top tread's height and one rise above
+//! it, its top edge at that rise, and nothing standing right above it (a person on the
+//! landing, a cupboard, a wall beyond the flight stand higher).
+
+use super::{DetectedStairs, StairsConfig};
+use crate::points::Line2;
+use crate::scene::Scene;
+
+/// A riser's points lie this far either side of its front edge along the flight (its face,
+/// the range noise, a voxel's centroid).
+const RISER_BAND_M: f64 = 0.05;
+/// Points right above the riser's top edge, from this high over it ...
+const ABOVE_FROM_M: f64 = 0.06;
+/// ... to this high: more than a quarter of the riser's count there is something standing on
+/// the flight's top, not a riser.
+const ABOVE_TO_M: f64 = 0.6;
+/// The riser's points spread across at least this fraction of the flight's width.
+const MIN_SPREAD: f64 = 0.5;
+
+/// Adds the steps whose risers stand one run past the flight's top (see the module docs);
+/// `usable(i)` is true for the points the height map holds (not in a wall's slab, between the
+/// floor and the height map's top).
+pub(super) fn extend_top(
+    st: &mut DetectedStairs,
+    sc: &Scene,
+    usable: impl Fn(usize) -> bool,
+    c: &StairsConfig,
+) {
+    let line = Line2 {
+        origin: st.start,
+        dir: st.dir,
+    };
+    let half = st.width / 2.0;
+    let foot = sc.floor + st.base;
+    while st.steps < 64 {
+        let k = f64::from(st.steps);
+        let front = k * st.run;
+        let (lo, top) = (k * st.rise + 0.02, (k + 1.0) * st.rise);
+        let (mut on_riser, mut above) = (0usize, 0usize);
+        let (mut t_lo, mut t_hi, mut highest) =
+            (f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+        sc.index.for_each_near_line(
+            sc.points,
+            &line,
+            front - RISER_BAND_M,
+            front + RISER_BAND_M,
+            half,
+            |i, _, t| {
+                if !usable(i) {
+                    return;
+                }
+                let h = sc.z(i) - foot;
+                if h > lo && h <= top + 0.03 {
+                    on_riser += 1;
+                    (t_lo, t_hi, highest) = (t_lo.min(t), t_hi.max(t), highest.max(h));
+                } else if h > top + ABOVE_FROM_M && h <= top + ABOVE_TO_M {
+                    above += 1;
+                }
+            },
+        );
+        let is_riser = on_riser >= c.min_step_points
+            && highest >= top - 0.035
+            && t_hi - t_lo >= MIN_SPREAD * st.width
+            && above * 4 <= on_riser;
+        if !is_riser {
+            return;
+        }
+        st.steps += 1;
+        st.landing = (st.landing - st.run).max(0.0);
+        st.rules.push(format!(
+            "step {} from its riser one run past the step below ({on_riser} points; its tread above the laser unseen)",
+            st.steps
+        ));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::points::XyIndex;
+    use glam::{DVec2, Vec3};
+
+    /// An upper flight found with 3 of its steps (rise 0.17 m, run 0.28 m, 1 m wide, on a
+    /// landing 0.5 m up), climbing +X from x = 0.
+    fn three_steps() -> DetectedStairs {
+        DetectedStairs {
+            steps: 3,
+            rise: 0.17,
+            run: 0.28,
+            width: 1.0,
+            dir: DVec2::X,
+            start: DVec2::ZERO,
+            landing: 1.0,
+            base: 0.5,
+            support: 100,
+            confidence: 1.0,
+            rules: Vec::new(),
+        }
+    }
+
+    /// The steps after `extend_top` over these points (the floor at 0).
+    fn extended(points: &[Vec3]) -> u32 {
+        let index = XyIndex::new(points, DVec2::splat(-3.0), DVec2::splat(4.0), 0.25);
+        let sc = Scene::with_one_index(points, &index, 0.0, 2.8);
+        let mut st = three_steps();
+        extend_top(&mut st, &sc, |_| true, &StairsConfig::default());
+        st.steps
+    }
+
+    /// A riser's face at `x`, from `z0` to `z1`, across y -0.4..0.4 (a return every 5 cm).
+    fn riser(x: f32, z0: f32, z1: f32) -> Vec<Vec3> {
+        let mut p = Vec::new();
+        for j in 0..17 {
+            let mut z = z0;
+            while z <= z1 + 1e-4 {
+                p.push(Vec3::new(x, -0.4 + 0.05 * j as f32, z));
+                z += 0.05;
+            }
+        }
+        p
+    }
+
+    /// Regression: office-7's upper flight (4 steps) was read as 3: its top riser, 0.28 m past
+    /// the third's and with no side face seen between them, was a blob of its own.
+    #[test]
+    fn a_riser_one_run_past_the_top_is_one_more_step() {
+        // The fourth riser: from the third tread (0.5 + 0.51 m) to 0.5 + 0.68 m.
+        let points = riser(0.84, 1.03, 1.18);
+        assert_eq!(extended(&points), 4);
+    }
+
+    #[test]
+    fn something_standing_past_the_top_is_no_step() {
+        // A person on the landing there: a face from the tread up to 1.7 m.
+        assert_eq!(extended(&riser(0.84, 1.03, 2.2)), 3);
+        // A riser's face, but a run and a half past the top: no step of this flight.
+        assert_eq!(extended(&riser(0.98, 1.03, 1.18)), 3);
+        // Nothing there.
+        assert_eq!(extended(&[]), 3);
+    }
+}

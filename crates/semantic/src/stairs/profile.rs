@@ -114,7 +114,7 @@ pub(crate) fn profile_near(
     // one. The counts for twice and one and a half times the grid's rise are fitted too.
     let (n_half, n_two_thirds) = ((n0 / 2.0).round(), (n0 * 2.0 / 3.0).round());
     let n_hint = rise_hint.map_or(0.0, |r| (top_height / r).round());
-    let mut counts = vec![
+    let mut counts: Vec<Count> = vec![
         (n0, top_height, &fit_env),
         (n0 - 1.0, top_height, &fit_env),
         (n0 + 1.0, top_height, &fit_env),
@@ -131,18 +131,29 @@ pub(crate) fn profile_near(
         seen.push(key);
         new
     });
-    let fits: Vec<Fit> = counts
-        .into_iter()
-        .filter(|&(n, _, env)| n >= c.min_steps as f64 && n <= 64.0 && !env.is_empty())
-        .filter(|&(n, top, _)| (c.rise_m[0]..=c.rise_m[1]).contains(&(top / n)))
-        .filter_map(|(n, top, env)| {
-            let risers = RiserBands::new(pts, dir, n as u32, top / n);
-            fit_steps(env, &risers, n as u32, top / n, c)
-        })
-        // (of the fits with a bin on most levels: a count too high by a step or two leaves
-        // its upper levels empty)
-        .filter(|f| f.found as f64 >= 0.6 * f.n as f64 && f.best > 0.0)
-        .collect();
+    let fit_all = |counts: Vec<Count>| -> Vec<Fit> {
+        counts
+            .into_iter()
+            .filter(|&(n, _, env)| n >= c.min_steps as f64 && n <= 64.0 && !env.is_empty())
+            .filter(|&(n, top, _)| (c.rise_m[0]..=c.rise_m[1]).contains(&(top / n)))
+            .filter_map(|(n, top, env)| {
+                let risers = RiserBands::new(pts, dir, n as u32, top / n);
+                fit_steps(env, &risers, n as u32, top / n, c)
+            })
+            // (of the fits with a bin on most levels: a count too high by a step or two leaves
+            // its upper levels empty)
+            .filter(|f| f.found as f64 >= 0.6 * f.n as f64 && f.best > 0.0)
+            .collect()
+    };
+    let mut fits = fit_all(counts);
+    // Where no count fits, a few returns over the top level (mixed pixels at a landing's far
+    // edge) may have set the top height a few centimetres high, and the rise with it: every
+    // level of a long flight then misses its bins. The top level's plateau sets it then.
+    if fits.is_empty() {
+        let top_mode = plateau_mode(env, top_height, rise0);
+        let n_mode = ((top_mode - offset) / rise0).round();
+        fits = fit_all(vec![(n_mode, top_mode, &fit_env)]);
+    }
     let off = |f: &Fit, r: f64| (f.rise - r).abs() / r;
     let near = rise_hint.and_then(|r| {
         fits.iter()
@@ -174,6 +185,30 @@ pub(crate) fn profile_near(
         score: found as f64 + best / ((5.0 + RISER_WEIGHT) * nf + 1.0),
     })
 }
+
+/// The most frequent height (1 cm bins) of the envelope's bins within half a rise under the top
+/// height: the top level's plateau, where a few returns above it (mixed pixels at its far
+/// edge) set the top height a few centimetres high.
+fn plateau_mode(env: &[(f64, f64)], top_height: f64, rise: f64) -> f64 {
+    let mut counts = [0usize; 64];
+    let lo = top_height - rise / 2.0;
+    for e in env {
+        let k = ((e.1 - lo) / 0.01).floor();
+        if (0.0..64.0).contains(&k) {
+            counts[k as usize] += 1;
+        }
+    }
+    let smooth = |k: usize| {
+        counts[k.saturating_sub(1)..(k + 2).min(64)]
+            .iter()
+            .sum::<usize>()
+    };
+    let best = (0..64).max_by_key(|&k| (smooth(k), k)).unwrap_or(0);
+    lo + (best as f64 + 0.5) * 0.01
+}
+
+/// A step count to fit, the top height it climbs to and the envelope it is fitted to.
+type Count<'a> = (f64, f64, &'a [(f64, f64)]);
 
 /// The stair model fitted to the envelope for one step count.
 #[derive(Clone)]

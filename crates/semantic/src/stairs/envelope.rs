@@ -84,17 +84,26 @@ pub(super) fn envelope(
     out
 }
 
-/// The envelope from a flight's foot on: the bins before the first one at most a rise high
-/// (`max_rise_m`, and the measurement's few centimetres) left out. A flight's profile starts
-/// with its first step; something higher in front of it (a person walking past the foot,
-/// furniture) is no part of it, and taken as the running maximum's first level it would hide
-/// the lower steps (or read as a landing).
+/// Returns higher than a rise in front of a flight's first riser, over no more than this
+/// along the direction: a few stray returns (a person walking past, mixed pixels), not a thing
+/// standing there (a box, a chair), which is as much part of the profile as the flight.
+const MAX_STRAY_M: f64 = 0.05;
+
+/// The envelope from a flight's foot on: where the bins before the first one at most a rise
+/// high (`max_rise_m`, and the measurement's few centimetres) span no more than
+/// [`MAX_STRAY_M`] along, they are left out. A flight's profile starts with its first step; a
+/// few strays higher in front of it are no part of it, and taken as the running maximum's first
+/// level they would hide the lower steps (or read as a landing). Something standing in front
+/// of the flight, over more than that, stays: it is no staircase's foot, and the levels it
+/// hides are not the flight's to claim.
 pub(super) fn from_foot(env: &[(f64, f64)], max_rise_m: f64) -> &[(f64, f64)] {
-    let first = env
-        .iter()
-        .position(|e| e.1 <= max_rise_m + SAME_SURFACE_M)
-        .unwrap_or(env.len());
-    &env[first..]
+    let Some(start) = env.first() else {
+        return env;
+    };
+    match env.iter().position(|e| e.1 <= max_rise_m + SAME_SURFACE_M) {
+        Some(first) if env[first].0 - start.0 <= MAX_STRAY_M => &env[first..],
+        _ => env,
+    }
 }
 
 /// Counts per height level with prefix sums in O(log n).
@@ -173,5 +182,18 @@ mod tests {
         p.push((0.305, 0.34));
         let env = envelope(&along_x(&p), DVec2::X, 0.0, 100, 0.1);
         assert_eq!(env.last().map(|e| e.1), Some(0.34));
+    }
+
+    /// A few strays in front of a flight's first riser are left out of its profile; a box
+    /// standing there (over more than a few centimetres) is not.
+    #[test]
+    fn only_strays_in_front_of_the_foot_are_left_out() {
+        let flight: Vec<(f64, f64)> = (0..30).map(|i| (0.1 + 0.01 * i as f64, 0.17)).collect();
+        let strays: Vec<(f64, f64)> = [(0.06, 0.5), (0.08, 0.51)].into_iter().collect();
+        let env: Vec<(f64, f64)> = strays.iter().chain(&flight).copied().collect();
+        assert_eq!(from_foot(&env, 0.23), &env[2..]);
+        let boxed: Vec<(f64, f64)> = (0..20).map(|i| (-0.1 + 0.01 * i as f64, 0.5)).collect();
+        let env: Vec<(f64, f64)> = boxed.iter().chain(&flight).copied().collect();
+        assert_eq!(from_foot(&env, 0.23), &env[..]);
     }
 }

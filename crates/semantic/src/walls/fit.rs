@@ -181,6 +181,13 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
             };
             rules.push("free side unknown (no floor or ceiling beside the face): taken towards the middle of the cloud".into());
         }
+        // The face it keeps runs along it (not the sides of pillars it was drawn across).
+        if orientation
+            .kept_face_along_fraction(k)
+            .is_some_and(|f| f < MIN_ALONG)
+        {
+            return None;
+        }
         fit.line = fit.line.shifted(faces[k]);
         fit.free_side = s;
     }

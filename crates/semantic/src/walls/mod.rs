@@ -24,7 +24,9 @@
 //!    stands (a beam, a row of pillars, a beam over pillars) is no wall.
 //! 6. Orientation ([`orientation`]): below head height, the points near its face run along it
 //!    in at least half of its 20 cm stretches; a line cut through the corner of a pillar, a
-//!    cabinet or a car has the corner's sides crossing its face band instead.
+//!    cabinet or a car has the corner's sides crossing its face band instead; the one face a
+//!    wall seen from one side keeps runs along it too (a line drawn between a row of pillars'
+//!    two rows of faces keeps a face made of the pillars' sides, square to it).
 //!
 //! Duplicates (the same wall found twice) merge into the longer one. Collinear walls join
 //! across a stretch of up to `max_join_gap_m` through which nothing was seen: a wall runs on

@@ -9,6 +9,13 @@
 //! [`BAND_M`]) are reduced to their principal direction in the horizontal plane; a stretch whose
 //! direction is within [`MAX_ANGLE_DEG`] of the line runs along it. A candidate on which fewer
 //! than [`MIN_ALONG`] of the stretches with points run along it is no wall.
+//!
+//! A wall seen from one side keeps one of its faces; that face must run along it too. There, a
+//! surface square to the line also tells, though it crosses the band within a few centimetres
+//! along (too few to read a direction from): a stretch whose points cover the whole of
+//! [`CROSS_M`] either side of the face holds a surface crossing it (a wall hides what is
+//! behind its face). The projection draws a line through a row of pillars seen from both sides
+//! between their two rows of faces, on the pillars' sides, and such a face is made of them.
 
 /// Stretches along the candidate: twice the support bins (a corner's side must show its slope
 /// across the 6 cm band, i.e. over at least 6 cm along).
@@ -26,6 +33,15 @@ const MAX_ANGLE_DEG: f64 = 20.0;
 /// ... and spread along it at least this many times more (variance) than across: a face's points
 /// over 20 cm along and 1-2 cm across are some thirty times; a corner's two sides once or twice.
 const MIN_ELONGATION: f64 = 4.0;
+/// A stretch whose points cover every [`CROSS_BIN_M`] from this far in front of a face to as
+/// far behind it holds a surface crossing the face: more than the face's noise and the depth
+/// of what stands against a wall.
+const CROSS_M: f64 = 0.12;
+/// ... in bins of this.
+const CROSS_BIN_M: f64 = 0.04;
+/// The bins across `2 CROSS_M`.
+const CROSS_BINS: u32 = 6;
+
 /// Fewest stretches running along it, as a fraction of those with points: half (something
 /// standing against a wall crosses its band in places; a corner's sides cross it everywhere).
 pub(crate) const MIN_ALONG: f64 = 0.5;
@@ -33,6 +49,8 @@ pub(crate) const MIN_ALONG: f64 = 0.5;
 /// Per face and stretch: count and sums for the points' covariance in (along, across).
 #[derive(Clone, Copy)]
 struct Moments {
+    /// The [`CROSS_BIN_M`] bins across the face with points (bit k from `-CROSS_M + k bin`).
+    across: u8,
     n: usize,
     s_min: f64,
     s_max: f64,
@@ -46,6 +64,7 @@ struct Moments {
 impl Default for Moments {
     fn default() -> Self {
         Moments {
+            across: 0,
             n: 0,
             s_min: f64::INFINITY,
             s_max: f64::NEG_INFINITY,
@@ -64,6 +83,12 @@ impl Moments {
     /// columns per stretch, one beam each: no horizontal direction to read).
     fn tells(&self) -> bool {
         self.n >= MIN_POINTS && self.s_max - self.s_min >= MIN_SPREAD_M
+    }
+
+    /// True if the stretch's points cover the whole of [`CROSS_M`] either side of the face:
+    /// a surface crossing it (see the module docs).
+    fn crossed(&self) -> bool {
+        self.across.count_ones() == CROSS_BINS
     }
 
     fn add(&mut self, s: f64, d: f64) {
@@ -120,10 +145,15 @@ impl FaceOrientation {
         }
         let k = (s / BIN_M) as usize;
         for (f, bins) in self.faces.iter().zip(&mut self.bins) {
+            let Some(m) = bins.get_mut(k) else {
+                continue;
+            };
             if (d - f).abs() <= BAND_M {
-                if let Some(m) = bins.get_mut(k) {
-                    m.add(s - k as f64 * BIN_M, d - f);
-                }
+                m.add(s - k as f64 * BIN_M, d - f);
+            }
+            let bin = (d - f + CROSS_M) / CROSS_BIN_M;
+            if (0.0..f64::from(CROSS_BINS)).contains(&bin) {
+                m.across |= 1 << bin as u8;
             }
         }
     }
@@ -140,6 +170,23 @@ impl FaceOrientation {
             return None;
         }
         let along = seen.iter().filter(|m| m.runs_along()).count();
+        Some(along as f64 / seen.len() as f64)
+    }
+
+    /// For the face a one-sided wall keeps (index `k` into the faces): the fraction of its
+    /// stretches that tell a direction or hold a crossing surface (see the module docs) that
+    /// run along the line; `None` where none does.
+    pub fn kept_face_along_fraction(&self, k: usize) -> Option<f64> {
+        let seen: Vec<&Moments> = self
+            .bins
+            .get(k)?
+            .iter()
+            .filter(|m| m.tells() || m.crossed())
+            .collect();
+        if seen.is_empty() {
+            return None;
+        }
+        let along = seen.iter().filter(|m| m.tells() && m.runs_along()).count();
         Some(along as f64 / seen.len() as f64)
     }
 }
@@ -200,5 +247,40 @@ mod tests {
             w.add(0.5 + i as f64 * 0.01, 0.06 + i as f64 * 0.01);
         }
         assert_eq!(w.along_fraction(), Some(1.0));
+    }
+
+    /// Regression: hall-10's row of pillars (0.52 m wide, 0.28 m apart, seen from both sides)
+    /// was a wall: the projection drew a line between its two rows of faces, and the face the
+    /// one-sided wall kept was made of the pillars' sides, square to it. Those cross the whole
+    /// band either side of the face and run along nothing; a wall's face with a door jamb
+    /// crossing it in one place still runs along it.
+    #[test]
+    fn a_kept_face_made_of_pillars_sides_does_not_run_along() {
+        // The sides: at the pillars' edges (every 0.4 m along, alternately 0.52 and 0.28 m
+        // apart), from 0.26 m in front of the face to 0.26 m behind it, a return every 2 cm.
+        let mut row = FaceOrientation::new(3.4, &[0.0]);
+        for pillar in 0..4 {
+            for edge in [0.0, 0.52] {
+                let s = 0.1 + 0.8 * pillar as f64 + edge;
+                for j in 0..27 {
+                    row.add(s, -0.26 + 0.02 * j as f64);
+                }
+            }
+        }
+        assert_eq!(row.kept_face_along_fraction(0), Some(0.0));
+        // (the most-points verdict has none: no stretch's band tells a direction)
+        assert_eq!(row.along_fraction(), None);
+        // A wall's face every 2 cm along 3.4 m with a door jamb crossing it at 1.5 m (the
+        // reveal from the face 0.15 m back, and the leaf standing open 0.3 m in front).
+        let mut wall = FaceOrientation::new(3.4, &[0.0]);
+        for i in 0..170 {
+            wall.add(0.02 * i as f64, 0.01 * ((i % 3) as f64 - 1.0));
+        }
+        for j in 0..23 {
+            wall.add(1.5, -0.15 + 0.02 * j as f64);
+        }
+        assert!(wall
+            .kept_face_along_fraction(0)
+            .is_some_and(|f| f >= MIN_ALONG));
     }
 }

@@ -9,10 +9,10 @@
 //! the blob's own axes), the profile along the direction is examined:
 //!
 //! - levels: the highest point per 1 cm along the direction, kept as a running maximum from
-//!   the foot (the first bin at most a rise high: anything higher in front of it, a person
-//!   walking past, is no part of the flight), plateaus at the tops of the steps; the plateaus (histogram peaks) must sit at
-//!   whole multiples of one rise above the floor, `min_steps` of them at least. The top level's
-//!   index is the step count `n`;
+//!   the foot (a few strays higher than a rise just in front of the first riser, a person
+//!   walking past, are no part of the flight), plateaus at the tops of the steps; the plateaus
+//!   (histogram peaks) must sit at whole multiples of one rise above the floor, `min_steps` of
+//!   them at least. The top level's index is the step count `n`;
 //! - rise: the top level's height over `n` (the floor is at 0, and the top level, the landing,
 //!   is the best sampled surface);
 //! - run and start: the stair model `top(s) = rise * min(n, floor((s - s0) / run) + 1)` fitted

@@ -189,7 +189,7 @@ mod tests {
     #[test]
     fn only_strays_in_front_of_the_foot_are_left_out() {
         let flight: Vec<(f64, f64)> = (0..30).map(|i| (0.1 + 0.01 * i as f64, 0.17)).collect();
-        let strays: Vec<(f64, f64)> = [(0.06, 0.5), (0.08, 0.51)].into_iter().collect();
+        let strays = [(0.06, 0.5), (0.08, 0.51)];
         let env: Vec<(f64, f64)> = strays.iter().chain(&flight).copied().collect();
         assert_eq!(from_foot(&env, 0.23), &env[2..]);
         let boxed: Vec<(f64, f64)> = (0..20).map(|i| (-0.1 + 0.01 * i as f64, 0.5)).collect();

@@ -93,7 +93,7 @@ pub(crate) fn profile_near(
     // The edges are fitted to every point: a step's nosing has fewer neighbours than its tread
     // and riser, and the fit's violations bear the odd mixed pixel in front of it.
     let fit_env = envelope(all, dir, s_lo, nb, c.run_m[0] / 2.0);
-    let fit_env = from_foot(&fit_env, c.rise_m[1]).to_vec();
+    let fit_env = from_foot(&fit_env, c.rise_m[1]);
     // A few returns above the top (mixed pixels between a landing's edge and the wall behind
     // it, along rays that rise past the edge) set the top height too high, by two steps or
     // more; then the highest level on the grid of levels is taken as the top as well, fitted
@@ -115,13 +115,13 @@ pub(crate) fn profile_near(
     let (n_half, n_two_thirds) = ((n0 / 2.0).round(), (n0 * 2.0 / 3.0).round());
     let n_hint = rise_hint.map_or(0.0, |r| (top_height / r).round());
     let mut counts: Vec<Count> = vec![
-        (n0, top_height, &fit_env),
-        (n0 - 1.0, top_height, &fit_env),
-        (n0 + 1.0, top_height, &fit_env),
+        (n0, top_height, fit_env),
+        (n0 - 1.0, top_height, fit_env),
+        (n0 + 1.0, top_height, fit_env),
         (top_level, grid_top, &under),
-        (n_two_thirds, top_height, &fit_env),
-        (n_half, top_height, &fit_env),
-        (n_hint, top_height, &fit_env),
+        (n_two_thirds, top_height, fit_env),
+        (n_half, top_height, fit_env),
+        (n_hint, top_height, fit_env),
     ];
     // (each count once: a fit is a grid search, and the stairs stage is the map's slowest)
     let mut seen = Vec::new();
@@ -152,7 +152,7 @@ pub(crate) fn profile_near(
     if fits.is_empty() {
         let top_mode = plateau_mode(env, top_height, rise0);
         let n_mode = ((top_mode - offset) / rise0).round();
-        fits = fit_all(vec![(n_mode, top_mode, &fit_env)]);
+        fits = fit_all(vec![(n_mode, top_mode, fit_env)]);
     }
     let off = |f: &Fit, r: f64| (f.rise - r).abs() / r;
     let near = rise_hint.and_then(|r| {

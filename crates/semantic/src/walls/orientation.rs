@@ -165,30 +165,29 @@ impl FaceOrientation {
             .bins
             .iter()
             .max_by_key(|bins| bins.iter().map(|m| m.n).sum::<usize>())?;
-        let seen: Vec<&Moments> = face.iter().filter(|m| m.tells()).collect();
-        if seen.is_empty() {
-            return None;
-        }
-        let along = seen.iter().filter(|m| m.runs_along()).count();
-        Some(along as f64 / seen.len() as f64)
+        fraction_along(face, false)
     }
 
     /// For the face a one-sided wall keeps (index `k` into the faces): the fraction of its
     /// stretches that tell a direction or hold a crossing surface (see the module docs) that
     /// run along the line; `None` where none does.
     pub fn kept_face_along_fraction(&self, k: usize) -> Option<f64> {
-        let seen: Vec<&Moments> = self
-            .bins
-            .get(k)?
-            .iter()
-            .filter(|m| m.tells() || m.crossed())
-            .collect();
-        if seen.is_empty() {
-            return None;
-        }
-        let along = seen.iter().filter(|m| m.tells() && m.runs_along()).count();
-        Some(along as f64 / seen.len() as f64)
+        fraction_along(self.bins.get(k)?, true)
     }
+}
+
+/// Of a face's stretches that tell a direction (or, with `crossings`, hold a surface crossing
+/// the face), the fraction that run along the line; `None` where none does.
+fn fraction_along(stretches: &[Moments], crossings: bool) -> Option<f64> {
+    let seen: Vec<&Moments> = stretches
+        .iter()
+        .filter(|m| m.tells() || (crossings && m.crossed()))
+        .collect();
+    if seen.is_empty() {
+        return None;
+    }
+    let along = seen.iter().filter(|m| m.tells() && m.runs_along()).count();
+    Some(along as f64 / seen.len() as f64)
 }
 
 #[cfg(test)]

@@ -11,6 +11,7 @@
 #   LASER=ideal bash bench/styles.sh          # the ideal laser instead
 #   REUSE=1 bash bench/styles.sh              # keep the scans and registrations already in
 #                                             # $WORK; only map and score again (semantic work)
+#   REUSE=scans bash bench/styles.sh          # keep the scans; register, map and score again
 set -euo pipefail
 cd "$(dirname "$0")/.."
 STYLES=${STYLES:-"office garage hall mixed"}
@@ -22,7 +23,7 @@ REUSE=${REUSE:-0}
 cargo build --release -q -p semsim
 S=target/release/semsim
 # (Only the styles asked for are scanned again: the others' results stay in $WORK.)
-if [ "$REUSE" != 1 ]; then for style in $STYLES; do rm -rf "$WORK/$style"-*; done; fi
+if [ "$REUSE" != 1 ] && [ "$REUSE" != scans ]; then for style in $STYLES; do rm -rf "$WORK/$style"-*; done; fi
 mkdir -p "$WORK"
 for style in $STYLES; do
   for seed in $SEEDS; do
@@ -34,6 +35,9 @@ for style in $STYLES; do
     if [ "$REUSE" = 1 ] && [ -f "$d/reg/map.pcd" ]; then
       # (log.txt too: a copy made with `cp -al` shares its files with the original)
       rm -rf "$d/failed.txt" "$d/map" "$d/eval.json" "$d/log.txt"
+    elif [ "$REUSE" = scans ] && [ -f "$d/scans/poses.txt" ]; then
+      rm -rf "$d/failed.txt" "$d/reg" "$d/map" "$d/eval.json" "$d/log.txt"
+      step register "$S" register --sequence "$d/scans" --out "$d/reg" || true
     else
       rm -rf "$d" && mkdir -p "$d"
       step generate "$S" building generate --style "$style" --seed "$seed" --out "$d/building.toml" &&

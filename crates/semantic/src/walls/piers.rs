@@ -8,9 +8,13 @@
 //! segment, and the face tests see a wall face at every pillar. What no wall shows is the floor
 //! seen deep inside its body (more than the faces' noise behind the face, where a wall's body
 //! would hide it) between the pillars, with no face in front of it (the floor is seen through
-//! a glass wall's body too, but so is its face). So the candidate is cut wherever the floor is
-//! seen in its body and its face is not; if every piece is no longer than a column is wide and
-//! stands free at both ends (cut on both sides), the candidate is a row of columns.
+//! a glass wall's body too, but so is its face); nor a stretch where the floor is seen right in
+//! front of the face line and nothing of the face from the floor to the ceiling (a doorway has
+//! its lintel above, a wall hidden behind something has the floor in front hidden too; the
+//! floor between pillars, seen at grazing angles through the gap, may leave no return in a
+//! thin measured body). So the candidate is cut wherever either is seen; if every piece is no
+//! longer than a column is wide and stands free at both ends (cut on both sides), the
+//! candidate is a row of columns.
 
 use super::support::HEAD_HEIGHT_M;
 use super::WallFit;
@@ -41,10 +45,16 @@ const MIN_CUT_POINTS: usize = 2;
 const MAX_CUT_FACE_POINTS: usize = 5;
 /// The most bins looked at (a cap against absurd lengths).
 const MAX_BINS: usize = 1_000_000;
+/// Returns this near the ceiling are the ceiling's (its range noise at grazing angles), not a
+/// face's.
+const CEILING_BAND_M: f64 = 0.15;
+/// The floor right in front of the face line: from beyond the face's noise to where anything
+/// standing against the wall (a cabinet hiding its face) would stand.
+const FRONT_M: (f64, f64) = (0.05, 0.35);
 
 /// True if `w` (before one-sided walls are moved to their centre lines) is a row of piers: cut
 /// wherever the floor is seen deep in its body and its face (within `face_tolerance_m`) is not
-/// seen below head height, every piece is at most a column wide and has such a cut on both
+/// seen below head height, or the floor is seen in front of it and its face at no height, every piece is at most a column wide and has such a cut on both
 /// sides (within the wall or up to a column's width past its ends).
 pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) -> bool {
     // 1. Floor points deep in the body and face points below head height, per bin, from a
@@ -53,13 +63,16 @@ pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) ->
     let n = (((w.length + 2.0 * reach) / ROW_BIN_M).ceil() as usize).clamp(1, MAX_BINS);
     let mut floor_in_body = vec![0usize; n];
     let mut face = vec![0usize; n];
+    let mut floor_in_front = vec![0usize; n];
+    let mut face_any_height = vec![0usize; n];
     let faces: Vec<f64> = if w.measured {
         w.faces.clone()
     } else {
         vec![0.0]
     };
     let half = w.thickness / 2.0;
-    let depth = if w.measured { half } else { BODY_DEPTH_M } + face_tolerance_m;
+    let depth =
+        if w.measured { half } else { BODY_DEPTH_M }.max(half + FRONT_M.1) + face_tolerance_m;
     sc.index.for_each_near_line(
         sc.points,
         &w.line,
@@ -77,19 +90,47 @@ pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) ->
             } else {
                 (DEEP_M..=BODY_DEPTH_M).contains(&(-w.free_side * d))
             };
-            if inside && above_floor.abs() <= FLOOR_TOL_M {
+            // Off the face line on a free side: outside either face of a measured wall.
+            let front = if w.measured {
+                d.abs() - half
+            } else {
+                w.free_side * d
+            };
+            let on_floor = above_floor.abs() <= FLOOR_TOL_M;
+            if inside && on_floor {
                 floor_in_body[k] += 1;
             }
-            if above_floor > 0.1
-                && above_floor < HEAD_HEIGHT_M
-                && faces.iter().any(|f| (d - f).abs() <= face_tolerance_m)
-            {
-                face[k] += 1;
+            if on_floor && (FRONT_M.0..=FRONT_M.1).contains(&front) {
+                floor_in_front[k] += 1;
+            }
+            if above_floor > 0.1 && faces.iter().any(|f| (d - f).abs() <= face_tolerance_m) {
+                if sc.z(i) < sc.ceiling - CEILING_BAND_M {
+                    face_any_height[k] += 1;
+                }
+                if above_floor < HEAD_HEIGHT_M {
+                    face[k] += 1;
+                }
             }
         },
     );
+    // A face "not seen at any height" holds under a quarter of what the candidate's faces
+    // typically hold per bin: the mixed pixels at two pillars' edges spill returns into the
+    // gap between them (10-15 % of a face's in hall-10's 0.28 m gaps). A glass pane in an
+    // opaque wall (8 % of the beams return) is cut too, but the wall's pieces are longer than
+    // a column.
+    let mut seen: Vec<usize> = face_any_height
+        .iter()
+        .copied()
+        .filter(|&f| f >= MAX_CUT_FACE_POINTS)
+        .collect();
+    seen.sort_unstable();
+    let typical = seen.get(seen.len() / 2).copied().unwrap_or(0);
+    let unseen = MAX_CUT_FACE_POINTS.max(typical / 4);
     let cut: Vec<bool> = (0..n)
-        .map(|k| floor_in_body[k] >= MIN_CUT_POINTS && face[k] < MAX_CUT_FACE_POINTS)
+        .map(|k| {
+            (floor_in_body[k] >= MIN_CUT_POINTS && face[k] < MAX_CUT_FACE_POINTS)
+                || (floor_in_front[k] >= MIN_FLOOR_POINTS && face_any_height[k] < unseen)
+        })
         .collect();
     // 2. The pieces between cuts that overlap the wall: each short, with a cut on both sides.
     let (first, last) = (
@@ -213,9 +254,43 @@ mod tests {
         let points = cloud(|_, _| false, |x| (0.0..=5.0).contains(&x));
         assert!(!row_of_piers(&points, &face(5.0)));
         // The same pillars' faces without the floor seen between them (nothing seen behind
-        // the row: a wall with a few returns missing) stand as one piece.
+        // the row), the face seen above head height along all of it: a wall whose face lost
+        // its returns below head height in places stands as one piece.
         let pillar = |x: f64| (0..4).any(|k| (x - 0.24 - k as f64 * 0.875).abs() <= 0.24);
-        let points = cloud(|x, y| y > 0.0 && y < 0.48 && x > 0.0 && x < 3.1, pillar);
+        let mut points = cloud(|x, y| y > 0.0 && y < 0.48 && x > 0.0 && x < 3.1, pillar);
+        points.extend(above_head(0.0, 3.1));
+        assert!(!row_of_piers(&points, &face(3.105)));
+    }
+
+    /// Face points on y = 0 at heights 2.0..2.8 from x0 to x1, every 5 cm.
+    fn above_head(x0: f64, x1: f64) -> Vec<Vec3> {
+        let n = ((x1 - x0) / 0.05) as usize;
+        (0..n)
+            .flat_map(|i| (0..5).map(move |k| (i, k)))
+            .map(|(i, k)| {
+                Vec3::new(
+                    (x0 + 0.025 + i as f64 * 0.05) as f32,
+                    0.0,
+                    2.0 + 0.2 * k as f32,
+                )
+            })
+            .collect()
+    }
+
+    #[test]
+    fn pillars_with_nothing_between_them_up_to_the_ceiling_are_no_wall() {
+        // The same pillars with no floor seen behind the row (hidden, or too thin a body for
+        // a return), but the floor seen in front of the gaps and no face in them at any
+        // height: hall-7's pillars, whose row was a wall, read as a 2.8 m wall.
+        let pillar = |x: f64| (0..4).any(|k| (x - 0.24 - k as f64 * 0.875).abs() <= 0.24);
+        let mut points = cloud(|x, y| y > 0.0 && y < 0.48 && x > 0.0 && x < 3.1, pillar);
+        for k in 0..4 {
+            let x0 = k as f64 * 0.875;
+            points.extend(above_head(x0, x0 + 0.48));
+        }
+        assert!(row_of_piers(&points, &face(3.105)));
+        // With a lintel over the gaps (doorways), it is a wall.
+        points.extend(above_head(0.0, 3.1));
         assert!(!row_of_piers(&points, &face(3.105)));
     }
 }

@@ -5,9 +5,10 @@
 //! The scans, placed in one frame with their sensor origins, vote on each other's points:
 //!
 //! 1. Seen by another scan: a point with another scan's point within `persist_m` is of
-//!    something that stayed; it is kept.
-//!    Glass, which a beam passes through, stays for this reason: it returns some beams from
-//!    every scan that looks at it.
+//!    something that stayed; it is kept. Where either scan's returns are sparse there (fewer
+//!    than 8 of its own within `persist_m`), within twice that: glass, which a beam passes
+//!    through, stays for this reason; it returns a few of the beams of every scan that looks
+//!    at it, too few to lie within `persist_m` of each other.
 //! 2. Seen through by another scan: every other scan looks along the direction of the point
 //!    from its own sensor in its range image (bins of `bin_deg` in azimuth and elevation, the
 //!    nearest return of each). If the bin of the point and each of its eight neighbours with a
@@ -36,8 +37,10 @@ use voxels::Voxels;
 pub struct TransientConfig {
     /// Whether the scans of a sequence vote their transients out when they are merged.
     pub enabled: bool,
-    /// Another scan's point within this distance sees the same thing. 0.15 m: the registration's residue (1-3 cm) and a 0.5 degree laser's sample
-    /// spacing out to ~15 m are well within it; a person walks 0.15 m in 0.1 s.
+    /// Another scan's point within this distance sees the same thing (twice it where the
+    /// returns are sparse, see the module docs). 0.15 m: the registration's residue (1-3 cm)
+    /// and a 0.5 degree laser's sample spacing out to ~15 m are well within it; a person walks
+    /// 0.15 m in 0.1 s.
     pub persist_m: f64,
     /// The range images' bins, degrees in azimuth and elevation: at least a rotating laser's
     /// angular step (0.25-1 degree), so that most bins hold a return (with finer bins than the
@@ -96,7 +99,7 @@ pub fn find_transients(scans: &[PointCloud], c: &TransientConfig) -> Vec<Vec<usi
     if !c.enabled || scans.len() < 2 {
         return vec![Vec::new(); scans.len()];
     }
-    // 1. Which scans left points in each voxel.
+    // 1. Every scan's points by voxel of `persist_m`.
     let voxels = Voxels::build(scans, c.persist_m as f32);
     // 2. Each scan's range image around its sensor.
     let images: Vec<RangeImage> = scans
@@ -299,7 +302,6 @@ mod tests {
         let on_person = near(&a.points, person.0, 0.27);
         let (kept, _) = drop_transients(vec![a, b], &TransientConfig::default());
         let left = near(&kept[0].points, person.0, 0.27);
-        eprintln!("{left} of the person's {on_person} points left");
         assert!(
             on_person > 100 && left * 4 < on_person,
             "{left} of {on_person} left"

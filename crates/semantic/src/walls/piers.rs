@@ -54,11 +54,13 @@ const FRONT_M: (f64, f64) = (0.05, 0.35);
 
 /// True if `w` (before one-sided walls are moved to their centre lines) is a row of piers: cut
 /// wherever the floor is seen deep in its body and its face (within `face_tolerance_m`) is not
-/// seen below head height, or the floor is seen in front of it and its face at no height, every piece is at most a column wide and has such a cut on both
-/// sides (within the wall or up to a column's width past its ends).
+/// seen below head height, or the floor is seen in front of it and its face at no height,
+/// every piece is at most a column wide and has such a cut on both sides (within the wall or
+/// up to a column's width past its ends).
 pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) -> bool {
-    // 1. Floor points deep in the body and face points below head height, per bin, from a
-    //    column's width before the start to as far past the end.
+    // 1. Per bin, from a column's width before the start to as far past the end: floor points
+    //    deep in the body and in front of the face line, face points below head height and at
+    //    any height under the ceiling's band.
     let reach = MAX_COLUMN_M;
     let n = (((w.length + 2.0 * reach) / ROW_BIN_M).ceil() as usize).clamp(1, MAX_BINS);
     let mut floor_in_body = vec![0usize; n];
@@ -71,8 +73,8 @@ pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) ->
         vec![0.0]
     };
     let half = w.thickness / 2.0;
-    let depth =
-        if w.measured { half } else { BODY_DEPTH_M }.max(half + FRONT_M.1) + face_tolerance_m;
+    let body = if w.measured { half } else { BODY_DEPTH_M };
+    let depth = body.max(half + FRONT_M.1) + face_tolerance_m;
     sc.index.for_each_near_line(
         sc.points,
         &w.line,
@@ -115,7 +117,7 @@ pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) ->
     );
     // A face "not seen at any height" holds under a quarter of what the candidate's faces
     // typically hold per bin: the mixed pixels at two pillars' edges spill returns into the
-    // gap between them (10-15 % of a face's in hall-10's 0.28 m gaps). A glass pane in an
+    // gap between them (9-15 % of a face's in hall-10's 0.28 m gaps). A glass pane in an
     // opaque wall (8 % of the beams return) is cut too, but the wall's pieces are longer than
     // a column.
     let mut seen: Vec<usize> = face_any_height

@@ -70,13 +70,18 @@ def row(name, evs, poses):
     w, d, o = total(evs, "walls"), total(evs, "door_openings"), total(evs, "obstacles")
     st = total(evs, "stairs")
     exact = sum(1 for e in evs for m in e["stairs_matches"] if m["steps"] == m["steps_truth"])
+    # Flights whose every step the scans saw (tread, riser or the top of its side: `stairs_seen`).
+    full = {(i, s["truth"]) for i, e in enumerate(evs) for s in e.get("stairs_seen", [])
+            if s["steps_seen"] == s["steps"]}
+    exact_full = sum(1 for i, e in enumerate(evs) for m in e["stairs_matches"]
+                     if (i, m["truth"]) in full and m["steps"] == m["steps_truth"])
     false_stairs = st["detected"] - st["matched"]
     recall = o["matched"] / o["expected"] if o["expected"] else 1.0
     beams = sum(e.get("walls_on_beams_or_columns", 0) for e in evs)
     errs = [e["wall_endpoint_error_mean_m"] for e in evs if e.get("wall_endpoint_error_mean_m") is not None]
     err = sum(errs) / len(errs) if errs else float("nan")
     bm = total(evs, "beams")
-    return (f"| {name} | {poses} | {f1(w):.3f} | {f1(d):.3f} | {exact}/{st['expected']} | "
+    return (f"| {name} | {poses} | {f1(w):.3f} | {f1(d):.3f} | {exact}/{st['expected']} | {exact_full}/{len(full)} | "
             f"{false_stairs} | {recall:.3f} ({o['matched']}/{o['expected']}) | {beams} | {100 * err:.1f} | "
             f"{bm['matched']}/{bm['expected']} ({bm['detected']}) |")
 
@@ -87,15 +92,17 @@ lines = [
     "`semsim building generate --style S --seed N`, scanned along `semsim scan --survey` poses,",
     "registered from the simulated odometry, mapped and scored with `semsim eval map --cloud`.",
     "F1 and recall are over all buildings of the style (summed counts); stairs exact: staircases",
-    "found with the true step count / staircases the scans saw; false stairs: staircases",
+    "found with the true step count / staircases the scans saw; every step seen: the same for the",
+    "flights whose every step the scans saw (at least 5 returns on its tread, riser or the top edge",
+    "of its side; a step never seen cannot be counted); false stairs: staircases",
     "reported where there is none; beams as walls: walls reported on a beam or a row of pillars;",
     "endpoint error: mean of the buildings' mean wall endpoint errors; beams found: true beams, ducts",
     "and pipes matched / seen (beams the map reports).",
     "",
 ]
-header = ("| building | poses | walls F1 | doors F1 | stairs exact | false stairs | "
+header = ("| building | poses | walls F1 | doors F1 | stairs exact | every step seen | false stairs | "
           "obstacles recall | beams as walls | endpoint error (cm) | beams found (reported) |\n"
-          "|---|---|---|---|---|---|---|---|---|---|")
+          "|---|---|---|---|---|---|---|---|---|---|---|")
 for style in styles:
     lines += [f"## {style}", "", header]
     evs, all_poses, failed = [], 0, 0
@@ -105,7 +112,7 @@ for style in styles:
         poses = sum(1 for n in os.listdir(scans) if n.endswith(".pcd")) if os.path.isdir(scans) else 0
         if os.path.exists(os.path.join(d, "failed.txt")):
             what = open(os.path.join(d, "failed.txt")).read().strip()
-            lines.append(f"| seed {seed} | {poses} | failed at `{what}` (see `{d}/log.txt`) | | | | | | | |")
+            lines.append(f"| seed {seed} | {poses} | failed at `{what}` (see `{d}/log.txt`) | | | | | | | | |")
             failed += 1
             continue
         ev = json.load(open(os.path.join(d, "eval.json")))

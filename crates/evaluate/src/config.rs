@@ -14,6 +14,8 @@ pub struct EvalConfig {
     pub piece_gap_m: f64,
     /// Least labelled points in a 10 cm stretch of a wall for it to count as observed.
     pub min_bin_points: usize,
+    /// Least labelled returns on a step's tread or riser for the step to count as seen.
+    pub min_step_points: usize,
     /// Least labelled points (lintel and leaf) of an expected door opening.
     pub min_door_points: usize,
     /// Largest angle between matched walls.
@@ -45,6 +47,7 @@ impl Default for EvalConfig {
             piece_gap_m: 1.5,
             min_bin_points: 5,
             min_door_points: 20,
+            min_step_points: 5,
             wall_max_angle_deg: 5.0,
             wall_max_offset_m: 0.15,
             wall_min_iou: 0.5,

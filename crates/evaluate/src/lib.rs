@@ -18,7 +18,10 @@
 //!   part that was seen;
 //! - a door opening is expected if its lintel and leaf together carry at least
 //!   `min_door_points` (20) points (the opening itself has no surface);
-//! - a staircase, the floor and the ceiling if they carry at least `min_points` points;
+//! - a staircase, the floor and the ceiling if they carry at least `min_points` points; for
+//!   each expected staircase, the steps the scans saw are counted too (`stairs_seen`: at least
+//!   `min_step_points` (5) returns on the step's tread or riser), so that a step count missed
+//!   because a step was never seen is told from one the map got wrong;
 //! - obstacles (boxes of class furniture, obstacle or column taller and longer than 0.3 m),
 //!   columns and beams if they carry at least `min_bin_points` points (see `obstacles.rs` for
 //!   their matching by footprint overlap, and the count of walls standing on beams or columns).
@@ -73,7 +76,7 @@ pub use ground_truth::{check_ground_truth, check_ground_truth_in_frame, EvalErro
 pub use labels::{evaluate_labels, LabelEvaluation};
 pub use obstacles::ObstacleMatch;
 pub use score::ClassScore;
-pub use stairs::StairsMatch;
+pub use stairs::{StairsMatch, StairsSeen};
 pub use walls::WallMatch;
 
 use cloud::PointCloud;
@@ -129,6 +132,9 @@ pub struct Evaluation {
     pub door_matches: Vec<DoorMatch>,
     /// Matched staircases.
     pub stairs_matches: Vec<StairsMatch>,
+    /// How many steps of each expected staircase the scans saw (with an observed cloud only).
+    #[serde(default)]
+    pub stairs_seen: Vec<StairsSeen>,
     /// Matched obstacles, columns and beams.
     #[serde(default)]
     pub obstacle_matches: Vec<ObstacleMatch>,

@@ -46,6 +46,13 @@ impl fmt::Display for Evaluation {
                 s.truth, s.steps, s.steps_truth, s.rise_error_m, s.run_error_m
             )?;
         }
+        for s in self.stairs_seen.iter().filter(|s| s.steps_seen < s.steps) {
+            write!(
+                f,
+                "\nstairs {}: the scans saw {} of its {} steps",
+                s.truth, s.steps_seen, s.steps
+            )?;
+        }
         if !self.missed.is_empty() {
             write!(f, "\nmissed: {}", self.missed.join(", "))?;
         }

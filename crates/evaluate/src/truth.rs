@@ -56,6 +56,11 @@ impl Truth {
         self.map_from_building.transform_point3(DVec3::new(x, y, z))
     }
 
+    /// A point of the map frame in the building's frame.
+    pub fn to_building(&self, p: DVec3) -> DVec3 {
+        self.map_from_building.inverse().transform_point3(p)
+    }
+
     /// The observed points of the true entity `name` (e.g. `walls[2]`), map frame.
     pub fn points(&self, name: &str) -> Option<&Vec<DVec3>> {
         self.id_of.get(name).and_then(|id| self.seen.get(id))

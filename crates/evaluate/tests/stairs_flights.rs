@@ -90,6 +90,13 @@ fn a_staircase_with_a_mid_landing_is_found_as_its_two_flights() {
     let (map, ev) = map_and_score(&b, &fixtures::test_laser());
     assert_eq!(ev.stairs.expected, 2, "{ev:#?}");
     assert_eq!(ev.stairs.detected, 2, "no false staircase: {ev:#?}");
+    // Every step of both flights was seen on its tread or riser.
+    assert_eq!(ev.stairs_seen.len(), 2, "{ev:#?}");
+    assert!(
+        ev.stairs_seen.iter().all(|s| s.steps_seen == s.steps),
+        "{:?}",
+        ev.stairs_seen
+    );
     for m in &ev.stairs_matches {
         assert_eq!(m.steps, m.steps_truth, "{m:?}");
         // (within a run: the first front edge of a flight seen from its side is the edge

@@ -75,10 +75,12 @@ mod model;
 mod operator;
 mod plan;
 mod report;
+mod resolve;
 mod scenario;
 mod simulation;
 mod spec;
 mod validate;
+mod verdict;
 mod world;
 
 pub use cloud::EntityClass;
@@ -86,7 +88,6 @@ pub use controller::{Controller, ControllerConfig, VelocityCommand, Waypoint};
 pub use error::{Result, SimError};
 pub use events::{events_to_jsonl, EntityRef, Event, EventConfig, EventKind};
 pub use import::ImportConfig;
-pub use judge::{RuleResult, Verdict};
 pub use live::{LiveDoor, LiveRobot, LiveRule, LiveState, RuleState};
 pub use model::{
     ArmAxis, ArmModel, ChassisModel, DriveModel, LinkModel, RobotModel, StartPose, WheelModel,
@@ -105,5 +106,6 @@ pub use spec::{
     BoxSpec, DoorSpec, EntityInfo, FixedBox, FreeSpaceSpec, HingeEnd, OpeningSense, StairsSpec,
     StepSpec, WorldSpec,
 };
+pub use verdict::{RuleResult, Verdict};
 pub use world::robot::RobotPose;
 pub use world::{World, WorldConfig};

@@ -3,6 +3,7 @@
 //! 4x4 transform goes up and a few dozen floats come back.
 
 mod buffers;
+mod pipelines;
 mod run;
 mod sums;
 #[cfg(test)]
@@ -15,7 +16,6 @@ use crate::error::{GpuError, Result};
 use crate::grid::{HostGrid, NONE};
 use buffers::{buffer, read_back, upload};
 use glam::{Mat4, Vec3};
-use run::Params;
 
 /// Invocations per workgroup of the search kernel.
 const WG: u32 = 128;
@@ -66,7 +66,7 @@ pub struct GpuIcp {
 impl GpuIcp {
     /// Compiles the kernels on `ctx`.
     pub fn new(ctx: GpuContext) -> Result<GpuIcp> {
-        let parts = ctx.scoped("compiling the ICP kernels", || Ok(Self::build(&ctx)))?;
+        let parts = ctx.scoped("compiling the ICP kernels", || Ok(pipelines::compile(&ctx)))?;
         let (layout, search, sum, params, totals, readback) = parts;
         Ok(GpuIcp {
             ctx,
@@ -83,79 +83,6 @@ impl GpuIcp {
             hints_stale: true,
             stage_timing: false,
         })
-    }
-
-    #[allow(clippy::type_complexity)]
-    fn build(
-        ctx: &GpuContext,
-    ) -> (
-        wgpu::BindGroupLayout,
-        wgpu::ComputePipeline,
-        wgpu::ComputePipeline,
-        wgpu::Buffer,
-        wgpu::Buffer,
-        wgpu::Buffer,
-    ) {
-        let d = &ctx.device;
-        let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("icp.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("icp.wgsl").into()),
-        });
-        let entry = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
-        let ro = wgpu::BufferBindingType::Storage { read_only: true };
-        let rw = wgpu::BufferBindingType::Storage { read_only: false };
-        let mut entries = vec![entry(0, wgpu::BufferBindingType::Uniform)];
-        entries.extend((1..=6).map(|b| entry(b, ro)));
-        entries.extend((7..=10).map(|b| entry(b, rw)));
-        let layout = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("icp"),
-            entries: &entries,
-        });
-        let pl = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("icp"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = |name: &str| {
-            d.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(name),
-                layout: Some(&pl),
-                module: &module,
-                entry_point: Some(name),
-                compilation_options: Default::default(),
-                cache: None,
-            })
-        };
-        let search = pipeline("search_reduce");
-        let sum = pipeline("sum_partials");
-        let params = buffer(
-            d,
-            "params",
-            std::mem::size_of::<Params>() as u64,
-            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        );
-        let totals = buffer(
-            d,
-            "totals",
-            (K * 4) as u64,
-            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        );
-        let readback = buffer(
-            d,
-            "readback",
-            (K * 4) as u64,
-            wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        );
-        (layout, search, sum, params, totals, readback)
     }
 
     /// The context in use.

@@ -23,6 +23,7 @@
 //!    in sight (what registering scan k against scans 0..k-1 needs), so that consecutive
 //!    poses stay close (odometry drifts with distance); each yaw points the way walked.
 
+mod foot;
 mod grid;
 
 use crate::building::Building;
@@ -30,6 +31,7 @@ use crate::error::{Result, ScannerError};
 use crate::geometry::BuildingGeometry;
 use crate::pose::ScanPose;
 use cloud::check_range;
+use foot::Foot;
 use grid::floor_grid;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -367,36 +369,6 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
         },
     );
     Ok(order)
-}
-
-/// The foot of a staircase: where its first riser stands and which way it climbs.
-struct Foot {
-    start: [f64; 2],
-    sin_cos: (f64, f64),
-    /// The grid cell 0.3 m in front of the first riser.
-    cell: usize,
-}
-
-impl Foot {
-    fn new(grid: &grid::Grid, s: &crate::building::Staircase) -> Option<Foot> {
-        let (sin, cos) = s.direction_deg.to_radians().sin_cos();
-        let cell = grid.index([s.start_m[0] - cos * 0.3, s.start_m[1] - sin * 0.3])?;
-        Some(Foot {
-            start: s.start_m,
-            sin_cos: (sin, cos),
-            cell,
-        })
-    }
-
-    /// True if a pose at cell `i` sees the flight from its foot: within `view_m` of the first
-    /// riser, within 60 degrees of the flight's axis in front of it, and in sight of the foot.
-    fn seen_from(&self, grid: &grid::Grid, i: usize, view_m: f64) -> bool {
-        let p = grid.centre(i);
-        let v = [p[0] - self.start[0], p[1] - self.start[1]];
-        let (sin, cos) = self.sin_cos;
-        let (d, ahead) = (v[0].hypot(v[1]), -(v[0] * cos + v[1] * sin));
-        d <= view_m && ahead >= 0.5 * d && grid.sight(i, self.cell)
-    }
 }
 
 /// The rooms of `b`: regions of free floor with every door shut, each as the index of the

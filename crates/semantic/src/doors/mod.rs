@@ -3,12 +3,13 @@
 //! dropped from the walls.
 
 mod leaves;
+mod opening_config;
 mod openings;
 
 pub use leaves::DoorConfig;
 pub(crate) use leaves::Leaf;
+pub use opening_config::OpeningConfig;
 pub(crate) use openings::Opening;
-pub use openings::OpeningConfig;
 
 use crate::points::{undirected_angle_deg, Line2};
 use crate::scene::Scene;

@@ -1,81 +1,16 @@
 //! The judge: a scenario's rules resolved against the world, watched after every step, and the
 //! verdict (each rule passed or failed, with a one-line reason and the time it was decided).
 
-use crate::error::{Result, SimError};
+use crate::error::Result;
 use crate::events::{fmt_f, Event, EventKind};
-use crate::scenario::{ReachGoal, Rules};
+use crate::scenario::Rules;
 use crate::spec::WorldSpec;
+use crate::verdict::{RuleResult, Verdict};
 use crate::world::robot::RobotPose;
-use cloud::EntityClass;
+use check::{pass_through, reach_top, wrong, Check};
 use serde::{Deserialize, Serialize};
 
-/// One rule's outcome.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct RuleResult {
-    /// The rule as written, e.g. `pass_through_door = walls[4].doors[2]`.
-    pub rule: String,
-    /// Whether it passed.
-    pub passed: bool,
-    /// Why, in one line.
-    pub reason: String,
-    /// When it was decided (s).
-    pub decided_s: f64,
-    /// The run was interrupted before the rule was decided (then `passed` is false, `reason`
-    /// says so and what was seen so far, and `decided_s` is when the run was interrupted).
-    #[serde(default, skip_serializing_if = "is_false")]
-    pub undecided: bool,
-}
-
-fn is_false(b: &bool) -> bool {
-    !*b
-}
-
-/// The verdict on a run.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Verdict {
-    /// Every rule passed.
-    pub passed: bool,
-    /// Each rule, in the order of [`Rules`]' fields.
-    pub rules: Vec<RuleResult>,
-    /// When the run ended (s).
-    pub end_time_s: f64,
-    /// When the run was interrupted (s), if it was stopped before its end (see
-    /// [`crate::run_scenario_with`]); then `passed` is false and the rules not yet decided
-    /// say so.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub interrupted_at_s: Option<f64>,
-}
-
-#[derive(Debug, Clone, Serialize, Deserialize)]
-enum Check {
-    PassThrough {
-        free_space: u32,
-        entered: u32,
-    },
-    ReachTop {
-        stairs: u32,
-        steps: u32,
-        highest: i64,
-    },
-    OpenDoor {
-        door: u32,
-        initial_deg: f64,
-        widest_deg: f64,
-        by_deg: f64,
-    },
-    Reach {
-        goal: ReachGoal,
-        closest_m: f64,
-    },
-    MaxWall {
-        max_s: f64,
-    },
-    NoBrokenJoint,
-    NoTipping {
-        max_tilt_deg: f64,
-    },
-    NoStuck,
-}
+mod check;
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
 struct Tracked {
@@ -391,54 +326,5 @@ impl Judge {
             end_time_s: end_s,
             interrupted_at_s: interrupted.then_some(end_s),
         }
-    }
-}
-
-/// The check of passing through a door (or an opening's free space) named `r` under `key`.
-fn pass_through(spec: &WorldSpec, key: &str, r: &str) -> Result<Check> {
-    let el = format!("rules.{key}");
-    let e = spec.resolve(r, &el)?;
-    let free_space = match e.class {
-        EntityClass::FreeSpaceForDoor => e.id,
-        EntityClass::Door => spec
-            .free_spaces
-            .iter()
-            .find(|f| f.door == Some(e.id))
-            .map(|f| f.entity)
-            .ok_or_else(|| SimError::Invalid {
-                element: el.clone(),
-                msg: format!("door {} has no free space to pass through", e.name),
-            })?,
-        c => return Err(wrong(&el, r, c, "door or free_space_for_door")),
-    };
-    Ok(Check::PassThrough {
-        free_space,
-        entered: 0,
-    })
-}
-
-/// The check of climbing to the top of the staircase named `r` under `key`.
-fn reach_top(spec: &WorldSpec, key: &str, r: &str) -> Result<Check> {
-    let el = format!("rules.{key}");
-    let e = spec.resolve(r, &el)?;
-    let s = spec
-        .stairs
-        .iter()
-        .find(|s| s.entity == e.id)
-        .ok_or_else(|| wrong(&el, r, e.class, "stairs"))?;
-    let steps = s.steps.len() as u32 + u32::from(s.landing.is_some());
-    Ok(Check::ReachTop {
-        stairs: e.id,
-        steps,
-        highest: -1,
-    })
-}
-
-fn wrong(element: &str, reference: &str, found: EntityClass, expected: &str) -> SimError {
-    SimError::WrongEntityClass {
-        element: element.into(),
-        reference: reference.into(),
-        found: found.name().into(),
-        expected: expected.into(),
     }
 }

@@ -5,7 +5,6 @@ use super::extent::find_extent;
 use super::faces::refine_line;
 use super::orientation::{FaceOrientation, MIN_ALONG};
 use super::support::{SupportProfile, BIN_M, HEAD_HEIGHT_M};
-use super::top::TopReach;
 use super::{WallConfig, WallFit};
 use crate::merge::Segment;
 use crate::points::{quantile, Line2};
@@ -49,7 +48,7 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
     // Face points over the final extent (corners left out): support, coverage, heights, free sides.
     let mut zs = Vec::new();
     let mut bins = vec![false; (((hi - lo) / 0.1).ceil() as usize).clamp(1, 1_000_000)];
-    let mut reach = TopReach::new(bins.len(), z_lo, sc.ceiling - c.max_top_below_ceiling_m);
+    let mut top_bins = vec![false; bins.len()];
     let mut front = vec![[0usize; 2]; faces.len()];
     let strip = (0.02, 0.10);
     let mut profile = SupportProfile::new(
@@ -72,7 +71,7 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
                 zs.push(z);
                 let b = (((s - lo) / 0.1) as usize).min(bins.len() - 1);
                 bins[b] = true;
-                reach.add(b, z);
+                top_bins[b] |= z >= sc.ceiling - c.max_top_below_ceiling_m;
             }
             if sc.on_slab(i, 0.04) {
                 for (k, f) in faces.iter().enumerate() {
@@ -100,8 +99,7 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
     let support = zs.len() as u64;
     let bottom = quantile(&mut zs, 0.01)?;
     let top = quantile(&mut zs, 0.995)?;
-    // (up to the ceiling along 30 % of it, as densely as its face lower down: see `top`)
-    let top_coverage = reach.fraction();
+    let top_coverage = top_bins.iter().filter(|&&b| b).count() as f64 / top_bins.len() as f64;
     if bottom > sc.floor + c.max_bottom_above_floor_m
         || top < sc.ceiling - c.max_top_below_ceiling_m
         || top_coverage < 0.3

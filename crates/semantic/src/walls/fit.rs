@@ -5,6 +5,7 @@ use super::extent::find_extent;
 use super::faces::refine_line;
 use super::orientation::{FaceOrientation, MIN_ALONG};
 use super::support::{SupportProfile, BIN_M, HEAD_HEIGHT_M};
+use super::top::TopReach;
 use super::{WallConfig, WallFit};
 use crate::merge::Segment;
 use crate::points::{quantile, Line2};
@@ -16,6 +17,9 @@ use crate::scene::Scene;
 /// bare along this fraction of its length (a tenth: more than a stray return or two per
 /// metre) and it is a plane through clutter, a beam or a door leaf.
 const UNBOUNDED_FACE_MAX_THROUGH: f64 = 0.1;
+
+/// The least fraction of a wall's length along which its face reaches up to the ceiling.
+const MIN_TOP_COVERAGE: f64 = 0.3;
 
 /// Measures the wall along one prerequisite segment; `None` if it is no wall.
 pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
@@ -49,6 +53,7 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
     let mut zs = Vec::new();
     let mut bins = vec![false; (((hi - lo) / 0.1).ceil() as usize).clamp(1, 1_000_000)];
     let mut top_bins = vec![false; bins.len()];
+    let mut reach = TopReach::new(bins.len(), z_lo, sc.ceiling - c.max_top_below_ceiling_m);
     let mut front = vec![[0usize; 2]; faces.len()];
     let strip = (0.02, 0.10);
     let mut profile = SupportProfile::new(
@@ -72,6 +77,7 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
                 let b = (((s - lo) / 0.1) as usize).min(bins.len() - 1);
                 bins[b] = true;
                 top_bins[b] |= z >= sc.ceiling - c.max_top_below_ceiling_m;
+                reach.add(b, z);
             }
             if sc.on_slab(i, 0.04) {
                 for (k, f) in faces.iter().enumerate() {
@@ -102,7 +108,7 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
     let top_coverage = top_bins.iter().filter(|&&b| b).count() as f64 / top_bins.len() as f64;
     if bottom > sc.floor + c.max_bottom_above_floor_m
         || top < sc.ceiling - c.max_top_below_ceiling_m
-        || top_coverage < 0.3
+        || top_coverage < MIN_TOP_COVERAGE
     {
         return None;
     }
@@ -170,6 +176,13 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
         if s == 0.0 && open + bare >= UNBOUNDED_FACE_MAX_THROUGH {
             // No side of the face is free space with a body behind it, and the scans saw
             // through it: a plane through clutter, a beam, a door leaf; not a wall.
+            return None;
+        }
+        if s == 0.0 && reach.fraction() < MIN_TOP_COVERAGE {
+            // Nor does its face reach the ceiling but through a few returns over its top (the
+            // mixed pixels over a door leaf's or a cupboard's top edge, see `top`): not a wall.
+            // (A wall with free space in front keeps the test above: a duct in front of its top
+            // hides that from the laser just as sparsely.)
             return None;
         }
         if s == 0.0 {

@@ -18,7 +18,9 @@
 //!    not extend the wall, so a wall ends at the face of the wall it meets.
 //! 4. Height: robust z range of the face points, snapped to floor and ceiling; a prerequisite
 //!    that does not come down to the floor (`max_bottom_above_floor_m`) or up to the ceiling
-//!    (`max_top_below_ceiling_m`) is no wall (a beam, a pipe, a door leaf, a cupboard).
+//!    (`max_top_below_ceiling_m`) along 30 % of its length is no wall (a beam, a pipe, a door
+//!    leaf, a cupboard); one with no free side must reach it as densely as its face lower down
+//!    ([`top`]: not through the mixed pixels over a top edge).
 //! 5. Support ([`support`]): a wall's face is seen below head height, and nothing is seen
 //!    through it there; a prerequisite open underneath along more of its length than it
 //!    stands (a beam, a row of pillars, a beam over pillars) is no wall.
@@ -48,6 +50,7 @@ mod orientation;
 mod own_points;
 mod piers;
 mod support;
+mod top;
 
 use crate::error::Result;
 use crate::merge::Segment;

@@ -14,7 +14,8 @@ pub struct EvalConfig {
     pub piece_gap_m: f64,
     /// Least labelled points in a 10 cm stretch of a wall for it to count as observed.
     pub min_bin_points: usize,
-    /// Least labelled returns on a step's tread or riser for the step to count as seen.
+    /// Least labelled returns on a step's tread, riser or the top edge of its side for the step
+    /// to count as seen.
     pub min_step_points: usize,
     /// Least labelled points (lintel and leaf) of an expected door opening.
     pub min_door_points: usize,

@@ -20,7 +20,7 @@
 //!   `min_door_points` (20) points (the opening itself has no surface);
 //! - a staircase, the floor and the ceiling if they carry at least `min_points` points; for
 //!   each expected staircase, the steps the scans saw are counted too (`stairs_seen`: at least
-//!   `min_step_points` (5) returns on the step's tread or riser), so that a step count missed
+//!   `min_step_points` (5) returns on the step's tread, riser or the top edge of its side), so that a step count missed
 //!   because a step was never seen is told from one the map got wrong;
 //! - obstacles (boxes of class furniture, obstacle or column taller and longer than 0.3 m),
 //!   columns and beams if they carry at least `min_bin_points` points (see `obstacles.rs` for

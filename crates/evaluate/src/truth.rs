@@ -12,6 +12,7 @@ pub(crate) struct Truth {
     /// The building's frame in the map frame: the map's levelling after the registration's
     /// frame (the identity where the scans were placed by their true poses).
     map_from_building: DAffine3,
+    building_from_map: DAffine3,
     id_of: HashMap<String, u32>,
     seen: HashMap<u32, Vec<DVec3>>,
     /// True if an observed (labelled) cloud was given.
@@ -32,6 +33,7 @@ impl Truth {
         let map_from_input = map.input_from_map().inverse();
         let mut t = Truth {
             map_from_building: map_from_input * input_from_building,
+            building_from_map: (map_from_input * input_from_building).inverse(),
             id_of: geometry
                 .entities()
                 .iter()
@@ -58,7 +60,7 @@ impl Truth {
 
     /// A point of the map frame in the building's frame.
     pub fn to_building(&self, p: DVec3) -> DVec3 {
-        self.map_from_building.inverse().transform_point3(p)
+        self.building_from_map.transform_point3(p)
     }
 
     /// The observed points of the true entity `name` (e.g. `walls[2]`), map frame.

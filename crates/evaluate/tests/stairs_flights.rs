@@ -90,7 +90,7 @@ fn a_staircase_with_a_mid_landing_is_found_as_its_two_flights() {
     let (map, ev) = map_and_score(&b, &fixtures::test_laser());
     assert_eq!(ev.stairs.expected, 2, "{ev:#?}");
     assert_eq!(ev.stairs.detected, 2, "no false staircase: {ev:#?}");
-    // Every step of both flights was seen on its tread or riser.
+    // Every step of both flights was seen (tread, riser or the top edge of its side).
     assert_eq!(ev.stairs_seen.len(), 2, "{ev:#?}");
     assert!(
         ev.stairs_seen.iter().all(|s| s.steps_seen == s.steps),

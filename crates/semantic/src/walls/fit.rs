@@ -52,7 +52,6 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
     // Face points over the final extent (corners left out): support, coverage, heights, free sides.
     let mut zs = Vec::new();
     let mut bins = vec![false; (((hi - lo) / 0.1).ceil() as usize).clamp(1, 1_000_000)];
-    let mut top_bins = vec![false; bins.len()];
     let mut reach = TopReach::new(bins.len(), z_lo, sc.ceiling - c.max_top_below_ceiling_m);
     let mut front = vec![[0usize; 2]; faces.len()];
     let strip = (0.02, 0.10);
@@ -76,7 +75,6 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
                 zs.push(z);
                 let b = (((s - lo) / 0.1) as usize).min(bins.len() - 1);
                 bins[b] = true;
-                top_bins[b] |= z >= sc.ceiling - c.max_top_below_ceiling_m;
                 reach.add(b, z);
             }
             if sc.on_slab(i, 0.04) {
@@ -105,7 +103,7 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
     let support = zs.len() as u64;
     let bottom = quantile(&mut zs, 0.01)?;
     let top = quantile(&mut zs, 0.995)?;
-    let top_coverage = top_bins.iter().filter(|&&b| b).count() as f64 / top_bins.len() as f64;
+    let top_coverage = reach.any_fraction();
     if bottom > sc.floor + c.max_bottom_above_floor_m
         || top < sc.ceiling - c.max_top_below_ceiling_m
         || top_coverage < MIN_TOP_COVERAGE
@@ -178,7 +176,7 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
             // through it: a plane through clutter, a beam, a door leaf; not a wall.
             return None;
         }
-        if s == 0.0 && reach.fraction() < MIN_TOP_COVERAGE {
+        if s == 0.0 && reach.dense_fraction() < MIN_TOP_COVERAGE {
             // Nor does its face reach the ceiling but through a few returns over its top (the
             // mixed pixels over a door leaf's or a cupboard's top edge, see `top`): not a wall.
             // (A wall with free space in front keeps the test above: a duct in front of its top

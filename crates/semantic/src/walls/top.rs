@@ -52,9 +52,15 @@ impl TopReach {
         }
     }
 
+    /// The fraction of the stretches whose top band holds any face point.
+    pub fn any_fraction(&self) -> f64 {
+        let reached = self.top.iter().filter(|&&n| n > 0).count();
+        reached as f64 / self.top.len().max(1) as f64
+    }
+
     /// The fraction of the stretches whose top band holds face points, at least
     /// [`TOP_SHARE`] of their typical band below.
-    pub fn fraction(&self) -> f64 {
+    pub fn dense_fraction(&self) -> f64 {
         let reached = (0..self.top.len())
             .filter(|&b| {
                 let mut seen: Vec<u32> = self.counts[b * self.bands..(b + 1) * self.bands]
@@ -100,10 +106,11 @@ mod tests {
         face(&mut t, 2, 2.35, 2.5, 1);
         // A wall behind a cabinet: nothing seen below 1.9 m.
         face(&mut t, 3, 1.9, 2.55, 4);
-        assert_eq!(t.fraction(), 0.75);
+        assert_eq!(t.dense_fraction(), 0.75);
         let mut leaf = TopReach::new(1, 0.05, 2.3);
         face(&mut leaf, 0, 0.05, 2.07, 4);
         face(&mut leaf, 0, 2.35, 2.5, 1);
-        assert_eq!(leaf.fraction(), 0.0);
+        assert_eq!(leaf.dense_fraction(), 0.0);
+        assert_eq!(leaf.any_fraction(), 1.0);
     }
 }

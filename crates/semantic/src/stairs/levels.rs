@@ -56,10 +56,58 @@ pub(super) fn level_grid(heights: &[f64], c: &StairsConfig) -> Option<(f64, f64,
         }
         let top = ks.last().copied().unwrap_or(0.0);
         let score = ks.len() as f64 - 0.5 * (top - ks.len() as f64);
-        let enough = ks.len() >= c.min_steps as usize && ks.first().is_some_and(|&k| k <= 2.0);
+        let enough = ks.len() >= c.min_steps as usize && starts_low(&ks);
         if enough && best.is_none_or(|b| score > b.0) {
             best = Some((score, rise, offset, top));
         }
     }
     best.map(|b| (b.1, b.2, b.3))
+}
+
+/// Levels seen at these many consecutive multiples of the rise or more are a flight's even
+/// where its lowest level is missing (see [`starts_low`]).
+const LONG_RUN_OF_LEVELS: usize = 5;
+
+/// True if the levels `ks` (whole multiples of the rise, in order) start low enough to be a
+/// flight's: at the first or second step, or at the third where they go on step by step for
+/// [`LONG_RUN_OF_LEVELS`] at least. Clutter of assorted heights (desks, shelves, boxes on
+/// boxes) shows a level or two at some multiple; a long flight seen along its side from its top
+/// end shows its lowest steps' faces as the farthest, lowest strips, at grazing angles, and
+/// the first two can both be missing.
+fn starts_low(ks: &[f64]) -> bool {
+    let Some(&first) = ks.first() else {
+        return false;
+    };
+    let consecutive = ks.windows(2).all(|w| w[1] - w[0] == 1.0);
+    first <= 2.0 || (first <= 3.0 && consecutive && ks.len() >= LONG_RUN_OF_LEVELS)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The running maxima of a profile whose plateaus stand at `levels` (multiples of a
+    /// 0.17 m rise), 20 bins each.
+    fn plateaus(levels: &[u32]) -> Vec<f64> {
+        levels
+            .iter()
+            .flat_map(|&k| std::iter::repeat_n(0.17 * f64::from(k), 20))
+            .collect()
+    }
+
+    #[test]
+    fn a_long_run_of_levels_may_start_at_the_third_step_clutter_may_not() {
+        let c = StairsConfig::default();
+        // A long flight whose two lowest steps were unseen: levels 3-8, step by step.
+        let (rise, _, top) = level_grid(&plateaus(&[3, 4, 5, 6, 7, 8]), &c).expect("a flight");
+        assert!((rise - 0.17).abs() < 0.005, "rise {rise}");
+        assert_eq!(top, 8.0);
+        // From the first step, three levels are enough.
+        assert!(level_grid(&plateaus(&[1, 2, 3]), &c).is_some());
+        // From the third: three levels, or five with a gap, are clutter's.
+        assert!(level_grid(&plateaus(&[3, 4, 5]), &c).is_none());
+        assert!(level_grid(&plateaus(&[3, 4, 6, 7, 8]), &c).is_none());
+        // From the fourth, however long.
+        assert!(level_grid(&plateaus(&[4, 5, 6, 7, 8, 9]), &c).is_none());
+    }
 }

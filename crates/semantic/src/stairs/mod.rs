@@ -4,9 +4,11 @@
 //! A laser mounted below the upper treads sees a staircase as risers (short parallel lines
 //! across it at equal spacing) and side faces with a stepped top edge. Both show in a height
 //! map (`cell_m` pixels): each pixel's highest point between the floor and `max_height_m`, wall
-//! slabs left out. Pixels within two pixels of each other form blobs (sparse scans leave gaps).
-//! For each blob and each candidate direction of ascent (the walls' directions and normals, and
-//! the blob's own axes), the profile along the direction is examined:
+//! slabs left out. Pixels within two pixels of each other form blobs (sparse scans leave gaps);
+//! where only mixed pixels join a blob's surfaces (a chair in front of a flight's side face),
+//! each surface is a part of its own (see `parts`).
+//! For each part and each candidate direction of ascent (the walls' directions and normals, and
+//! the part's own axes), the profile along the direction is examined:
 //!
 //! - levels: the highest point per 1 cm along the direction, kept as a running maximum from
 //!   the foot (a few strays higher than a rise just in front of the first riser, a person
@@ -40,6 +42,7 @@ mod envelope;
 mod extend;
 mod flights;
 mod levels;
+mod parts;
 mod plausible;
 mod profile;
 mod risers;
@@ -205,13 +208,34 @@ pub(crate) fn find_stairs(
             }
         }
     }
-    // Each blob on its own (in parallel): the best profile over the candidate directions, then
-    // the staircase if it is plausible.
-    blobs
+    // Each blob's parts (see `parts`): mixed pixels and stray returns are on no surface, and
+    // are left out of the levels and the support (see `surface`); where only they join two
+    // surfaces, each is a part of its own.
+    let big_enough = |pixels: usize, members: usize| {
+        pixels >= (c.min_steps as usize) * c.min_level_pixels && members >= 20
+    };
+    let blob_parts: Vec<parts::Part> = blobs
         .par_iter()
         .zip(&blob_points)
-        .filter_map(|(pixels, members)| {
-            if pixels.len() < (c.min_steps as usize) * c.min_level_pixels || members.len() < 20 {
+        .filter(|(pixels, members)| big_enough(pixels.len(), members.len()))
+        .flat_map_iter(|(_, members)| {
+            let on_surfaces = surface::on_surfaces(
+                sc.points,
+                members,
+                c.min_surface_neighbours,
+                c.surface_radius_spacings,
+                3.0 * c.cell_m,
+            );
+            parts::parts(members, &on_surfaces, &pixel_of_point, w)
+        })
+        .collect();
+    // Each part on its own (in parallel): the best profile over the candidate directions, then
+    // the staircase if it is plausible.
+    blob_parts
+        .par_iter()
+        .filter_map(|part| {
+            let members = &part.members;
+            if !big_enough(part.pixels, members.len()) {
                 return None;
             }
             let all: Vec<(DVec2, f64)> = members
@@ -245,21 +269,15 @@ pub(crate) fn find_stairs(
                     }
                 }
             }
-            // Mixed pixels and stray returns are on no surface: left out of the levels and the
-            // support (see `surface`).
-            let pts: Vec<(DVec2, f64)> = surface::on_surfaces(
-                sc.points,
-                members,
-                c.min_surface_neighbours,
-                c.surface_radius_spacings,
-                3.0 * c.cell_m,
-            )
-            .into_iter()
-            .map(|i| {
-                let p = sc.points[i];
-                (DVec2::new(p.x as f64, p.y as f64), p.z as f64 - sc.floor)
-            })
-            .collect();
+            // The part's returns on surfaces: its levels and support.
+            let pts: Vec<(DVec2, f64)> = part
+                .surface
+                .iter()
+                .map(|&i| {
+                    let p = sc.points[i];
+                    (DVec2::new(p.x as f64, p.y as f64), p.z as f64 - sc.floor)
+                })
+                .collect();
             // A staircase with a landing half-way is its two flights (see `flights`): the
             // direction that shows both, else one flight (see below). (The directions in
             // parallel too: one large blob, a row of parked cars, would otherwise keep one

@@ -1,0 +1,177 @@
+//! Tests of `finish`: the checks that make a profile a staircase, and the regressions they pin.
+
+use super::*;
+use crate::points::XyIndex;
+use glam::Vec3;
+
+/// Regression: office-6's upper flight (4 steps on a mid landing) was refused: a desk
+/// beside it, 0.9 m off, had parts at step heights, so the width across the points on the
+/// steps spanned both (3.1 m), and the floor seen under the desk read as floor under the
+/// flight. The run of those points without a 0.3 m gap holding most of them is the flight.
+#[test]
+fn the_flight_is_the_densest_run_across_it() {
+    let flight = (0..120).map(|i| -6.0 + 0.011 * i as f64);
+    let desk = (0..40).map(|i| -3.7 + 0.02 * i as f64);
+    let t: Vec<f64> = flight.chain([-4.1]).chain(desk).collect();
+    let run = densest_run(t);
+    assert_eq!(run.len(), 120);
+    assert!(run.iter().all(|&t| t < -4.6));
+}
+
+/// Regression: office-3's 8-step flight joined one blob with a desk and its chairs 0.4 m
+/// beside it; its width, taken over all of the blob's points, spanned the desk, and the
+/// floor seen under the desk read as floor under the flight, so it was no staircase.
+#[test]
+fn a_desk_beside_a_flight_does_not_widen_it() {
+    let (rise, run) = (0.17, 0.27);
+    // The flight: 4 steps climbing +X from x = 0, 1 m wide (y 0..1); treads and risers
+    // every 2 cm.
+    let mut blob: Vec<(DVec2, f64)> = Vec::new();
+    for k in 0..4 {
+        let (x0, top) = (k as f64 * run, (k + 1) as f64 * rise);
+        for j in 0..50 {
+            let y = 0.01 + 0.02 * j as f64;
+            for i in 0..(rise / 0.02) as usize {
+                blob.push((DVec2::new(x0, y), top - rise + 0.02 * i as f64));
+            }
+            for i in 0..(run / 0.02) as usize {
+                blob.push((DVec2::new(x0 + 0.02 * i as f64, y), top));
+            }
+        }
+    }
+    // A desk beside it (y -1.2..-0.4, top 0.72 m) on four legs.
+    for i in 0..54 {
+        for j in 0..40 {
+            blob.push((DVec2::new(0.02 * i as f64, -1.2 + 0.02 * j as f64), 0.72));
+        }
+    }
+    for (x, y) in [(0.0, -1.2), (1.06, -1.2), (0.0, -0.42), (1.06, -0.42)] {
+        for i in 0..35 {
+            blob.push((DVec2::new(x, y), 0.02 * i as f64));
+        }
+    }
+    // The cloud: the blob over a floor seen everywhere but under the flight.
+    let mut points: Vec<Vec3> = blob
+        .iter()
+        .map(|(q, z)| Vec3::new(q.x as f32, q.y as f32, *z as f32))
+        .collect();
+    for i in 0..100 {
+        for j in 0..100 {
+            let (x, y) = (-1.0 + 0.04 * i as f64, -2.0 + 0.04 * j as f64);
+            if !((0.0..1.08).contains(&x) && (0.0..1.0).contains(&y)) {
+                points.push(Vec3::new(x as f32, y as f32, 0.0));
+            }
+        }
+    }
+    let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(4.0), 0.25);
+    let sc = Scene::with_one_index(&points, &index, 0.0, 2.5);
+    let p = Profile {
+        dir: DVec2::X,
+        rise,
+        run,
+        front1: 0.0,
+        steps: 4,
+        found: 4,
+        score: 4.0,
+    };
+    let stairs = finish(&blob, p, &sc, &StairsConfig::default()).expect("a staircase");
+    assert!((stairs.width - 1.0).abs() < 0.05, "width {}", stairs.width);
+}
+
+/// A flight's side face at y = 0 climbing +X, seen alone (its treads above the laser):
+/// `steps` steps of `rise` x `run` and a landing 1.1 m deep, sampled every 1 cm along and
+/// 2 cm up; step `k`'s face sampled on `columns(k)` of its columns (all of them: `None`) up
+/// to `z_top(k)`, with `extra` returns. Returns the face and the cloud: the face over a
+/// floor seen everywhere but under the flight (y > 0).
+fn side_face(
+    (rise, run, steps): (f64, f64, u32),
+    face: impl Fn(u32, f64) -> (Option<usize>, f64),
+    extra: &[(DVec2, f64)],
+) -> (Vec<(DVec2, f64)>, Vec<Vec3>) {
+    let mut side: Vec<(DVec2, f64)> = extra.to_vec();
+    for k in 0..steps {
+        let (x0, top) = (f64::from(k) * run, f64::from(k + 1) * rise);
+        let depth = if k + 1 == steps { run + 1.1 } else { run };
+        let (columns, z_top) = face(k, top);
+        for i in 0..columns.unwrap_or((depth / 0.01) as usize) {
+            let mut z = 0.02;
+            while z <= z_top + 1e-9 {
+                side.push((DVec2::new(x0 + 0.01 * i as f64, 0.0), z));
+                z += 0.02;
+            }
+        }
+    }
+    let mut points: Vec<Vec3> = side
+        .iter()
+        .map(|(q, z)| Vec3::new(q.x as f32, q.y as f32, *z as f32))
+        .collect();
+    let length = f64::from(steps) * run + 1.1;
+    for i in 0..150 {
+        for j in 0..100 {
+            let (x, y) = (-1.5 + 0.04 * i as f64, -2.0 + 0.04 * j as f64);
+            if !((0.0..length).contains(&x) && (0.0..1.3).contains(&y)) {
+                points.push(Vec3::new(x as f32, y as f32, 0.0));
+            }
+        }
+    }
+    (side, points)
+}
+
+/// Regression: office-3's 8-step flight, seen only along its side face from its top end
+/// (its treads above the laser): the two lowest steps' top edges were the farthest, lowest
+/// strips at grazing angles, almost unseen, so its levels started at the third step; it
+/// was no staircase. Six levels step by step from the third are a flight's.
+#[test]
+fn a_long_flight_seen_from_its_top_end_keeps_its_unseen_lowest_levels() {
+    let (rise, run, steps) = (0.17, 0.26, 8u32);
+    // The first step's face: only 2 returns on its top edge; the second's: not its top
+    // 8 cm.
+    let first = [0.1, 0.15].map(|x| (DVec2::new(x, 0.0), rise));
+    let (side, points) = side_face(
+        (rise, run, steps),
+        |k, top| match k {
+            0 => (Some(0), top),
+            1 => (None, top - 0.08),
+            _ => (None, top),
+        },
+        &first,
+    );
+    let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(5.0), 0.25);
+    let sc = Scene::with_one_index(&points, &index, 0.0, 2.6);
+    let c = StairsConfig::default();
+    let p = crate::stairs::profile::profile(&side, &side, DVec2::X, &c).expect("a profile");
+    assert_eq!(p.steps, steps);
+    let stairs = finish(&side, p, &sc, &c).expect("a staircase");
+    assert_eq!(stairs.steps, steps);
+    assert!((stairs.rise - rise).abs() < 0.01, "rise {}", stairs.rise);
+    assert!((stairs.run - run).abs() < 0.02, "run {}", stairs.run);
+}
+
+/// Regression: on office-3's flight (above) the fit also missed one level, and the third
+/// step's face held 3 returns; one thin step was allowed only where every level was seen.
+/// With all but one level seen it is allowed too; with two unseen it is not.
+#[test]
+fn one_thin_step_is_allowed_with_all_levels_seen_but_one() {
+    let (rise, run, steps) = (0.17, 0.26, 8u32);
+    // The fifth step's face: 3 returns at its top.
+    let thin = [0.1, 0.13, 0.16].map(|x| (DVec2::new(4.0 * run + x, 0.0), 5.0 * rise));
+    let (side, points) = side_face(
+        (rise, run, steps),
+        |k, top| (if k == 4 { Some(0) } else { None }, top),
+        &thin,
+    );
+    let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(5.0), 0.25);
+    let sc = Scene::with_one_index(&points, &index, 0.0, 2.6);
+    let c = StairsConfig::default();
+    let profile = |found| Profile {
+        dir: DVec2::X,
+        rise,
+        run,
+        front1: 0.0,
+        steps,
+        found,
+        score: f64::from(found),
+    };
+    assert!(finish(&side, profile(steps - 1), &sc, &c).is_some());
+    assert!(finish(&side, profile(steps - 2), &sc, &c).is_none());
+}

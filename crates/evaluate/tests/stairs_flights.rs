@@ -179,7 +179,6 @@ yaw_deg = 0.0
 }
 
 #[test]
-#[ignore = "issue #15, left open: with the tests' coarse laser (271 x 151) and the realistic preset this flight is not found yet"]
 fn a_flight_scanned_with_the_realistic_laser_keeps_its_exact_step_count() {
     let b = room(&format!(
         r#"

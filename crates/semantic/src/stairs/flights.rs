@@ -67,14 +67,18 @@ pub(super) fn two_flights(
             .collect()
     };
     let (mut upper, mut upper_all) = (above(pts), above(all));
-    if let Some((end, _)) = mid_landing(&upper, dir, c) {
-        upper.retain(|(q, _)| q.dot(dir) < end);
-        upper_all.retain(|(q, _)| q.dot(dir) < end);
-    }
+    let upper_end = mid_landing(&upper, dir, c).map_or(f64::INFINITY, |(end, _)| end);
+    upper.retain(|(q, _)| q.dot(dir) < upper_end);
+    upper_all.retain(|(q, _)| q.dot(dir) < upper_end);
     let rise = first.as_ref().map(|f| f.rise);
     let second =
         profile_near(&upper, &upper_all, dir, c, rise).and_then(|p| finish(&upper, p, sc, c));
     match (first, second) {
+        // (the level stretch was no landing: a straight flight whose middle treads the laser
+        // missed, both flights one)
+        (Some(first), Some(second)) if !on_its_landing(&first, &second, c) => {
+            one_flight(pts, all, dir, upper_end, sc, c).map(|one| vec![one])
+        }
         (Some(first), Some(mut second)) => {
             second.base = base;
             second.rules.push(format!(
@@ -105,6 +109,42 @@ pub(super) fn two_flights(
         }
         (None, None) => None,
     }
+}
+
+/// True if the upper flight starts on the lower one's landing: its first riser stands beyond
+/// the lower flight's top front edge (along their direction) by more than any tread is deep
+/// (`run_m`). hall-14 of the held-out styles (seed 14) read its straight 10-step flight as two
+/// flights of 5, the upper one's first riser 3 cm past the lower one's top front edge: the level
+/// stretch part way up was treads the laser missed.
+fn on_its_landing(first: &DetectedStairs, second: &DetectedStairs, c: &StairsConfig) -> bool {
+    let top_front = f64::from(first.steps.saturating_sub(1)) * first.run;
+    (second.start - first.start).dot(first.dir) - top_front > c.run_m[1]
+}
+
+/// The flights of a staircase read as two where its treads in the middle were missed, as one:
+/// the points before `end` (where the upper flight's top landing ends and something stands
+/// beyond it).
+fn one_flight(
+    pts: &[(DVec2, f64)],
+    all: &[(DVec2, f64)],
+    dir: DVec2,
+    end: f64,
+    sc: &Scene,
+    c: &StairsConfig,
+) -> Option<DetectedStairs> {
+    let before = |p: &[(DVec2, f64)]| -> Vec<(DVec2, f64)> {
+        p.iter()
+            .filter(|(q, _)| q.dot(dir) < end)
+            .copied()
+            .collect()
+    };
+    let (pts, all) = (before(pts), before(all));
+    let mut one = profile(&pts, &all, dir, c).and_then(|p| finish(&pts, p, sc, c))?;
+    one.rules.push(
+        "one flight: the level stretch part way up is shorter than a landing once both parts are fitted"
+            .to_string(),
+    );
+    Some(one)
 }
 
 /// The far edge (along `dir`) and height of a mid landing in the profile of `pts` (its
@@ -145,4 +185,45 @@ fn mid_landing(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<(f6
         running = running.max(z);
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A flight of `steps` climbing +X from `start_x` on a base `base` m up (rise 0.17 m,
+    /// run 0.28 m).
+    fn flight(start_x: f64, steps: u32, base: f64) -> DetectedStairs {
+        DetectedStairs {
+            steps,
+            rise: 0.17,
+            run: 0.28,
+            width: 1.1,
+            dir: DVec2::X,
+            start: DVec2::new(start_x, 0.0),
+            landing: 1.0,
+            base,
+            support: 100,
+            confidence: 1.0,
+            rules: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn an_upper_flight_starts_on_a_landing_deeper_than_a_tread() {
+        let c = StairsConfig::default();
+        // Lower flight: 5 steps from x = 0, its top front edge at 4 runs (1.12 m).
+        let lower = flight(0.0, 5, 0.0);
+        // A 1 m landing, then the upper flight: one staircase with a mid landing.
+        assert!(on_its_landing(&lower, &flight(2.12, 5, 0.85), &c));
+        // The upper flight's first riser 3 cm past the lower one's top front edge (hall-14):
+        // no landing between them.
+        assert!(!on_its_landing(&lower, &flight(1.15, 5, 0.85), &c));
+        // A tread's depth past it (the longest tread allowed) is still no landing.
+        assert!(!on_its_landing(
+            &lower,
+            &flight(1.12 + c.run_m[1] - 0.01, 5, 0.85),
+            &c
+        ));
+    }
 }

@@ -12,6 +12,8 @@
 #   REUSE=1 bash bench/styles.sh              # keep the scans and registrations already in
 #                                             # $WORK; only map and score again (semantic work)
 #   REUSE=scans bash bench/styles.sh          # keep the scans; register, map and score again
+#   SEEDS="11 12 13 14 15" WORK=bench/work/heldout OUT=bench/results/styles_heldout.md \
+#     bash bench/styles.sh                    # the held-out seeds (README)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 STYLES=${STYLES:-"office garage hall mixed"}

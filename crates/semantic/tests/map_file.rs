@@ -1,31 +1,13 @@
 //! The semantic map file: serde round trip, atomic save, structural validation against
-//! `schema/semantic_map.schema.json`, and typed errors for bad files.
+//! `schema/semantic_map.schema.json`, and typed errors for bad files. Older file versions and
+//! the obstacle section are in `map_file_versions.rs`.
 
-use semantic::{
-    build_semantic_map, EntityClass, SemanticConfig, SemanticError, SemanticMap, MAP_CLASSES,
-    MAP_CLASSES_V1, MAP_VERSION,
-};
+mod common;
+
+use common::default_map;
+use semantic::{EntityClass, SemanticError, SemanticMap, MAP_CLASSES_V1};
 use serde_json::Value;
 use std::path::Path;
-use std::sync::OnceLock;
-
-/// The map of the built-in default building (walls, doors, lintels, free space, stairs).
-fn default_map() -> &'static SemanticMap {
-    static MAP: OnceLock<SemanticMap> = OnceLock::new();
-    MAP.get_or_init(|| {
-        let b = scanner::Building::default_building().expect("built-in building");
-        let g = scanner::BuildingGeometry::new(&b);
-        let cloud = fixtures::scan_building(
-            &b,
-            &fixtures::survey_poses(&b, &g),
-            &fixtures::test_laser(),
-            0.03,
-        );
-        build_semantic_map(&cloud, &SemanticConfig::default())
-            .expect("map")
-            .map
-    })
-}
 
 /// A small JSON Schema checker for the keywords the schema uses: type, const, enum, required,
 /// properties, additionalProperties (false), items, minItems, maxItems, minimum, maximum,
@@ -329,83 +311,4 @@ fn the_net_relates_doors_to_their_walls() {
             );
         }
     }
-}
-
-/// A version 1 file (written by the previous build, `tests/data/semantic_map_v1.json`: the
-/// default building's map) is read, as version 2, with every entity and relation.
-#[test]
-fn version_1_files_are_still_read() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/semantic_map_v1.json");
-    let text = std::fs::read_to_string(&path).expect("v1 file");
-    let raw: Value = serde_json::from_str(&text).expect("JSON");
-    assert_eq!(raw["version"], 1);
-    // Version 2 knows every class version 1 knew, and obstacles, columns and beams.
-    assert!(MAP_CLASSES_V1.iter().all(|c| MAP_CLASSES.contains(c)));
-    for c in [
-        EntityClass::Obstacle,
-        EntityClass::Column,
-        EntityClass::Beam,
-    ] {
-        assert!(MAP_CLASSES.contains(&c) && !MAP_CLASSES_V1.contains(&c));
-    }
-    let map = SemanticMap::load(&path).expect("a version 1 map reads");
-    assert_eq!(map.version, MAP_VERSION);
-    assert_eq!(
-        map.entities.len(),
-        raw["entities"].as_array().expect("entities").len()
-    );
-    assert_eq!(
-        map.relations.len(),
-        raw["relations"].as_array().expect("relations").len()
-    );
-    assert!(map.of_class(EntityClass::Wall).count() >= 8);
-    assert_eq!(map.of_class(EntityClass::Stairs).count(), 1);
-    // Saved again, it is a current-version file that reads back the same.
-    let dir = tempfile::tempdir().expect("temp dir");
-    let out = dir.path().join("v3.json");
-    map.save(&out).expect("save");
-    let again: Value =
-        serde_json::from_str(&std::fs::read_to_string(&out).expect("read")).expect("JSON");
-    assert_eq!(again["version"], MAP_VERSION);
-    assert_eq!(SemanticMap::load(&out).expect("v3"), map);
-    // A version 2 file (no `floor` section: the floor is its box) reads as the current one.
-    let mut v2 = again.clone();
-    v2["version"] = Value::from(2);
-    let v2 = SemanticMap::from_json_str(&v2.to_string(), Path::new("v2.json")).expect("v2");
-    assert_eq!(v2.version, MAP_VERSION);
-    assert!(v2.of_class(EntityClass::Floor).all(|f| f.floor.is_none()));
-    // Version 1 knew no obstacles: one in a version 1 file is an unknown class.
-    let mut bad = raw.clone();
-    bad["entities"][0]["class"] = Value::from("obstacle");
-    let err = SemanticMap::from_json_str(&bad.to_string(), Path::new("v1.json"))
-        .expect_err("an obstacle in version 1");
-    assert!(
-        matches!(err, SemanticError::UnknownClass { ref class, .. } if class == "obstacle"),
-        "{err}"
-    );
-}
-
-/// An obstacle, column or beam needs its `obstacle` section; with it, it round-trips.
-#[test]
-fn obstacles_need_their_section_and_round_trip() {
-    let map = default_map();
-    let o = map
-        .of_class(EntityClass::Obstacle)
-        .next()
-        .expect("the default building's furniture is obstacles");
-    assert!(o.obstacle.as_ref().is_some_and(|i| i.hull_m.len() >= 3));
-    let mut value: Value = serde_json::from_str(&map.to_json_string()).expect("JSON");
-    let i = value["entities"]
-        .as_array()
-        .expect("array")
-        .iter()
-        .position(|e| e["class"] == "obstacle")
-        .expect("an obstacle");
-    value["entities"][i]
-        .as_object_mut()
-        .expect("object")
-        .remove("obstacle");
-    let err = SemanticMap::from_json_str(&value.to_string(), Path::new("m.json"))
-        .expect_err("no obstacle section");
-    assert!(matches!(err, SemanticError::InvalidEntity { .. }), "{err}");
 }

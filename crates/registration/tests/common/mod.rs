@@ -7,6 +7,10 @@ use glam::{DAffine3, DQuat, DVec3};
 use scanner::{Building, BuildingGeometry, LaserConfig, ScanPose, VirtualLaser};
 use std::path::PathBuf;
 
+/// Helpers of the GPU parity tests.
+#[cfg(feature = "gpu")]
+pub mod parity;
+
 /// Where the target is scanned (in the corridor of the default building).
 pub const TARGET_POSE: ScanPose = ScanPose {
     x_m: 6.5,

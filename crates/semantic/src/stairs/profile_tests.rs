@@ -71,22 +71,16 @@ fn returns_high_over_the_landing_do_not_refuse_the_flight() {
     assert!((p.rise - 0.158).abs() < 0.01, "rise {}", p.rise);
 }
 
-/// Regression: hall-4's upper flight (4 steps of 0.17 m, seen on its side face from the
-/// floor) was not found: the side face's top edge, sampled sparsely, stood at heights
-/// between the treads' in the first centimetres of each step, and the grid of levels locked
-/// onto two thirds of the rise (its levels hold every true one but the odd ones), so the
-/// counts fitted were 5 to 7, all refused.
-#[test]
-fn levels_between_the_treads_do_not_hide_the_rise() {
-    let c = StairsConfig::default();
-    let (rise, run) = (0.17, 0.27);
-    let grid = rise * 2.0 / 3.0;
+/// A flight's profile as a side face's sparsely sampled top edge shows it: `steps` steps of
+/// `rise` x `run` climbing +X from x = 0 (the last with a 1.1 m landing), every 2 cm along and
+/// 10 cm across, each step's first 8 cm at the level of a `grid` between its foot and its tread.
+fn levels_between(steps: u32, rise: f64, run: f64, grid: f64) -> Vec<(DVec2, f64)> {
     let mut pts = Vec::new();
-    for k in 0..4 {
-        let (x0, top) = (k as f64 * run, (k + 1) as f64 * rise);
+    for k in 0..steps {
+        let (x0, top) = (f64::from(k) * run, f64::from(k + 1) * rise);
         // The grid's level between this step's foot and its tread, over its first 8 cm.
         let between = ((top - rise) / grid).floor() * grid + grid;
-        let depth = if k == 3 { run + 1.1 } else { run };
+        let depth = if k + 1 == steps { run + 1.1 } else { run };
         let mut x = x0;
         while x < x0 + depth {
             let z = if x < x0 + 0.08 && between < top - 0.02 {
@@ -100,6 +94,19 @@ fn levels_between_the_treads_do_not_hide_the_rise() {
             x += 0.02;
         }
     }
+    pts
+}
+
+/// Regression: hall-4's upper flight (4 steps of 0.17 m, seen on its side face from the
+/// floor) was not found: the side face's top edge, sampled sparsely, stood at heights
+/// between the treads' in the first centimetres of each step, and the grid of levels locked
+/// onto two thirds of the rise (its levels hold every true one but the odd ones), so the
+/// counts fitted were 5 to 7, all refused.
+#[test]
+fn levels_between_the_treads_do_not_hide_the_rise() {
+    let c = StairsConfig::default();
+    let (rise, run) = (0.17, 0.27);
+    let pts = levels_between(4, rise, run, rise * 2.0 / 3.0);
     let p = profile(&pts, &pts, DVec2::X, &c).expect("a staircase");
     assert_eq!(p.steps, 4);
     assert!((p.rise - rise).abs() < 0.01, "rise {}", p.rise);
@@ -243,25 +250,7 @@ fn the_top_plateau_is_the_landing_not_the_returns_over_its_edge() {
 fn a_grid_a_little_off_two_thirds_of_the_rise_still_counts_every_step() {
     let c = StairsConfig::default();
     let (rise, run, steps) = (0.159, 0.28, 10);
-    let grid = rise * 2.0 / 3.0 * 1.05;
-    let mut pts = Vec::new();
-    for k in 0..steps {
-        let (x0, top) = (k as f64 * run, (k + 1) as f64 * rise);
-        let between = ((top - rise) / grid).floor() * grid + grid;
-        let depth = if k + 1 == steps { run + 1.1 } else { run };
-        let mut x = x0;
-        while x < x0 + depth {
-            let z = if x < x0 + 0.08 && between < top - 0.02 {
-                between
-            } else {
-                top
-            };
-            for j in 0..12 {
-                pts.push((DVec2::new(x, -0.6 + 0.1 * j as f64), z));
-            }
-            x += 0.02;
-        }
-    }
+    let pts = levels_between(steps, rise, run, rise * 2.0 / 3.0 * 1.05);
     let p = profile(&pts, &pts, DVec2::X, &c).expect("a staircase");
     assert_eq!(p.steps, steps);
     assert!((p.rise - rise).abs() < 0.01, "rise {}", p.rise);

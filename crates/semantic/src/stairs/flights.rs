@@ -13,6 +13,10 @@
 //! least `min_steps`: a staircase's risers are uniform); where the upper one is none, the lower
 //! one is a flight ending on its landing. The upper flight ends at the far edge of its own top
 //! landing where something stands beyond it.
+//!
+//! A level stretch can also be treads above the laser that the scans missed, part way up one
+//! straight flight: then the two flights fitted meet, the upper one's first riser within a
+//! tread's depth of the lower one's top front edge, and their points are one flight.
 use super::envelope::{envelope, from_foot, BIN_M};
 use super::plausible::finish;
 use super::profile::{profile, profile_near};

@@ -44,13 +44,7 @@ pub(super) fn two_flights(
     //    at least `min_steps` of the lowest rise below it and a climb beyond it.
     let (landing_end, landing_height) = mid_landing(pts, dir, c)?;
     // 2. The lower flight: the points before the landing's far edge.
-    let below = |p: &[(DVec2, f64)]| -> Vec<(DVec2, f64)> {
-        p.iter()
-            .filter(|(q, _)| q.dot(dir) < landing_end)
-            .copied()
-            .collect()
-    };
-    let (lower, lower_all) = (below(pts), below(all));
+    let (lower, lower_all) = (before(pts, dir, landing_end), before(all, dir, landing_end));
     let first = profile(&lower, &lower_all, dir, c).and_then(|p| finish(&lower, p, sc, c));
     let base = match &first {
         Some(first) => first.rise * first.steps as f64,
@@ -136,19 +130,21 @@ fn one_flight(
     sc: &Scene,
     c: &StairsConfig,
 ) -> Option<DetectedStairs> {
-    let before = |p: &[(DVec2, f64)]| -> Vec<(DVec2, f64)> {
-        p.iter()
-            .filter(|(q, _)| q.dot(dir) < end)
-            .copied()
-            .collect()
-    };
-    let (pts, all) = (before(pts), before(all));
+    let (pts, all) = (before(pts, dir, end), before(all, dir, end));
     let mut one = profile(&pts, &all, dir, c).and_then(|p| finish(&pts, p, sc, c))?;
     one.rules.push(
         "one flight: the level stretch part way up is shorter than a landing once both parts are fitted"
             .to_string(),
     );
     Some(one)
+}
+
+/// The points `(xy, height)` before `end` along `dir`.
+fn before(pts: &[(DVec2, f64)], dir: DVec2, end: f64) -> Vec<(DVec2, f64)> {
+    pts.iter()
+        .filter(|(q, _)| q.dot(dir) < end)
+        .copied()
+        .collect()
 }
 
 /// The far edge (along `dir`) and height of a mid landing in the profile of `pts` (its

@@ -3,6 +3,7 @@
 
 use crate::image_frame::{pixel_center, ImageFrame};
 use glam::DVec2;
+use std::collections::HashSet;
 
 /// The points of one height band bucketed by grid cell (compressed rows), and which cells are
 /// occupied by enough of them.
@@ -130,6 +131,24 @@ pub(crate) fn components(
         out.push(cells);
     }
     out
+}
+
+/// The connected components (cells up to `reach` apart) of `cells`, a non-empty set of cells of
+/// a grid `width` wide.
+pub(super) fn components_of(cells: &[usize], width: usize, reach: usize) -> Vec<Vec<usize>> {
+    let member: HashSet<usize> = cells.iter().copied().collect();
+    // Over the bounding rows and columns only, so that a small cluster costs little.
+    let (c0, c1) = cells.iter().fold((usize::MAX, 0), |(a, b), &k| {
+        (a.min(k % width), b.max(k % width))
+    });
+    let r0 = cells.iter().map(|&k| k / width).min().unwrap_or(0);
+    let r1 = cells.iter().map(|&k| k / width).max().unwrap_or(0);
+    let (w, h) = (c1 + 1 - c0, r1 + 1 - r0);
+    let to_global = |k: usize| (k / w + r0) * width + k % w + c0;
+    components(w, h, reach, |k| member.contains(&to_global(k)), |_, _| true)
+        .into_iter()
+        .map(|r| r.into_iter().map(to_global).collect())
+        .collect()
 }
 
 #[cfg(test)]

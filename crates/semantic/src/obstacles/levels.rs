@@ -11,10 +11,10 @@
 //! longer than one thing's side (`MAX_JUNCTION_M`). The parts of one thing meet along its whole
 //! width: a car's cabin (1.4 m) and its bonnet (1.0 m) along the windscreen, 1.6 m and more.
 
-use super::cluster::{cell_centres, components};
+use super::cluster::{cell_centres, components_of};
 use super::fit::{convex_hull, min_area_rect};
 use crate::image_frame::ImageFrame;
-use std::collections::{HashMap, HashSet, VecDeque};
+use std::collections::{HashMap, VecDeque};
 
 /// A level's core is at least this large (m²): a seat 0.45 m square seen in part, the front of
 /// a cabinet 0.35 m deep along 0.3 m. Smaller groups of cells at one height are edges, a
@@ -117,7 +117,7 @@ fn cores(
             .collect();
         free.retain(|&k| (top(k) - best).abs() > half);
         // Its cores: the connected regions of those cells large enough to be a thing.
-        let regions = components_of(&on, width);
+        let regions = components_of(&on, width, 2);
         out.extend(
             regions
                 .into_iter()
@@ -126,24 +126,6 @@ fn cores(
         );
     }
     out
-}
-
-/// The connected components (cells up to two apart) of `cells`, a non-empty set of cells of a
-/// grid `width` wide.
-fn components_of(cells: &[usize], width: usize) -> Vec<Vec<usize>> {
-    let member: HashSet<usize> = cells.iter().copied().collect();
-    // Over the bounding rows and columns only, so that a small cluster costs little.
-    let (c0, c1) = cells.iter().fold((usize::MAX, 0), |(a, b), &k| {
-        (a.min(k % width), b.max(k % width))
-    });
-    let r0 = cells.iter().map(|&k| k / width).min().unwrap_or(0);
-    let r1 = cells.iter().map(|&k| k / width).max().unwrap_or(0);
-    let (w, h) = (c1 + 1 - c0, r1 + 1 - r0);
-    let to_global = |k: usize| (k / w + r0) * width + k % w + c0;
-    components(w, h, 2, |k| member.contains(&to_global(k)), |_, _| true)
-        .into_iter()
-        .map(|r| r.into_iter().map(to_global).collect())
-        .collect()
 }
 
 /// For each of `cells`, the index of the core it is nearest to through the cells (breadth

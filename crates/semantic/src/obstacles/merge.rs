@@ -3,7 +3,7 @@
 //! and slivers of wall residue dropped.
 
 use super::fit::{convex_hull, intersection_area, polygon_area, rect_corners};
-use super::DetectedObstacle;
+use super::{DetectedObstacle, ObstacleConfig};
 use crate::walls::WallFit;
 use glam::DVec2;
 
@@ -13,21 +13,27 @@ pub(super) const PARALLEL_COS: f64 = 0.984_807_753; // cos(10 degrees)
 
 /// The clusters, largest footprint first, each low part that lies mostly (half its footprint
 /// or more) inside a larger one's footprint grown by `margin_m`, at heights overlapping or
-/// apart by `max_gap_m` at most, absorbed by the low cluster holding most of it (a chair's
-/// backrest by its seat, a car's cabin by its body, a shelf's top by the shelf): the larger
-/// one's box grows to hold the part and its z range to span both.
+/// apart by `max_vertical_gap_m` at most, absorbed by the low cluster holding most of it (a
+/// chair's backrest by its seat, a car's cabin by its body, a shelf's top by the shelf): the
+/// larger one's box grows to hold the part and its z range to span both.
 ///
-/// A part whose top is lower than the host's by more than `max_step_m` must also lie mostly
+/// A part whose top is lower than the host's by more than `max_top_step_m` must also lie mostly
 /// within the host's footprint itself (its hull), not merely within its box: a lower thing
 /// beside a higher one is a thing of its own. A desk's cluster that took in the backrest of the
 /// chair at its edge, and the mixed pixels between them, has a box reaching over the chair's
 /// seat, while its hull does not cover the seat; a car's tyre is within the car's hull.
+///
+/// So must a part standing on the floor as the host does and rising above it by more than a
+/// step, unless it is thin (at most `sliver_max_across_m` across): a thin panel rising at a
+/// thing's edge is part of it (a chair's backrest over its seat), while a thing as deep as a
+/// seat or a cabinet rising above its neighbour stands beside it (a chair at a desk, a
+/// cabinet behind it).
 pub(super) fn absorb_parts(
     mut found: Vec<DetectedObstacle>,
     margin_m: f64,
-    max_gap_m: f64,
-    max_step_m: f64,
+    c: &ObstacleConfig,
 ) -> Vec<DetectedObstacle> {
+    let (max_gap_m, max_step_m) = (c.max_vertical_gap_m, c.max_top_step_m);
     found.sort_by(|a, b| (b.size[0] * b.size[1]).total_cmp(&(a.size[0] * a.size[1])));
     let mut kept: Vec<DetectedObstacle> = Vec::new();
     for o in found {
@@ -46,7 +52,10 @@ pub(super) fn absorb_parts(
             let grown = [k.size[0] + 2.0 * margin_m, k.size[1] + 2.0 * margin_m];
             let inside = intersection_area(&part, &rect_corners(k.center, k.dir, grown)) / own;
             let lower = o.z_range.1 < k.z_range.1 - max_step_m;
-            let on_footprint = !lower || intersection_area(&part, &k.hull) / own >= 0.5;
+            let beside = o.z_range.1 > k.z_range.1 + max_step_m
+                && o.z_range.0 <= k.z_range.0 + max_step_m
+                && o.size[1] > c.sliver_max_across_m;
+            let on_footprint = !(lower || beside) || intersection_area(&part, &k.hull) / own >= 0.5;
             if inside >= 0.5 && on_footprint && host.is_none_or(|h| inside > h.0) {
                 host = Some((inside, n));
             }
@@ -160,6 +169,16 @@ mod tests {
     use super::*;
     use cloud::EntityClass;
 
+    /// The default configuration with `max_top_step_m` (0.3 m vertical gap, 0.2 m slivers).
+    fn config(max_top_step_m: f64) -> ObstacleConfig {
+        ObstacleConfig {
+            max_top_step_m,
+            max_vertical_gap_m: 0.3,
+            sliver_max_across_m: 0.2,
+            ..ObstacleConfig::default()
+        }
+    }
+
     fn cluster(
         center: [f64; 2],
         dir: DVec2,
@@ -188,7 +207,7 @@ mod tests {
         // The chair's seat 7.5 cm off the desk's long side, its backrest on the desk's side.
         let seat = cluster([0.0, 0.705], DVec2::X, [0.45, 0.45], (0.0, 0.45), false);
         let back = cluster([0.0, 0.5], DVec2::X, [0.45, 0.04], (0.47, 0.87), false);
-        let out = absorb_parts(vec![back, desk, seat], 0.1, 0.3, 0.1);
+        let out = absorb_parts(vec![back, desk, seat], 0.1, &config(0.1));
         assert_eq!(out.len(), 2, "{out:#?}");
         let chair = out.iter().find(|o| o.center.y > 0.3).expect("the chair");
         assert!((chair.z_range.1 - 0.87).abs() < 1e-9, "{:?}", chair.z_range);
@@ -212,11 +231,33 @@ mod tests {
         .map(DVec2::from_array)
         .to_vec();
         let seat = cluster([0.0, 0.705], DVec2::X, [0.45, 0.45], (0.0, 0.46), false);
-        let out = absorb_parts(vec![desk.clone(), seat.clone()], 0.1, 0.3, 0.1);
+        let out = absorb_parts(vec![desk.clone(), seat.clone()], 0.1, &config(0.1));
         assert_eq!(out.len(), 2, "{out:#?}");
         assert!(out.iter().any(|o| o.z_range.1 == 0.46 && o.center.y > 0.6));
         // A part as high as its host (a step within the tolerance) is absorbed by the box.
-        assert_eq!(absorb_parts(vec![desk, seat], 0.1, 0.3, 0.5).len(), 1);
+        assert_eq!(absorb_parts(vec![desk, seat], 0.1, &config(0.5)).len(), 1);
+    }
+
+    /// Regression (office-14, held-out seed): a 1.85 m cabinet behind a desk was absorbed by
+    /// the desk, whose box the mixed pixels between them had stretched over the cabinet.
+    #[test]
+    fn a_cabinet_beside_a_desk_stays_a_thing_a_backrest_on_its_seat_does_not() {
+        let mut desk = cluster([0.0, 0.3], DVec2::X, [1.5, 1.5], (0.0, 0.9), false);
+        desk.hull = rect_corners(DVec2::new(0.0, 0.0), DVec2::X, [1.5, 0.9]).to_vec();
+        let cabinet = cluster([0.3, 0.9], DVec2::X, [1.2, 0.4], (0.0, 1.85), false);
+        let out = absorb_parts(vec![desk.clone(), cabinet.clone()], 0.1, &config(0.1));
+        assert_eq!(out.len(), 2, "{out:#?}");
+        // Standing on the desk's footprint (a monitor, a lamp), it is the desk's.
+        let mut lamp = cabinet.clone();
+        lamp.center = DVec2::new(0.3, 0.1);
+        lamp.hull = rect_corners(lamp.center, lamp.dir, lamp.size).to_vec();
+        assert_eq!(absorb_parts(vec![desk, lamp], 0.1, &config(0.1)).len(), 1);
+        // A backrest standing on the legs under it rises over its seat's edge: the seat's.
+        let seat = cluster([0.0, 0.0], DVec2::X, [0.45, 0.45], (0.0, 0.45), false);
+        let back = cluster([0.0, 0.2], DVec2::X, [0.45, 0.06], (0.0, 0.87), false);
+        let out = absorb_parts(vec![seat, back], 0.1, &config(0.1));
+        assert_eq!(out.len(), 1, "{out:#?}");
+        assert!((out[0].z_range.1 - 0.87).abs() < 1e-9);
     }
 
     #[test]

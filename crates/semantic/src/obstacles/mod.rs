@@ -16,7 +16,8 @@
 //!    a registration's smear) are cut apart at the neck ([`necks`]); things of different
 //!    heights side by side whose tops the mixed pixels between them join by small steps (a
 //!    seat by a desk, two cabinets) are split where their levels meet along a short junction
-//!    ([`levels`]).
+//!    ([`levels`]). Specks strung onto a cluster by the mixed pixels between it and a neighbour
+//!    are dropped from it ([`fringe`]), so that its box does not reach over the neighbour.
 //! 3. A low cluster's top climbs through the points above head height in its cells while they
 //!    follow each other within `max_vertical_gap_m` (a shelf taller than head height, a column
 //!    up to the ceiling; not the beam over a car). The high points it climbed through are its
@@ -29,7 +30,8 @@
 //!    bottom near the floor stands on it.
 //! 5. Put together ([`merge`]): a low cluster lying mostly inside a larger one's box, at heights
 //!    within `max_vertical_gap_m` of it (a chair's backrest over its seat, a car's cabin over
-//!    its body), and, if lower, inside its footprint's hull, is part of it; overhead pieces
+//!    its body), and, if lower or if standing beside it and higher (a cabinet behind a desk),
+//!    inside its footprint's hull, is part of it; overhead pieces
 //!    continuing each other along one line across gaps up to `column_max_across_m` (a duct cut
 //!    where beams cross it) are one; thin clusters along a wall's face are its residue, dropped;
 //!    a standing cluster along a wall whose floor between it and the wall was never seen (a
@@ -48,6 +50,7 @@ mod cluster;
 mod config;
 mod fit;
 mod frames;
+mod fringe;
 
 pub use fit::intersection_area as convex_intersection_area;
 mod levels;
@@ -65,6 +68,7 @@ use cloud::EntityClass;
 use cluster::{components, BandGrid};
 pub use config::ObstacleConfig;
 use frames::{split_frame, MAX_FRAME_FILL, MIN_FRAME_ACROSS_M};
+use fringe::without_fringe;
 use glam::{DVec2, Vec3};
 use levels::split_levels;
 use merge::{absorb_parts, drop_wall_slivers, join_collinear};
@@ -163,7 +167,8 @@ pub(crate) fn find_obstacles(
     let low_clusters = components(w, h, 2, occupied, |a, b| (tops[a] - tops[b]).abs() <= step)
         .into_iter()
         .flat_map(|cells| split_at_necks(cells, &frame))
-        .flat_map(|cells| split_levels(cells, &tops, &frame, c.max_top_step_m));
+        .flat_map(|cells| split_levels(cells, &tops, &frame, c.max_top_step_m))
+        .map(|cells| without_fringe(cells, w, frame.resolution_m));
     for cells in low_clusters {
         let members: Vec<u32> = cells
             .iter()
@@ -232,12 +237,7 @@ pub(crate) fn find_obstacles(
         }
     }
     // 5-6. Put together, then classed.
-    let out = absorb_parts(
-        out,
-        frame.resolution_m,
-        c.max_vertical_gap_m,
-        c.max_top_step_m,
-    );
+    let out = absorb_parts(out, frame.resolution_m, c);
     let out = join_collinear(out, c.column_max_across_m);
     let mut out = drop_wall_slivers(
         out,

@@ -117,6 +117,22 @@ pub(crate) fn profile_near(
     let levels = (top_height - offset) / rise0;
     let (n_half, n_two_thirds) = ((levels / 2.0).round(), (levels * 2.0 / 3.0).round());
     let n_hint = rise_hint.map_or(0.0, |r| (top_height / r).round());
+    // An upper flight seen from the floor below: a person walking past beside it, or mixed
+    // pixels where rays rise past its edges, can stand over its top landing by more than a rise
+    // (hall style, a person beside a flight on a mid landing), which the count from the top
+    // height then climbs to. Its points end with its top landing: the height of their last
+    // stretch is counted to as well, fitted to the envelope under it.
+    let end = rise_hint
+        .and_then(|_| end_plateau(env, c.run_m[1], rise0))
+        .filter(|&h| h < top_height - rise0 / 2.0);
+    let under_end: Vec<(f64, f64)> = end.map_or_else(Vec::new, |h| {
+        fit_env
+            .iter()
+            .copied()
+            .filter(|e| e.1 <= h + ABOVE_TOP_M)
+            .collect()
+    });
+    let n_end = end.map_or(0.0, |h| ((h - offset) / rise0).round());
     let mut counts: Vec<Count> = vec![
         (n0, top_height, fit_env),
         (n0 - 1.0, top_height, fit_env),
@@ -125,6 +141,7 @@ pub(crate) fn profile_near(
         (n_two_thirds, top_height, fit_env),
         (n_half, top_height, fit_env),
         (n_hint, top_height, fit_env),
+        (n_end, end.unwrap_or(top_height), &under_end),
     ];
     // (each count once: a fit is a grid search, and the stairs stage is the map's slowest)
     let mut seen = Vec::new();
@@ -208,6 +225,19 @@ fn plateau_mode(env: &[(f64, f64)], top_height: f64, rise: f64) -> f64 {
     };
     let best = (0..64).max_by_key(|&k| (smooth(k), k)).unwrap_or(0);
     lo + (best as f64 + 0.5) * 0.01
+}
+
+/// The height of the envelope's last `along_m`: the most frequent (see [`plateau_mode`])
+/// within half a `rise` under the stretch's highest bin; `None` for an empty envelope.
+fn end_plateau(env: &[(f64, f64)], along_m: f64, rise: f64) -> Option<f64> {
+    let last = env.last()?.0;
+    let from = env.partition_point(|e| e.0 < last - along_m);
+    let stretch = &env[from..];
+    let highest = stretch
+        .iter()
+        .map(|e| e.1)
+        .fold(f64::NEG_INFINITY, f64::max);
+    Some(plateau_mode(stretch, highest, rise))
 }
 
 /// A step count to fit, the top height it climbs to and the envelope it is fitted to.

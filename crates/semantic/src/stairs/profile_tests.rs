@@ -255,3 +255,29 @@ fn a_grid_a_little_off_two_thirds_of_the_rise_still_counts_every_step() {
     assert_eq!(p.steps, steps);
     assert!((p.rise - rise).abs() < 0.01, "rise {}", p.rise);
 }
+
+/// Regression (hall-17, fresh seed 17): the upper flight of a staircase with a mid landing, 4
+/// steps seen from the floor below, read as 5: a person walking past beside it, over its top
+/// step, stood 0.2-0.3 m above its top landing, and the count from the top height climbed to
+/// the person. Its points end with its top landing, whose height is counted to as well.
+#[test]
+fn a_person_beside_an_upper_flight_does_not_add_a_step() {
+    let c = StairsConfig::default();
+    let (rise, run) = (0.179, 0.256);
+    let mut pts = flight(4, rise, run);
+    // The person: 0.5 m along, from the middle of the top step on, 0.2 m above the landing
+    // (over a rise: the count from the top height is one more, the grid of levels no higher).
+    for i in 0..25 {
+        for j in 0..4 {
+            let q = DVec2::new(3.5 * run + 0.02 * i as f64, 0.7 + 0.05 * j as f64);
+            pts.push((q, 4.0 * rise + 0.2 + 0.01 * ((i + j) % 3) as f64));
+        }
+    }
+    let p = profile_near(&pts, &pts, DVec2::X, &c, Some(0.177)).expect("a flight");
+    assert_eq!(
+        p.steps, 4,
+        "rise {} run {} found {}",
+        p.rise, p.run, p.found
+    );
+    assert!((p.rise - rise).abs() < 0.01, "rise {}", p.rise);
+}

@@ -6,18 +6,16 @@
 //! trail reaches over the neighbour: a desk's box a metre too deep, which then takes in the chair
 //! beside it and in the simulated world closes the passage behind it.
 //!
-//! A surface the laser saw is a piece of touching cells (8-connected) as large as a thing the
-//! stage scores, or a small piece within the reach of such a piece (a leg under a seat, the
+//! A surface the laser saw is a piece of touching cells (8-connected) at least
+//! [`MIN_SURFACE_M2`](super::MIN_SURFACE_M2) large, or a small piece within the reach of such a piece (a leg under a seat, the
 //! half of a seat beyond an unseen row). A small piece that only other small pieces tie to
 //! the body is fringe, and not part of the thing. A cluster with no such body (a chair seen as
 //! its four legs, a crate seen in specks) is all kept.
 
 use super::cluster::components_of;
+use super::min_surface_cells;
 use std::collections::HashSet;
 
-/// A piece of touching cells at least this large (m²) is a surface the laser saw: the front of
-/// a cabinet 0.35 m deep along 0.2 m, a seat seen in part (the levels' cores are as large).
-pub(super) const MIN_SURFACE_M2: f64 = 0.06;
 /// Pieces within this many cells of a surface are part of its thing (the clustering's reach).
 const REACH_CELLS: isize = 2;
 
@@ -25,7 +23,7 @@ const REACH_CELLS: isize = 2;
 /// fringe (see the module docs); all of them if no piece is as large as a surface or the
 /// surfaces hold less than half the cells.
 pub(super) fn without_fringe(cells: Vec<usize>, width: usize, cell_m: f64) -> Vec<usize> {
-    let min_cells = (MIN_SURFACE_M2 / (cell_m * cell_m)).ceil() as usize;
+    let min_cells = min_surface_cells(cell_m);
     if cells.len() < 2 * min_cells {
         return cells;
     }

@@ -13,13 +13,10 @@
 
 use super::cluster::{cell_centres, components_of};
 use super::fit::{convex_hull, min_area_rect};
+use super::min_surface_cells;
 use crate::image_frame::ImageFrame;
 use std::collections::{HashMap, VecDeque};
 
-/// A level's core is at least this large (m²): a seat 0.45 m square seen in part, the front of
-/// a cabinet 0.35 m deep along 0.3 m. Smaller groups of cells at one height are edges, a
-/// backrest's top or mixed pixels.
-const MIN_CORE_M2: f64 = 0.06;
 /// Two regions at different levels meeting along at most this are two things: a seat, a crate
 /// or a cabinet meets its neighbour along its own side (0.35-0.6 m, a cell more for the grid),
 /// while the parts of one thing meet along its width (a car's, 1.6 m or more).
@@ -40,7 +37,7 @@ pub(super) fn split_levels(
     step: f64,
 ) -> Vec<Vec<usize>> {
     let cell_m = frame.resolution_m;
-    let min_core = (MIN_CORE_M2 / (cell_m * cell_m)).ceil() as usize;
+    let min_core = min_surface_cells(cell_m);
     if cells.len() < 2 * min_core {
         return vec![cells];
     }

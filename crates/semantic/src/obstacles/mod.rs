@@ -75,6 +75,17 @@ use merge::{absorb_parts, drop_wall_slivers, join_collinear};
 use necks::split_at_necks;
 use partitions::classify_partition;
 
+/// A surface the laser saw of a thing is at least this large (m²): a seat 0.45 m square seen in
+/// part, the front of a cabinet 0.35 m deep along 0.2-0.3 m. Smaller groups of cells are edges,
+/// a backrest's top or mixed pixels (the levels' cores, [`levels`], and the surfaces a
+/// cluster's fringe hangs off, [`fringe`]).
+const MIN_SURFACE_M2: f64 = 0.06;
+
+/// [`MIN_SURFACE_M2`] in cells `cell_m` wide.
+fn min_surface_cells(cell_m: f64) -> usize {
+    (MIN_SURFACE_M2 / (cell_m * cell_m)).ceil() as usize
+}
+
 /// An obstacle, column or beam found in the cloud.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct DetectedObstacle {

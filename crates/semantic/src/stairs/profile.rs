@@ -100,11 +100,7 @@ pub(crate) fn profile_near(
     // to the envelope under it (those returns, above the model, would count against it).
     let grid_top = offset + top_level * rise0;
     let under: Vec<(f64, f64)> = if (top_level - n0).abs() >= 2.0 {
-        fit_env
-            .iter()
-            .copied()
-            .filter(|e| e.1 <= grid_top + ABOVE_TOP_M)
-            .collect()
+        up_to(fit_env, grid_top)
     } else {
         Vec::new()
     };
@@ -125,13 +121,7 @@ pub(crate) fn profile_near(
     let end = rise_hint
         .and_then(|_| end_plateau(env, c.run_m[1], rise0))
         .filter(|&h| h < top_height - rise0 / 2.0);
-    let under_end: Vec<(f64, f64)> = end.map_or_else(Vec::new, |h| {
-        fit_env
-            .iter()
-            .copied()
-            .filter(|e| e.1 <= h + ABOVE_TOP_M)
-            .collect()
-    });
+    let under_end: Vec<(f64, f64)> = end.map_or_else(Vec::new, |h| up_to(fit_env, h));
     let n_end = end.map_or(0.0, |h| ((h - offset) / rise0).round());
     let mut counts: Vec<Count> = vec![
         (n0, top_height, fit_env),
@@ -225,6 +215,15 @@ fn plateau_mode(env: &[(f64, f64)], top_height: f64, rise: f64) -> f64 {
     };
     let best = (0..64).max_by_key(|&k| (smooth(k), k)).unwrap_or(0);
     lo + (best as f64 + 0.5) * 0.01
+}
+
+/// The envelope's bins at most [`ABOVE_TOP_M`] over `top` (a count's top level): those
+/// above it are no part of the flight it fits.
+fn up_to(env: &[(f64, f64)], top: f64) -> Vec<(f64, f64)> {
+    env.iter()
+        .copied()
+        .filter(|e| e.1 <= top + ABOVE_TOP_M)
+        .collect()
 }
 
 /// The height of the envelope's last `along_m`: the most frequent (see [`plateau_mode`])

@@ -28,8 +28,8 @@ pub struct SequenceConfig {
     pub icp: IcpConfig,
     /// The range weighting of every scan-to-map registration (`IcpConfig::range_knee_m`;
     /// 0: off). Stop-and-scan scans from a rotating laser are less certain far from the
-    /// sensor; on 3DTK's corridor 1 m brings the registration from 6.6 cm / 1.5 deg to
-    /// 1.3 cm / 0.5 deg of slam6d's 2009 result.
+    /// sensor; on 3DTK's corridor 1 m brings the registration from 7.4 cm / 1.6 deg to
+    /// 0.6 cm / 0.2 deg of slam6d's 2009 result (scan 1; `bench/registration_3dtk.sh`).
     pub range_knee_m: f64,
     /// Each scan is downsampled to this voxel edge before it is registered and merged.
     pub scan_voxel_m: f64,

@@ -39,6 +39,9 @@ const GATE_RMSE_FACTOR: f64 = 3.0;
 /// A proposed gate less than this fraction smaller than the current one keeps the current one;
 /// the stop criteria are checked only while the gate is kept.
 const GATE_MIN_SHRINK: f64 = 0.9;
+/// An RMSE above the final gate that changes less than this fraction from one iteration to
+/// the next has settled on a gate that will not close by itself.
+const WIDE_FLAT_RMSE: f64 = 0.01;
 /// A pose back within this many stop epsilons of the pose two iterations before is a cycle.
 const CYCLE_EPSILONS: f64 = 10.0;
 
@@ -199,17 +202,33 @@ pub(crate) fn run_loop(
     let centroid = source.iter().map(|p| p.as_dvec3()).sum::<DVec3>() / n.max(1) as f64;
     let mut t = guess;
     let mut gate = c.max_correspondence_distance_m;
+    let mismatch_rmse = [c.source_voxel_m, c.target_voxel_m]
+        .into_iter()
+        .flatten()
+        .fold(c.final_correspondence_distance_m, f64::max);
     let mut reports = Vec::with_capacity(c.max_iterations.min(256));
     let mut prev_rmse: Option<f64> = None;
     // (the pose two iterations back: a step that undoes the last one is a cycle)
     let mut before_last: Option<DAffine3> = None;
     let mut converged = false;
     let mut fitness = 0.0;
+    // (the fitness before the last halving of a wide gate, see below)
+    let mut halved_from: Option<f64> = None;
     for iteration in 0..c.max_iterations {
         let it_start = Instant::now();
         let reference = t.transform_point3(centroid).as_vec3().as_dvec3();
         let (matched, sums) = pairs_of.pair_sums(&t, gate, reference)?;
         fitness = matched as f64 / n as f64;
+        // A halving of the gate (below: settled or cycling while wide) that leaves less than
+        // `min_fitness` of the scan paired is undone: most of the scan is new to the target (a
+        // room behind a corridor's wall, paired only at its edges), and the pairs that remain
+        // are too few to say more.
+        if let Some(wide_fitness) = halved_from.take() {
+            if fitness < c.min_fitness {
+                (fitness, converged) = (wide_fitness, true);
+                break;
+            }
+        }
         let needed = MIN_PAIRS.max((MIN_OVERLAP_FRACTION * n as f64).ceil() as usize);
         if iteration == 0 && matched < needed {
             return Err(RegistrationError::NoOverlap {
@@ -263,6 +282,23 @@ pub(crate) fn run_loop(
         let flat_rmse = prev_rmse
             .is_some_and(|p: f64| p > 0.0 && ((p - rmse) / p).abs() < c.rmse_relative_epsilon)
             || rmse == 0.0;
+        // Settled (within `WIDE_FLAT_RMSE` of the last RMSE) with the RMSE above the final
+        // gate and the voxels' spacing: the gate, three times the RMSE, never closed, and pairs
+        // between surfaces that do not correspond (a room seen for the first time through a
+        // door, paired with whatever lies within a metre) hold the pose where they balance.
+        // Halving the gate drops them. (Coarse voxels leave an RMSE of about their spacing
+        // between surfaces that do correspond.)
+        let settling = prev_rmse.is_some_and(|p: f64| ((p - rmse) / p).abs() < WIDE_FLAT_RMSE);
+        if (small_step || flat_rmse || settling)
+            && rmse > mismatch_rmse
+            && gate > c.final_correspondence_distance_m
+        {
+            halved_from = Some(fitness);
+            gate = (gate / 2.0).max(c.final_correspondence_distance_m);
+            prev_rmse = None;
+            before_last = None;
+            continue;
+        }
         if small_step || flat_rmse {
             converged = true;
             break;
@@ -280,6 +316,7 @@ pub(crate) fn run_loop(
             && back_deg < CYCLE_EPSILONS * c.rotation_epsilon_deg
             && gate > c.final_correspondence_distance_m
         {
+            halved_from = Some(fitness);
             gate = (gate / 2.0).max(c.final_correspondence_distance_m);
             prev_rmse = None;
             before_last = None;

@@ -156,26 +156,11 @@ fn the_survey_section_of_the_config_sets_the_poses_and_is_checked() {
 #[test]
 fn a_scan_that_sees_rooms_the_map_does_not_registers_without_cycling() {
     let d = Dir::new();
-    d.run(&[
-        "building", "generate", "--style", "office", "--seed", "5", "--out", "o.toml",
-    ])
-    .ok();
     // The survey's first two poses of that building (in the doorway, then along the corridor).
-    d.run(&[
-        "scan",
-        "--building",
-        "o.toml",
-        "--pose=3.3,-1.14248026,14",
-        "--pose=5.3,-0.64248026,14",
-        "--laser",
-        "real",
-        "--out",
-        "s",
-    ])
-    .ok();
-    d.run(&["register", "--sequence", "s", "--out", "r"]).ok();
-    let text = std::fs::read_to_string(d.join("r/registration.json")).expect("written");
-    let scans: serde_json::Value = serde_json::from_str(&text).expect("json");
+    let scans = d.registered_office(
+        5,
+        &["--pose=3.3,-1.14248026,14", "--pose=5.3,-0.64248026,14"],
+    );
     let error_m = scans[1]["error_m"]
         .as_f64()
         .expect("scan 1's error against the truth");
@@ -184,4 +169,21 @@ fn a_scan_that_sees_rooms_the_map_does_not_registers_without_cycling() {
         error_m < 0.02 && error_deg < 0.2,
         "{error_m} m {error_deg} deg"
     );
+}
+
+/// Regression: in the generated office of seed 17, scanned along its survey with the realistic
+/// laser, the first scan inside a room off the corridor (scan 22, 8.5 m of simulated odometry
+/// from the last) started 16 cm and 1.5 degrees from the truth and ended 18 cm and 3.5 degrees
+/// off with an RMSE of 0.32 m: the room's surfaces, new to the map, paired with whatever lay
+/// within the 1 m gate and held the pose where they balanced, and the gate (three times the
+/// RMSE) never closed. A settled RMSE above the final gate now halves the gate.
+#[test]
+fn a_room_first_seen_through_its_door_is_not_turned_by_a_gate_that_never_closed() {
+    let scans = Dir::new().registered_office(17, &["--survey"]);
+    assert!(scans.len() > 22, "{} scans", scans.len());
+    for s in &scans {
+        let (m, deg) = (s["error_m"].as_f64(), s["error_deg"].as_f64());
+        let (m, deg) = (m.expect("error_m"), deg.expect("error_deg"));
+        assert!(m < 0.05 && deg < 0.5, "{}: {m} m, {deg} deg", s["scan"]);
+    }
 }

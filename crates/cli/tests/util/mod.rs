@@ -62,6 +62,32 @@ impl Dir {
         v.sort();
         v
     }
+
+    /// Generates the office of `seed`, scans it with the realistic laser (`scan_args`: the
+    /// poses, or `--survey`), registers the scans as a sequence from their simulated odometry
+    /// and returns `registration.json`'s entries, one per scan.
+    pub fn registered_office(&self, seed: u64, scan_args: &[&str]) -> Vec<serde_json::Value> {
+        let seed = seed.to_string();
+        self.run(&[
+            "building", "generate", "--style", "office", "--seed", &seed, "--out", "o.toml",
+        ])
+        .ok();
+        let mut scan = vec![
+            "scan",
+            "--building",
+            "o.toml",
+            "--laser",
+            "real",
+            "--out",
+            "s",
+        ];
+        scan.extend_from_slice(scan_args);
+        self.run(&scan).ok();
+        self.run(&["register", "--sequence", "s", "--out", "r"])
+            .ok();
+        let text = std::fs::read_to_string(self.join("r/registration.json")).expect("written");
+        serde_json::from_str(&text).expect("json")
+    }
 }
 
 /// The outcome of one run.

@@ -289,17 +289,10 @@ pub(crate) fn run_loop(
         // Halving the gate drops them. (Coarse voxels leave an RMSE of about their spacing
         // between surfaces that do correspond.)
         let settling = prev_rmse.is_some_and(|p: f64| ((p - rmse) / p).abs() < WIDE_FLAT_RMSE);
-        if (small_step || flat_rmse || settling)
+        let settled_wide = (small_step || flat_rmse || settling)
             && rmse > mismatch_rmse
-            && gate > c.final_correspondence_distance_m
-        {
-            halved_from = Some(fitness);
-            gate = (gate / 2.0).max(c.final_correspondence_distance_m);
-            prev_rmse = None;
-            before_last = None;
-            continue;
-        }
-        if small_step || flat_rmse {
+            && gate > c.final_correspondence_distance_m;
+        if (small_step || flat_rmse) && !settled_wide {
             converged = true;
             break;
         }
@@ -312,10 +305,10 @@ pub(crate) fn run_loop(
         let (back_m, back_deg) = before_last.map_or((f64::INFINITY, f64::INFINITY), |b| {
             motion_size(&(t * b.inverse()))
         });
-        if back_m < CYCLE_EPSILONS * c.translation_epsilon_m
+        let cycling = back_m < CYCLE_EPSILONS * c.translation_epsilon_m
             && back_deg < CYCLE_EPSILONS * c.rotation_epsilon_deg
-            && gate > c.final_correspondence_distance_m
-        {
+            && gate > c.final_correspondence_distance_m;
+        if settled_wide || cycling {
             halved_from = Some(fitness);
             gate = (gate / 2.0).max(c.final_correspondence_distance_m);
             prev_rmse = None;

@@ -289,7 +289,8 @@ pub(crate) fn run_loop(
         // Halving the gate drops them. (Coarse voxels leave an RMSE of about their spacing
         // between surfaces that do correspond.)
         let settling = prev_rmse.is_some_and(|p: f64| ((p - rmse) / p).abs() < WIDE_FLAT_RMSE);
-        let settled_wide = (small_step || flat_rmse || settling)
+        // (`settling` holds wherever `flat_rmse` does with an RMSE above zero)
+        let settled_wide = (small_step || settling)
             && rmse > mismatch_rmse
             && gate > c.final_correspondence_distance_m;
         if (small_step || flat_rmse) && !settled_wide {

@@ -254,8 +254,8 @@ mod tests {
         assert_eq!(w.along_fraction(), Some(1.0));
         // Regression (3DTK's corridor): pillars' sides near the laser, crossing the band of a
         // "face" 0.3 m in front of the wall at 45 degrees in two stretches with 150 returns
-        // each (they tell a direction, across), against the
-        // wall's face seen along eight stretches with 12 returns each (96 in all).
+        // each (they tell a direction, across), against the wall's face seen along eight
+        // stretches with 12 returns each (96 in all).
         let mut w = FaceOrientation::new(1.6, &[-0.15, 0.15]);
         for k in [1, 5] {
             for j in 0..150 {

@@ -13,6 +13,7 @@
 //! a step (or break the rise's grid), so it is passed over for the next highest point of its
 //! bin.
 
+use super::StairsConfig;
 use glam::DVec2;
 
 /// Width of a bin along the direction (m).
@@ -84,6 +85,20 @@ pub(super) fn envelope(
     out
 }
 
+/// Spikes over the envelope (see [`without_spikes`]) are this share of the shortest run wide at
+/// most, and measured against the envelope as far again either side.
+const SPIKE_REACH: f64 = 0.75;
+
+/// The envelope of a flight: from its foot on (see [`from_foot`]), without spikes over it (see
+/// [`without_spikes`]).
+pub(super) fn of_flight(env: &[(f64, f64)], c: &StairsConfig) -> Vec<(f64, f64)> {
+    without_spikes(
+        from_foot(env, c.rise_m[1]),
+        c.rise_m[1],
+        SPIKE_REACH * c.run_m[0],
+    )
+}
+
 /// Returns higher than a rise in front of a flight's first riser, over no more than this
 /// along the direction: a few stray returns (a person walking past, mixed pixels), not a thing
 /// standing there (a box, a chair), which is as much part of the profile as the flight.
@@ -96,7 +111,7 @@ const MAX_STRAY_M: f64 = 0.05;
 /// level they would hide the lower steps (or read as a landing). Something standing in front
 /// of the flight, over more than that, stays: it is no staircase's foot, and the levels it
 /// hides are not the flight's to claim.
-pub(super) fn from_foot(env: &[(f64, f64)], max_rise_m: f64) -> &[(f64, f64)] {
+fn from_foot(env: &[(f64, f64)], max_rise_m: f64) -> &[(f64, f64)] {
     let Some(start) = env.first() else {
         return env;
     };
@@ -104,6 +119,41 @@ pub(super) fn from_foot(env: &[(f64, f64)], max_rise_m: f64) -> &[(f64, f64)] {
         Some(first) if env[first].0 - start.0 <= MAX_STRAY_M => &env[first..],
         _ => env,
     }
+}
+
+/// The envelope without what stands on or across the flight over a short stretch: a bin more
+/// than `max_rise_m` (the highest a step may rise) over all of the envelope from `width_m` to
+/// twice that before it and after it (with some of it there on both sides) is a spike, and so
+/// is every bin within `width_m` of a spike that stands above that envelope (by the
+/// measurement's few centimetres). A person walking past a flight or standing on its landing,
+/// crossing a side face seen alone, is such a spike; a flight's profile rises or stays level
+/// beyond a tread's depth (`width_m` is shorter than the shortest run), and the highest point
+/// over a stretch passes over the low bins where a face's top edge was not sampled.
+fn without_spikes(env: &[(f64, f64)], max_rise_m: f64, width_m: f64) -> Vec<(f64, f64)> {
+    // (the envelope's bins are in order along the direction)
+    let at = |s: f64| env.partition_point(|e| e.0 < s);
+    let highest = |lo: f64, hi: f64| {
+        env[at(lo)..at(hi)]
+            .iter()
+            .map(|e| e.1)
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    let mut spike = vec![false; env.len()];
+    for &(s, z) in env {
+        let before = highest(s - 2.0 * width_m, s - width_m);
+        let after = highest(s + width_m, s + 2.0 * width_m);
+        if before.is_finite() && after.is_finite() && before.max(after) < z - max_rise_m {
+            let flanks = before.max(after) + SAME_SURFACE_M;
+            for k in at(s - width_m)..at(s + width_m) {
+                spike[k] |= env[k].1 > flanks;
+            }
+        }
+    }
+    env.iter()
+        .zip(&spike)
+        .filter(|(_, &dropped)| !dropped)
+        .map(|(e, _)| *e)
+        .collect()
 }
 
 /// Counts per height level with prefix sums in O(log n).
@@ -195,5 +245,31 @@ mod tests {
         let boxed: Vec<(f64, f64)> = (0..20).map(|i| (-0.1 + 0.01 * i as f64, 0.5)).collect();
         let env: Vec<(f64, f64)> = boxed.iter().chain(&flight).copied().collect();
         assert_eq!(from_foot(&env, 0.23), &env[..]);
+    }
+
+    /// A person crossing a flight's landing 0.6 m up (returns 0.8-1.08 m high over 8 cm,
+    /// rounded at their edges) leaves the envelope; the steps and the landing stay, and so does
+    /// a top riser's edge at the envelope's end, with nothing after it.
+    #[test]
+    fn a_person_across_the_landing_is_no_part_of_the_profile() {
+        let mut env: Vec<(f64, f64)> = Vec::new();
+        for i in 0..120 {
+            let s = 0.005 + 0.01 * i as f64;
+            env.push((s, (0.15 * ((s / 0.28).floor() + 1.0)).min(0.6)));
+        }
+        let person = [0.8, 0.9, 0.98, 1.05, 1.08, 1.07, 1.0, 0.9, 0.62];
+        for (k, z) in person.iter().enumerate() {
+            env[100 + k].1 = *z;
+        }
+        let kept = without_spikes(&env, 0.23, 0.15);
+        assert_eq!(
+            kept.len(),
+            env.len() - 8,
+            "only the bins over the landing go"
+        );
+        assert!(kept.iter().all(|e| e.1 <= 0.62));
+        let mut rising = env[..100].to_vec();
+        rising.push((1.0, 0.9));
+        assert_eq!(without_spikes(&rising, 0.23, 0.15), rising);
     }
 }

@@ -17,7 +17,7 @@
 //! A level stretch can also be treads above the laser that the scans missed, part way up one
 //! straight flight: then the two flights fitted meet, the upper one's first riser within a
 //! tread's depth of the lower one's top front edge, and their points are one flight.
-use super::envelope::{envelope, from_foot, BIN_M};
+use super::envelope::{envelope, of_flight, BIN_M};
 use super::plausible::finish;
 use super::profile::{profile, profile_near};
 use super::{DetectedStairs, StairsConfig};
@@ -160,7 +160,7 @@ fn mid_landing(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<(f6
     }
     let nb = (((hi - lo) / BIN_M).ceil() as usize + 1).min(100_000);
     let env = envelope(pts, dir, lo, nb, c.run_m[0] / 2.0);
-    let env = from_foot(&env, c.rise_m[1]);
+    let env = of_flight(&env, c);
     let least = c.min_steps as f64 * c.rise_m[0];
     // The running maximum; a level stretch starts where it last rose by more than the
     // measurement's few centimetres. It ends in a climb: within a tread's depth the profile

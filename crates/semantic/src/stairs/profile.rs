@@ -1,7 +1,7 @@
 //! The profile of a staircase candidate along one direction (its levels, rise, run and start)
 //! and the staircase built from the best one (see the `stairs` module).
 
-use super::envelope::{envelope, from_foot};
+use super::envelope::{envelope, of_flight};
 use super::levels::level_grid;
 use super::risers::{RiserBands, RISER_WEIGHT};
 use super::StairsConfig;
@@ -69,7 +69,7 @@ pub(crate) fn profile_near(
     let s_hi = quantile(&mut s, 0.995)? + 0.05;
     let nb = (((s_hi - s_lo) / bin).ceil() as usize).clamp(1, 100_000);
     let env = envelope(pts, dir, s_lo, nb, c.run_m[0] / 2.0);
-    let env = from_foot(&env, c.rise_m[1]);
+    let env = &of_flight(&env, c);
     if env.len() < 10 {
         return None;
     }
@@ -93,7 +93,7 @@ pub(crate) fn profile_near(
     // The edges are fitted to every point: a step's nosing has fewer neighbours than its tread
     // and riser, and the fit's violations bear the odd mixed pixel in front of it.
     let fit_env = envelope(all, dir, s_lo, nb, c.run_m[0] / 2.0);
-    let fit_env = from_foot(&fit_env, c.rise_m[1]);
+    let fit_env = &of_flight(&fit_env, c);
     // A few returns above the top (mixed pixels between a landing's edge and the wall behind
     // it, along rays that rise past the edge) set the top height too high, by two steps or
     // more; then the highest level on the grid of levels is taken as the top as well, fitted

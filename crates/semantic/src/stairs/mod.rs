@@ -309,8 +309,9 @@ fn stairs_of_part(
     c: &StairsConfig,
 ) -> Option<Vec<DetectedStairs>> {
     best_of(pts, all, cands, walls_cands, sc, c).or_else(|| {
+        // (in parallel: a large part, a garage's row of cars, has dozens of faces)
         side_faces::side_faces(pts, cands, walls_cands, c)
-            .into_iter()
+            .into_par_iter()
             .filter_map(|face| {
                 let cands = [face.dir, -face.dir];
                 let all = face.select(all);

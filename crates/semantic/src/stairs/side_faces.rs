@@ -25,6 +25,9 @@ const GAP_M: f64 = 0.3;
 /// The histogram's bin across the lines.
 const BIN_M: f64 = 0.01;
 
+/// The most histogram bins across a part (10 km).
+const MAX_BINS: usize = 1_000_000;
+
 /// A face holding this share of a part's returns is the part itself, already tried.
 const WHOLE_PART: f64 = 0.9;
 
@@ -120,8 +123,13 @@ fn dense_lines(pts: &[(DVec2, f64)], dir: DVec2, min_points: usize) -> Vec<f64> 
     let t: Vec<f64> = pts.iter().map(|(q, _)| dir.perp_dot(*q)).collect();
     let lo = t.iter().copied().fold(f64::INFINITY, f64::min) - BESIDE_M - HALF_WIDTH_M;
     let hi = t.iter().copied().fold(f64::NEG_INFINITY, f64::max) + BESIDE_M + HALF_WIDTH_M;
-    let bins = ((hi - lo) / BIN_M).ceil() as usize + 1;
-    // (the histogram is as long as the part is wide: its size comes from the points' extent)
+    // (the histogram is as long as the part is wide, which the height map's size bounds; a
+    // part wider than `MAX_BINS` of them holds no staircase's side face worth the search)
+    let span = (hi - lo) / BIN_M;
+    if !span.is_finite() || span >= MAX_BINS as f64 {
+        return Vec::new();
+    }
+    let bins = span.ceil() as usize + 1;
     let mut hist = vec![0usize; bins + 1];
     for &v in &t {
         hist[((v - lo) / BIN_M) as usize] += 1;

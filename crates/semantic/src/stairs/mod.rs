@@ -38,10 +38,10 @@
 //! the side face unseen there, so the blobs part it from the flight) gets that step back (see
 //! `extend`).
 //!
-//! A part that shows no staircase is tried again face by face: a flight seen from its side only
-//! that clutter joins into one part with other things (a desk in front of its side face, a
-//! person's streak of returns to parked cars) is still a straight, dense face in plan (see
-//! `side_faces`).
+//! The search over a part's directions is `search`. A part that shows no staircase is tried
+//! again face by face: a flight seen from its side only that clutter joins into one part with
+//! other things (a desk in front of its side face, a person's streak of returns to parked cars)
+//! is still a straight, dense face in plan (see `side_faces`).
 
 use crate::image_frame::ImageFrame;
 mod config;
@@ -53,6 +53,7 @@ mod parts;
 mod plausible;
 mod profile;
 mod risers;
+mod search;
 mod side_faces;
 mod surface;
 
@@ -60,9 +61,8 @@ use crate::scene::Scene;
 use crate::walls::WallFit;
 pub use config::StairsConfig;
 use glam::DVec2;
-use plausible::finish;
-use profile::profile;
 use rayon::prelude::*;
+use search::Search;
 
 /// A staircase found in the cloud.
 #[derive(Debug, Clone, PartialEq)]
@@ -286,7 +286,15 @@ pub(crate) fn find_stairs(
                     (DVec2::new(p.x as f64, p.y as f64), p.z as f64 - sc.floor)
                 })
                 .collect();
-            stairs_of_part(&pts, &all, &cands, walls_cands, sc, c)
+            Search {
+                pts: &pts,
+                all: &all,
+                cands: &cands,
+                walls_cands,
+                sc,
+                c,
+            }
+            .stairs()
         })
         .flatten()
         .map(|mut st| {
@@ -295,110 +303,6 @@ pub(crate) fn find_stairs(
             st
         })
         .collect()
-}
-
-/// The staircase of a part (its returns on surfaces `pts`, `all` of them, and its candidate
-/// directions, see [`best_of`]); where it shows none, the best of its straight faces in plan,
-/// each on its own (see `side_faces`).
-fn stairs_of_part(
-    pts: &[(DVec2, f64)],
-    all: &[(DVec2, f64)],
-    cands: &[DVec2],
-    walls_cands: usize,
-    sc: &Scene,
-    c: &StairsConfig,
-) -> Option<Vec<DetectedStairs>> {
-    best_of(pts, all, cands, walls_cands, sc, c).or_else(|| {
-        // (in parallel: a large part, a garage's row of cars, has dozens of faces)
-        side_faces::side_faces(pts, cands, walls_cands, c)
-            .into_par_iter()
-            .filter_map(|face| {
-                let cands = [face.dir, -face.dir];
-                let all = face.select(all);
-                best_of(&face.select(pts), &all, &cands, face.walls_cands(), sc, c)
-            })
-            .max_by(|a, b| confidence(a).total_cmp(&confidence(b)))
-    })
-}
-
-/// The best staircase (or the two flights of one with a mid landing) that a part's points
-/// `pts` on surfaces (and `all` of them) show along one of the candidate directions `cands`,
-/// the first `walls_cands` of which are the walls' directions.
-fn best_of(
-    pts: &[(DVec2, f64)],
-    all: &[(DVec2, f64)],
-    cands: &[DVec2],
-    walls_cands: usize,
-    sc: &Scene,
-    c: &StairsConfig,
-) -> Option<Vec<DetectedStairs>> {
-    // A staircase with a landing half-way is its two flights (see `flights`): the
-    // direction that shows both, else one flight (see below). (The directions in
-    // parallel too: one large blob, a row of parked cars, would otherwise keep one
-    // thread busy while the others wait.)
-    let flights: Vec<(bool, Vec<DetectedStairs>)> = cands
-        .par_iter()
-        .enumerate()
-        .filter_map(|(k, &dir)| {
-            flights::two_flights(pts, all, dir, sc, c).map(|f| (k < walls_cands, f))
-        })
-        .collect();
-    // Of as many flights, a wall's direction first (as for one flight, below). A lone
-    // flight (the other one not found) competes with the search for one flight below,
-    // which compares every direction's fit: the first direction that shows something
-    // beyond a flight's top landing as a second flight's start, or a level stretch
-    // part way up a flight seen obliquely as a landing, need not be the flight's.
-    let most = flights.iter().map(|f| f.1.len()).max().unwrap_or(0);
-    // (the first along a wall's direction, else the first)
-    let chosen = flights
-        .into_iter()
-        .filter(|f| f.1.len() == most)
-        .min_by_key(|f| !f.0);
-    let mut lone = None;
-    if let Some(f) = chosen {
-        if most >= 2 {
-            return Some(f.1);
-        }
-        lone = Some(f);
-    }
-    let mut profs: Vec<_> = cands
-        .par_iter()
-        .enumerate()
-        .filter_map(|(k, &dir)| profile(pts, all, dir, c).map(|r| (k < walls_cands, r)))
-        .collect();
-    // The most levels that make a plausible staircase (a direction oblique to a face
-    // seen from its side reads as steps too, but not as a staircase people climb); of
-    // as many, a wall's direction (a staircase is built square to the walls around it:
-    // the blob's own axes lean towards whatever stands beside it, and the edges of a
-    // staircase seen obliquely, smeared over a few bins, can still fit as well), then
-    // the best fit, then the first direction.
-    profs.sort_by(|(wa, a), (wb, b)| {
-        b.found
-            .cmp(&a.found)
-            .then(wb.cmp(wa))
-            .then(b.score.total_cmp(&a.score))
-    });
-    let one = profs
-        .into_iter()
-        .find_map(|(on_wall, p)| finish(pts, p, sc, c).map(|r| (on_wall, r)));
-    // The lone flight wins if it is along a wall's direction or the one flight is not,
-    // and it found as large a share of its levels (on a tie: a staircase with a mid
-    // landing read as one flight misses a level).
-    match (one, lone) {
-        (Some((one_on_wall, one)), Some((lone_on_wall, lone)))
-            if (lone_on_wall || !one_on_wall)
-                && lone.iter().all(|l| l.confidence >= one.confidence) =>
-        {
-            Some(lone)
-        }
-        (Some((_, one)), _) => Some(vec![one]),
-        (None, lone) => lone.map(|l| l.1),
-    }
-}
-
-/// The least confidence of a staircase's flights.
-fn confidence(flights: &[DetectedStairs]) -> f64 {
-    flights.iter().map(|f| f.confidence).fold(1.0, f64::min)
 }
 
 /// The extent of points across a direction (1 % to 99 %).

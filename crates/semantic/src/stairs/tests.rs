@@ -1,4 +1,4 @@
-//! Tests of a part's staircase search (`stairs_of_part`), and the regressions they pin.
+//! Tests of a part's staircase search (`search`), and the regressions they pin.
 
 use super::*;
 use crate::points::XyIndex;
@@ -48,14 +48,15 @@ fn search(part: &[(DVec2, f64)], length_m: f64) -> Option<Vec<DetectedStairs>> {
     let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(5.0), 0.25);
     let sc = Scene::with_one_index(&points, &index, 0.0, 2.6);
     let cands = [DVec2::X, DVec2::Y, -DVec2::X, -DVec2::Y];
-    stairs_of_part(
-        part,
-        part,
-        &cands,
-        cands.len(),
-        &sc,
-        &StairsConfig::default(),
-    )
+    Search {
+        pts: part,
+        all: part,
+        cands: &cands,
+        walls_cands: cands.len(),
+        sc: &sc,
+        c: &StairsConfig::default(),
+    }
+    .stairs()
 }
 
 /// The one flight `found`, climbing +X with `steps` steps of `rise` x `run`.

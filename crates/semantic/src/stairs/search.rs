@@ -1,0 +1,127 @@
+//! A part's staircase search (see the `stairs` module): the best staircase (or the two flights
+//! of one with a mid landing) along the part's candidate directions; where it shows none, the
+//! best along each of its straight faces in plan, each on its own (see `side_faces`).
+
+use super::plausible::finish;
+use super::profile::profile;
+use super::{flights, side_faces, DetectedStairs, StairsConfig};
+use crate::scene::Scene;
+use glam::DVec2;
+use rayon::prelude::*;
+
+/// A part's points and where to look for a staircase in them.
+#[derive(Clone, Copy)]
+pub(super) struct Search<'a> {
+    /// The part's returns on surfaces `(xy, height above the floor)`: its levels and support.
+    pub pts: &'a [(DVec2, f64)],
+    /// All of its returns (the fits' edges).
+    pub all: &'a [(DVec2, f64)],
+    /// The candidate directions of ascent.
+    pub cands: &'a [DVec2],
+    /// How many of the first `cands` are the walls' directions (or square to them).
+    pub walls_cands: usize,
+    /// The whole scene (the floor beside a flight, seen or hidden).
+    pub sc: &'a Scene<'a>,
+    /// The stage's parameters.
+    pub c: &'a StairsConfig,
+}
+
+impl Search<'_> {
+    /// The part's staircase; where it shows none, the best of its straight faces' (in
+    /// parallel: a large part, a garage's row of cars, has dozens of faces).
+    pub(super) fn stairs(&self) -> Option<Vec<DetectedStairs>> {
+        self.best().or_else(|| {
+            side_faces::side_faces(self.pts, self.cands, self.walls_cands, self.c)
+                .into_par_iter()
+                .filter_map(|face| {
+                    let (pts, all) = (face.select(self.pts), face.select(self.all));
+                    let cands = [face.dir, -face.dir];
+                    Search {
+                        pts: &pts,
+                        all: &all,
+                        cands: &cands,
+                        walls_cands: face.walls_cands(),
+                        ..*self
+                    }
+                    .best()
+                })
+                .max_by(|a, b| confidence(a).total_cmp(&confidence(b)))
+        })
+    }
+
+    /// The best staircase along one of the candidate directions.
+    fn best(&self) -> Option<Vec<DetectedStairs>> {
+        // A staircase with a landing half-way is its two flights (see `flights`): the
+        // direction that shows both, else one flight (see below). (The directions in
+        // parallel too: one large blob, a row of parked cars, would otherwise keep one
+        // thread busy while the others wait.)
+        let flights: Vec<(bool, Vec<DetectedStairs>)> = self
+            .cands
+            .par_iter()
+            .enumerate()
+            .filter_map(|(k, &dir)| {
+                flights::two_flights(self.pts, self.all, dir, self.sc, self.c)
+                    .map(|f| (k < self.walls_cands, f))
+            })
+            .collect();
+        // Of as many flights, a wall's direction first (as for one flight, below). A lone
+        // flight (the other one not found) competes with the search for one flight below,
+        // which compares every direction's fit: the first direction that shows something
+        // beyond a flight's top landing as a second flight's start, or a level stretch
+        // part way up a flight seen obliquely as a landing, need not be the flight's.
+        let most = flights.iter().map(|f| f.1.len()).max().unwrap_or(0);
+        // (the first along a wall's direction, else the first)
+        let chosen = flights
+            .into_iter()
+            .filter(|f| f.1.len() == most)
+            .min_by_key(|f| !f.0);
+        let mut lone = None;
+        if let Some(f) = chosen {
+            if most >= 2 {
+                return Some(f.1);
+            }
+            lone = Some(f);
+        }
+        let mut profs: Vec<_> = self
+            .cands
+            .par_iter()
+            .enumerate()
+            .filter_map(|(k, &dir)| {
+                profile(self.pts, self.all, dir, self.c).map(|r| (k < self.walls_cands, r))
+            })
+            .collect();
+        // The most levels that make a plausible staircase (a direction oblique to a face
+        // seen from its side reads as steps too, but not as a staircase people climb); of
+        // as many, a wall's direction (a staircase is built square to the walls around it:
+        // the blob's own axes lean towards whatever stands beside it, and the edges of a
+        // staircase seen obliquely, smeared over a few bins, can still fit as well), then
+        // the best fit, then the first direction.
+        profs.sort_by(|(wa, a), (wb, b)| {
+            b.found
+                .cmp(&a.found)
+                .then(wb.cmp(wa))
+                .then(b.score.total_cmp(&a.score))
+        });
+        let one = profs
+            .into_iter()
+            .find_map(|(on_wall, p)| finish(self.pts, p, self.sc, self.c).map(|r| (on_wall, r)));
+        // The lone flight wins if it is along a wall's direction or the one flight is not,
+        // and it found as large a share of its levels (on a tie: a staircase with a mid
+        // landing read as one flight misses a level).
+        match (one, lone) {
+            (Some((one_on_wall, one)), Some((lone_on_wall, lone)))
+                if (lone_on_wall || !one_on_wall)
+                    && lone.iter().all(|l| l.confidence >= one.confidence) =>
+            {
+                Some(lone)
+            }
+            (Some((_, one)), _) => Some(vec![one]),
+            (None, lone) => lone.map(|l| l.1),
+        }
+    }
+}
+
+/// The least confidence of a staircase's flights.
+fn confidence(flights: &[DetectedStairs]) -> f64 {
+    flights.iter().map(|f| f.confidence).fold(1.0, f64::min)
+}

@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::points::XyIndex;
+use crate::stairs::tests::over_floor;
 use glam::Vec3;
 
 /// Regression: office-6's upper flight (4 steps on a mid landing) was refused: a desk
@@ -51,18 +52,12 @@ fn a_desk_beside_a_flight_does_not_widen_it() {
         }
     }
     // The cloud: the blob over a floor seen everywhere but under the flight.
-    let mut points: Vec<Vec3> = blob
-        .iter()
-        .map(|(q, z)| Vec3::new(q.x as f32, q.y as f32, *z as f32))
-        .collect();
-    for i in 0..100 {
-        for j in 0..100 {
-            let (x, y) = (-1.0 + 0.04 * i as f64, -2.0 + 0.04 * j as f64);
-            if !((0.0..1.08).contains(&x) && (0.0..1.0).contains(&y)) {
-                points.push(Vec3::new(x as f32, y as f32, 0.0));
-            }
-        }
-    }
+    let points = over_floor(
+        &blob,
+        DVec2::new(-1.0, -2.0),
+        (100, 100),
+        DVec2::new(1.08, 1.0),
+    );
     let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(4.0), 0.25);
     let sc = Scene::with_one_index(&points, &index, 0.0, 2.5);
     let p = Profile {
@@ -101,19 +96,13 @@ fn side_face(
             }
         }
     }
-    let mut points: Vec<Vec3> = side
-        .iter()
-        .map(|(q, z)| Vec3::new(q.x as f32, q.y as f32, *z as f32))
-        .collect();
     let length = f64::from(steps) * run + 1.1;
-    for i in 0..150 {
-        for j in 0..100 {
-            let (x, y) = (-1.5 + 0.04 * i as f64, -2.0 + 0.04 * j as f64);
-            if !((0.0..length).contains(&x) && (0.0..1.3).contains(&y)) {
-                points.push(Vec3::new(x as f32, y as f32, 0.0));
-            }
-        }
-    }
+    let points = over_floor(
+        &side,
+        DVec2::new(-1.5, -2.0),
+        (150, 100),
+        DVec2::new(length, 1.3),
+    );
     (side, points)
 }
 

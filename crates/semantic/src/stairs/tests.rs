@@ -30,21 +30,38 @@ fn side_face(rise: f64, run: f64, steps: u32) -> Vec<(DVec2, f64)> {
     face
 }
 
-/// The staircase search on `part` (along and across X, as walls would give), in a cloud of
-/// the part over a floor seen everywhere but under the flight of `length_m` (y 0..1.3).
-fn search(part: &[(DVec2, f64)], length_m: f64) -> Option<Vec<DetectedStairs>> {
+/// `part` over a floor sampled every 4 cm on `cells` from `from`, seen everywhere but under
+/// a flight from the origin to `hidden` (+X along it, +Y across), as a cloud.
+pub(super) fn over_floor(
+    part: &[(DVec2, f64)],
+    from: DVec2,
+    cells: (usize, usize),
+    hidden: DVec2,
+) -> Vec<Vec3> {
     let mut points: Vec<Vec3> = part
         .iter()
         .map(|(q, z)| Vec3::new(q.x as f32, q.y as f32, *z as f32))
         .collect();
-    for i in 0..150 {
-        for j in 0..100 {
-            let (x, y) = (-1.5 + 0.04 * i as f64, -2.0 + 0.04 * j as f64);
-            if !((0.0..length_m).contains(&x) && (0.0..1.3).contains(&y)) {
+    for i in 0..cells.0 {
+        for j in 0..cells.1 {
+            let (x, y) = (from.x + 0.04 * i as f64, from.y + 0.04 * j as f64);
+            if !((0.0..hidden.x).contains(&x) && (0.0..hidden.y).contains(&y)) {
                 points.push(Vec3::new(x as f32, y as f32, 0.0));
             }
         }
     }
+    points
+}
+
+/// The staircase search on `part` (along and across X, as walls would give), in a cloud of
+/// the part over a floor seen everywhere but under the flight of `length_m` (y 0..1.3).
+fn search(part: &[(DVec2, f64)], length_m: f64) -> Option<Vec<DetectedStairs>> {
+    let points = over_floor(
+        part,
+        DVec2::new(-1.5, -2.0),
+        (150, 100),
+        DVec2::new(length_m, 1.3),
+    );
     let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(5.0), 0.25);
     let sc = Scene::with_one_index(&points, &index, 0.0, 2.6);
     let cands = [DVec2::X, DVec2::Y, -DVec2::X, -DVec2::Y];

@@ -68,6 +68,34 @@ fn every_survey_pose_stands_free_and_near_an_earlier_one_in_every_style() {
     }
 }
 
+/// Regression: the `mixed` style's seed 25 (a corridor with rooms either side) was surveyed
+/// with 4 poses at its east end. The first pose, the one seeing most floor, stood in the
+/// north-east room, whose door is ajar: no pose a step away saw enough new floor, so the greedy
+/// choice stopped at once with 79 % of the floor unseen, and the rooms step reached only the
+/// two rooms whose doors are near. A survey that stops with most of its floor unseen is stuck:
+/// the rooms' poses are new starts.
+#[test]
+fn a_survey_starting_in_a_room_with_its_door_ajar_walks_on_through_the_building() {
+    let cfg = SurveyConfig::default();
+    let gen = GeneratorConfig {
+        style: Style::Mixed,
+        ..Default::default()
+    };
+    let b = generate_building(25, &gen).expect("valid");
+    let poses = survey_poses(&b, &cfg).expect("survey");
+    let mut rooms = room_of(&b, &cfg, &xy(&poses)).expect("rooms");
+    rooms.sort_unstable();
+    rooms.dedup();
+    let rooms = rooms.iter().flatten().count();
+    assert!(rooms >= 5, "{rooms} rooms surveyed by {poses:?}");
+    let west = poses.iter().map(|p| p.x_m).fold(f64::INFINITY, f64::min);
+    let east = poses
+        .iter()
+        .map(|p| p.x_m)
+        .fold(f64::NEG_INFINITY, f64::max);
+    assert!(east - west > 12.0, "poses span {west:.1}..{east:.1} m");
+}
+
 #[test]
 fn a_building_without_free_floor_is_a_clear_error_naming_it() {
     let text = r#"

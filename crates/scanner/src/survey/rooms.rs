@@ -1,0 +1,79 @@
+//! Step 3b of the survey (see the module docs): at least one pose inside every room reached,
+//! since a doorway's view of a room is not a survey of it.
+
+/// Adds to `chosen` a pose in every room (`room(k)` of candidate `k`, `None` outside any)
+/// that has none yet: the room's candidate sharing most with what was seen (`shared(k)`:
+/// registration needs that overlap), linked to a chosen pose (`linked(chosen, k)`), one room
+/// at a time. Where no such room is linked directly (its door is narrow or ajar, the poses
+/// outside stand too far or at the wrong angle), a surveyor first stands in front of the door,
+/// or in it: a stepping stone linked to a chosen pose, from which a pose in the room is linked;
+/// the room's pose sharing most with what was seen, then the stone doing so. Stops when no
+/// room without a pose can be reached that way.
+pub(super) fn enter_rooms(
+    chosen: &mut Vec<usize>,
+    candidates: usize,
+    room: impl Fn(usize) -> Option<usize>,
+    linked: impl Fn(&[usize], usize) -> bool,
+    shared: impl Fn(usize) -> usize,
+) {
+    loop {
+        let mut has_pose: Vec<Option<usize>> = chosen.iter().map(|&c| room(c)).collect();
+        has_pose.sort_unstable();
+        has_pose.dedup();
+        let in_room: Vec<usize> = (0..candidates)
+            .filter(|&k| room(k).is_some() && has_pose.binary_search(&room(k)).is_err())
+            .collect();
+        let next = in_room
+            .iter()
+            .copied()
+            .filter(|&k| linked(chosen, k))
+            .max_by_key(|&k| shared(k));
+        if let Some(k) = next {
+            chosen.push(k);
+            continue;
+        }
+        let stone = (0..candidates)
+            .filter(|&s| linked(chosen, s))
+            .flat_map(|s| {
+                in_room
+                    .iter()
+                    .filter(|&&k| linked(&[s], k))
+                    .map(move |&k| (s, k))
+                    .collect::<Vec<_>>()
+            })
+            .max_by_key(|&(s, k)| (shared(k), shared(s)));
+        let Some((s, k)) = stone else { break };
+        chosen.push(s);
+        chosen.push(k);
+    }
+}
+
+/// How much of what each candidate sees (`sees`, target indices) was seen (`seen`).
+pub(super) fn shared<'a>(sees: &'a [Vec<u32>], seen: &'a [bool]) -> impl Fn(usize) -> usize + 'a {
+    move |k| sees[k].iter().filter(|&&t| seen[t as usize]).count()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Candidates 0..4 on a line, each linked to its neighbours: 0 in room 0 (chosen), 1 in
+    /// no room (a doorway), 2 and 3 in room 1: the doorway is the stone, then room 1's pose
+    /// sharing most (here the nearer one).
+    #[test]
+    fn a_room_beyond_a_doorway_gets_a_stone_and_a_pose() {
+        let room = |k: usize| match k {
+            0 => Some(0),
+            1 => None,
+            _ => Some(1),
+        };
+        let linked = |chosen: &[usize], k: usize| chosen.iter().any(|&c| c.abs_diff(k) <= 1);
+        let mut chosen = vec![0];
+        enter_rooms(&mut chosen, 4, room, linked, |k| 10 - k);
+        assert_eq!(chosen, vec![0, 1, 2]);
+        // (a room linked to a chosen pose directly needs no stone)
+        let mut chosen = vec![1];
+        enter_rooms(&mut chosen, 4, room, linked, |k| 10 - k);
+        assert_eq!(chosen, vec![1, 0, 2]);
+    }
+}

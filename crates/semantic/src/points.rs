@@ -209,6 +209,31 @@ pub fn undirected_angle_deg(a: DVec2, b: DVec2) -> f64 {
     c.acos().to_degrees()
 }
 
+/// Counts of `values` in `n` bins of `bin_m` from `lo` (values outside them left out), each
+/// summed with its `half` neighbours on either side (clipped at the ends): how many values lie
+/// within about `half` bins of each bin (a histogram's peaks of faces or lines).
+pub(crate) fn window_counts(
+    values: &[f64],
+    lo: f64,
+    bin_m: f64,
+    n: usize,
+    half: usize,
+) -> Vec<usize> {
+    let mut cumulative = vec![0usize; n + 1];
+    for v in values {
+        let b = ((v - lo) / bin_m).floor();
+        if b >= 0.0 && (b as usize) < n {
+            cumulative[b as usize + 1] += 1;
+        }
+    }
+    for i in 0..n {
+        cumulative[i + 1] += cumulative[i];
+    }
+    (0..n)
+        .map(|i| cumulative[(i + half + 1).min(n)] - cumulative[i.saturating_sub(half)])
+        .collect()
+}
+
 /// The `q`-quantile (0..=1) of `v` (reordered in place, in linear time); `None` if empty.
 pub(crate) fn quantile(v: &mut [f64], q: f64) -> Option<f64> {
     if v.is_empty() {

@@ -272,7 +272,6 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
                 _ => break,
             }
         }
-
         // 3b. At least one pose inside every room reached (a doorway's view of a room is not
         //     a survey of it; see `rooms`).
         let before = chosen.len();
@@ -302,6 +301,7 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
     //     axis and in sight of it, the candidate there sharing most with what was seen.
     //     (Where none is linked to a chosen pose, none is added: stepping stones towards the
     //     foot were tried, and made the office stairs worse; see the README.)
+    let shared = rooms::shared(&sees, &seen);
     for f in &feet {
         let sees_foot = |k: usize| f.seen_from(&grid, candidates[k], cfg.stairs_view_m);
         if chosen.iter().any(|&c| sees_foot(c)) {
@@ -309,7 +309,7 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
         }
         let at_foot = (0..candidates.len())
             .filter(|&k| sees_foot(k) && linked_to_chosen(&chosen, k))
-            .max_by_key(|&k| rooms::shared(&sees, &seen)(k));
+            .max_by_key(|&k| shared(k));
         if let Some(k) = at_foot {
             chosen.push(k);
         }

@@ -6,6 +6,7 @@
 //! part shows no staircase, each such line is tried as a part of its own.
 
 use super::StairsConfig;
+use crate::points::window_counts;
 use glam::DVec2;
 
 /// Returns within this of a face's line in plan are on it (a side face sampled far away and
@@ -130,22 +131,11 @@ fn dense_lines(pts: &[(DVec2, f64)], dir: DVec2, min_points: usize) -> Vec<f64> 
         return Vec::new();
     }
     let bins = span.ceil() as usize + 1;
-    let mut hist = vec![0usize; bins + 1];
-    for &v in &t {
-        hist[((v - lo) / BIN_M) as usize] += 1;
-    }
-    // Counts within HALF_WIDTH_M of each bin from a running sum.
-    let mut cumulative = vec![0usize; bins + 2];
-    for (i, &n) in hist.iter().enumerate() {
-        cumulative[i + 1] = cumulative[i] + n;
-    }
+    // (the counts within HALF_WIDTH_M of each bin)
     let half = (HALF_WIDTH_M / BIN_M).round() as usize;
+    let counts = window_counts(&t, lo, BIN_M, bins + 1, half);
+    let window = |i: usize| counts[i];
     let beside = (BESIDE_M / BIN_M).round() as usize;
-    let window = |i: usize| {
-        let a = i.saturating_sub(half);
-        let b = (i + half + 1).min(bins + 1);
-        cumulative[b] - cumulative[a]
-    };
     let mut peaks: Vec<(usize, usize)> = (beside..=bins.saturating_sub(beside))
         .map(|i| (i, window(i)))
         .filter(|&(i, n)| {

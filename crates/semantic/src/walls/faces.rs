@@ -3,7 +3,7 @@
 //! angle quantisation (see the `walls` module).
 
 use super::WallConfig;
-use crate::points::{fit_line, Line2};
+use crate::points::{fit_line, window_counts, Line2};
 use crate::scene::Scene;
 use glam::DVec2;
 
@@ -12,17 +12,8 @@ use glam::DVec2;
 pub(crate) fn face_peaks(ds: &[f64], hw: f64, c: &WallConfig) -> Vec<(f64, usize)> {
     let bin = 0.01;
     let n = ((2.0 * hw / bin).ceil() as usize).max(1);
-    let mut h = vec![0usize; n];
-    for d in ds {
-        let b = ((d + hw) / bin).floor();
-        if b >= 0.0 && (b as usize) < n {
-            h[b as usize] += 1;
-        }
-    }
     let w = ((c.face_tolerance_m / bin).round() as usize).max(1);
-    let s: Vec<usize> = (0..n)
-        .map(|i| h[i.saturating_sub(w)..(i + w + 1).min(n)].iter().sum())
-        .collect();
+    let s = window_counts(ds, -hw, bin, n, w);
     let max = s.iter().copied().max().unwrap_or(0);
     let floor = (max / 8).max(c.min_face_points / 3).max(1);
     let mut peaks: Vec<(f64, usize)> = (0..n)

@@ -11,6 +11,7 @@
 #   LASER=ideal bash bench/styles.sh          # the ideal laser instead
 #   REUSE=1 bash bench/styles.sh              # keep the scans and registrations already in
 #                                             # $WORK; only map and score again (semantic work)
+#   SEMSIM=/tmp/semsim bash bench/styles.sh  # that binary, no build
 #   REUSE=scans bash bench/styles.sh          # keep the scans; register, map and score again
 #   SEEDS="11 12 13 14 15" WORK=bench/work/heldout OUT=bench/results/styles_heldout.md \
 #     bash bench/styles.sh                    # the held-out seeds (README)
@@ -22,8 +23,8 @@ LASER=${LASER:-real}
 OUT=${OUT:-bench/results/styles.md}
 WORK=${WORK:-bench/work/styles}
 REUSE=${REUSE:-0}
-cargo build --release -q -p semsim
-S=target/release/semsim
+# SEMSIM=path: that binary instead of building one (e.g. a copy, to go on building meanwhile)
+if [ -n "${SEMSIM:-}" ]; then S=$SEMSIM; else cargo build --release -q -p semsim; S=target/release/semsim; fi
 # (Only the styles asked for are scanned again: the others' results stay in $WORK.)
 if [ "$REUSE" != 1 ] && [ "$REUSE" != scans ]; then for style in $STYLES; do rm -rf "$WORK/$style"-*; done; fi
 mkdir -p "$WORK"

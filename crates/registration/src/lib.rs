@@ -32,8 +32,9 @@
 //! correspondence and its scan-order predecessor's match), optionally rejects the worst pairs,
 //! solves one step (closed-form SVD, or 6x6 Gauss-Newton normal equations accumulated in f64 by
 //! a parallel reduction, with IRLS kernel weights) and composes the increment. It stops when a
-//! step moves less than `translation_epsilon_m` and `rotation_epsilon_deg` or the RMSE changes by
-//! less than `rmse_relative_epsilon`; running out of iterations, or ending with a fitness below
+//! step moves less than `translation_epsilon_m` and `rotation_epsilon_deg`, the RMSE changes by
+//! less than `rmse_relative_epsilon`, or, on the final gate, a step undoes the one before (a
+//! pair leaving and entering the gate by turns); running out of iterations, or ending with a fitness below
 //! `min_fitness`, is [`RegistrationError::NotConverged`], which carries the result.
 //!
 //! # Choices

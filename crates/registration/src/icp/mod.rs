@@ -45,6 +45,17 @@ const WIDE_FLAT_RMSE: f64 = 0.01;
 /// A pose back within this many stop epsilons of the pose two iterations before is a cycle.
 const CYCLE_EPSILONS: f64 = 10.0;
 
+/// Whether the last step (its size, metres and degrees) undid the one before: the pose is
+/// back within [`CYCLE_EPSILONS`] stop epsilons of the pose two iterations before (`back`), and
+/// by less than half the last step (a run creeping on in one direction by small steps is back
+/// by their sum, not by less than one of them).
+fn undoes_last(step: (f64, f64), back: (f64, f64), c: &IcpConfig) -> bool {
+    let within = back.0 < CYCLE_EPSILONS * c.translation_epsilon_m
+        && back.1 < CYCLE_EPSILONS * c.rotation_epsilon_deg;
+    let undone = back.0 <= step.0 / 2.0 && back.1 <= step.1 / 2.0 && (step.0 > 0.0 || step.1 > 0.0);
+    within && undone
+}
+
 /// A source ready for the loop: its finite (downsampled) points and each point's prior weight
 /// (empty: all 1).
 pub(crate) struct PreparedSource {
@@ -316,6 +327,18 @@ pub(crate) fn run_loop(
             before_last = None;
             continue;
         }
+        // A cycle on the final gate: a pair leaves the gate and comes back by turns, and the
+        // pose alternates between two within `CYCLE_EPSILONS` stop epsilons of each other with
+        // an RMSE that changes by a pair's share each time. It has converged as far as the
+        // pairs allow. (A generated office's scan, with its mixed pixels removed by a filter
+        // that was tried, ran its 30 iterations between two poses, RMSE 0.05569 and 0.05570 m
+        // by turns, 11170 and 11171 pairs, and its sequence failed.)
+        if gate <= c.final_correspondence_distance_m
+            && undoes_last((dt, deg), (back_m, back_deg), c)
+        {
+            converged = true;
+            break;
+        }
         before_last = Some(last);
         prev_rmse = Some(rmse);
     }
@@ -328,4 +351,26 @@ pub(crate) fn run_loop(
         fitness,
         total_ms: 0.0,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_step_back_to_the_pose_before_last_is_a_cycle_a_creep_is_not() {
+        let c = IcpConfig::default();
+        let eps = (c.translation_epsilon_m, c.rotation_epsilon_deg);
+        // Steps of 3 epsilons that return to within a tenth of one: a cycle.
+        let step = (3.0 * eps.0, 3.0 * eps.1);
+        assert!(undoes_last(step, (0.1 * eps.0, 0.1 * eps.1), &c));
+        // Two steps of 3 epsilons the same way: back by 6, no cycle.
+        assert!(!undoes_last(step, (6.0 * eps.0, 6.0 * eps.1), &c));
+        // Back within half a step but far from the pose before last (large steps): no cycle.
+        let big = (40.0 * eps.0, 40.0 * eps.1);
+        assert!(!undoes_last(big, (15.0 * eps.0, 0.0), &c));
+        // A step that only turns, and turns back: a cycle; no step at all: none.
+        assert!(undoes_last((0.0, 3.0 * eps.1), (0.0, 0.1 * eps.1), &c));
+        assert!(!undoes_last((0.0, 0.0), (0.0, 0.0), &c));
+    }
 }

@@ -34,8 +34,9 @@
 //! a parallel reduction, with IRLS kernel weights) and composes the increment. It stops when a
 //! step moves less than `translation_epsilon_m` and `rotation_epsilon_deg`, the RMSE changes by
 //! less than `rmse_relative_epsilon`, or, on the final gate, a step undoes the one before (a
-//! pair leaving and entering the gate by turns); running out of iterations, or ending with a fitness below
-//! `min_fitness`, is [`RegistrationError::NotConverged`], which carries the result.
+//! pair leaving and entering the gate by turns); running out of iterations, or ending with a
+//! fitness below `min_fitness`, is [`RegistrationError::NotConverged`], which carries the
+//! result.
 //!
 //! # Choices
 //! Measured (figures and conditions in `bench/results/README.md`, "Registration measurements";

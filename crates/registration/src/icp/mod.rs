@@ -50,10 +50,15 @@ const CYCLE_EPSILONS: f64 = 10.0;
 /// by less than half the last step (a run creeping on in one direction by small steps is back
 /// by their sum, not by less than one of them).
 fn undoes_last(step: (f64, f64), back: (f64, f64), c: &IcpConfig) -> bool {
-    let within = back.0 < CYCLE_EPSILONS * c.translation_epsilon_m
-        && back.1 < CYCLE_EPSILONS * c.rotation_epsilon_deg;
     let undone = back.0 <= step.0 / 2.0 && back.1 <= step.1 / 2.0 && (step.0 > 0.0 || step.1 > 0.0);
-    within && undone
+    back_within_cycle(back, c) && undone
+}
+
+/// Whether the pose is back within [`CYCLE_EPSILONS`] stop epsilons (`back`: metres and
+/// degrees) of the pose two iterations before.
+fn back_within_cycle(back: (f64, f64), c: &IcpConfig) -> bool {
+    back.0 < CYCLE_EPSILONS * c.translation_epsilon_m
+        && back.1 < CYCLE_EPSILONS * c.rotation_epsilon_deg
 }
 
 /// A source ready for the loop: its finite (downsampled) points and each point's prior weight
@@ -317,9 +322,8 @@ pub(crate) fn run_loop(
         let (back_m, back_deg) = before_last.map_or((f64::INFINITY, f64::INFINITY), |b| {
             motion_size(&(t * b.inverse()))
         });
-        let cycling = back_m < CYCLE_EPSILONS * c.translation_epsilon_m
-            && back_deg < CYCLE_EPSILONS * c.rotation_epsilon_deg
-            && gate > c.final_correspondence_distance_m;
+        let cycling =
+            back_within_cycle((back_m, back_deg), c) && gate > c.final_correspondence_distance_m;
         if settled_wide || cycling {
             halved_from = Some(fitness);
             gate = (gate / 2.0).max(c.final_correspondence_distance_m);

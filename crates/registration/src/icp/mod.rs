@@ -358,6 +358,9 @@ pub(crate) fn run_loop(
 }
 
 #[cfg(test)]
+mod loop_tests;
+
+#[cfg(test)]
 mod tests {
     use super::*;
 

@@ -30,6 +30,10 @@ fn min_landing_m(c: &StairsConfig) -> f64 {
     c.run_m[1] + 0.2
 }
 
+/// How far beside the lower flight's width the upper flight's points may lie (m): a side
+/// face's returns spread by the range noise, and a width measured from 1-99 % of the points.
+const IN_LINE_MARGIN_M: f64 = 0.15;
+
 /// The flights of a staircase with a mid landing climbing along `dir`, if the points show one
 /// (see the module docs): both, or the one of them that is plausible; `None` if they show no
 /// mid landing or neither flight is.
@@ -58,9 +62,20 @@ pub(super) fn two_flights(
     // 3. The upper flight: from a tread's depth before that edge on, heights from the landing,
     //    up to the far edge of its own top landing if something stands beyond that (a
     //    cupboard, a wall the map did not find: no part of this flight).
+    //    Where the lower flight was found, the upper one climbs in line with it: its points
+    //    are those across the lower one's width (and the measurement's spread); a person
+    //    walking past in front of its side face, smeared into a wall of returns a landing's
+    //    height up, is beside it.
+    let in_line = |q: DVec2| {
+        first
+            .as_ref()
+            .is_none_or(|f| dir.perp_dot(q - f.start).abs() <= f.width / 2.0 + IN_LINE_MARGIN_M)
+    };
     let above = |p: &[(DVec2, f64)]| -> Vec<(DVec2, f64)> {
         p.iter()
-            .filter(|(q, z)| q.dot(dir) >= landing_end - c.run_m[1] && *z >= base - 0.05)
+            .filter(|(q, z)| {
+                q.dot(dir) >= landing_end - c.run_m[1] && *z >= base - 0.05 && in_line(*q)
+            })
             .map(|(q, z)| (*q, z - base))
             .collect()
     };

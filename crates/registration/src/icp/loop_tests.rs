@@ -1,0 +1,105 @@
+//! The ICP loop's stop rules, driven by scripted correspondences (a [`PairSums`] whose
+//! targets the test chooses per iteration), so that the loop's own behaviour is what is
+//! measured: how many iterations it runs and whether it says it converged.
+
+use super::point_to_point::CorrelationSums;
+use super::{run_loop, PairSums, StepSums};
+use crate::config::IcpConfig;
+use crate::error::Result;
+use glam::{DAffine3, DVec3, Vec3};
+
+/// Correspondences of a fixed source onto the target pose of the iteration
+/// (`target_at(k)` on the `k`-th call), every source point paired with itself moved there; on
+/// odd calls (with `extra`) one more pair with a 5 cm residual, as a pair that enters the gate by turns.
+struct Scripted<F: Fn(usize) -> DAffine3> {
+    source: Vec<Vec3>,
+    target_at: F,
+    calls: usize,
+    /// Whether odd calls add the pair with a 5 cm residual.
+    extra: bool,
+}
+
+impl<F: Fn(usize) -> DAffine3> PairSums for Scripted<F> {
+    fn pair_sums(
+        &mut self,
+        target_from_source: &DAffine3,
+        _gate: f64,
+        reference: DVec3,
+    ) -> Result<(usize, StepSums)> {
+        let target = (self.target_at)(self.calls);
+        let mut sums = CorrelationSums::default();
+        for p in &self.source {
+            let p = p.as_dvec3();
+            let d = target_from_source.transform_point3(p);
+            sums.add(d - reference, target.transform_point3(p) - reference, 1.0);
+        }
+        if self.extra && !self.calls.is_multiple_of(2) {
+            let p = self.source[0].as_dvec3();
+            let d = target_from_source.transform_point3(p);
+            let m = target.transform_point3(p) + DVec3::new(0.0, 0.0, 0.05);
+            sums.add(d - reference, m - reference, 1.0);
+        }
+        self.calls += 1;
+        Ok((self.source.len(), StepSums::Svd(sums, reference)))
+    }
+}
+
+/// A 3 x 3 x 3 lattice of points 0.5 m apart.
+fn lattice() -> Vec<Vec3> {
+    let mut out = Vec::new();
+    for i in 0..3 {
+        for j in 0..3 {
+            for k in 0..3 {
+                out.push(Vec3::new(i as f32, j as f32, k as f32) * 0.5);
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn a_pose_alternating_between_two_on_the_final_gate_converges_early() {
+    let c = IcpConfig::default();
+    // The target pose 3 translation epsilons one way, then the other, by turns.
+    let a = 1.5 * c.translation_epsilon_m;
+    let mut pairs = Scripted {
+        source: lattice(),
+        target_at: |k: usize| {
+            DAffine3::from_translation(DVec3::X * if k.is_multiple_of(2) { a } else { -a })
+        },
+        calls: 0,
+        extra: true,
+    };
+    let result = run_loop(&c, &lattice(), DAffine3::IDENTITY, &mut pairs).expect("the loop runs");
+    assert!(
+        result.converged,
+        "a 2-cycle on the final gate is convergence"
+    );
+    assert!(
+        result.iterations.len() < 6,
+        "stopped after {} iterations (of {})",
+        result.iterations.len(),
+        c.max_iterations
+    );
+}
+
+#[test]
+fn a_pose_creeping_one_way_on_the_final_gate_is_no_cycle() {
+    let c = IcpConfig::default();
+    // The target moves on by 3 translation epsilons and more per iteration (each step a
+    // little longer than the last, so that the RMSE never settles), always the same way: no
+    // step undoes the last, and the loop runs all of its iterations without converging.
+    let eps = c.translation_epsilon_m;
+    let mut pairs = Scripted {
+        source: lattice(),
+        target_at: |k: usize| {
+            let k = k as f64;
+            DAffine3::from_translation(DVec3::X * 3.0 * eps * (k + 0.05 * k * k))
+        },
+        calls: 0,
+        extra: false,
+    };
+    let result = run_loop(&c, &lattice(), DAffine3::IDENTITY, &mut pairs).expect("the loop runs");
+    assert!(!result.converged);
+    assert_eq!(result.iterations.len(), c.max_iterations);
+}

@@ -76,6 +76,17 @@ fn search(part: &[(DVec2, f64)], length_m: f64) -> Option<Vec<DetectedStairs>> {
     .stairs()
 }
 
+/// Returns `(xy, height)` from a test data file: lines of three numbers, `#` comments.
+fn returns(text: &str) -> Vec<(DVec2, f64)> {
+    text.lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| {
+            let v: Vec<f64> = l.split(' ').map(|x| x.parse().expect("a number")).collect();
+            (DVec2::new(v[0], v[1]), v[2])
+        })
+        .collect()
+}
+
 /// The one flight `found`, climbing +X with `steps` steps of `rise` x `run`.
 fn assert_flight(found: Option<Vec<DetectedStairs>>, (rise, run, steps): (f64, f64, u32)) {
     let found = found.expect("a staircase");
@@ -124,14 +135,7 @@ fn a_side_face_joined_to_a_desk_in_front_of_it_is_still_its_flight() {
 /// tread is no part of the profile. (The returns on its side face, from the bench's map.)
 #[test]
 fn a_person_crossing_a_side_face_over_its_landing_is_no_step() {
-    let part: Vec<(DVec2, f64)> = include_str!("../../tests/data/garage17_side_face.txt")
-        .lines()
-        .filter(|l| !l.starts_with('#'))
-        .map(|l| {
-            let v: Vec<f64> = l.split(' ').map(|x| x.parse().expect("a number")).collect();
-            (DVec2::new(v[0], v[1]), v[2])
-        })
-        .collect();
+    let part = returns(include_str!("../../tests/data/garage17_side_face.txt"));
     assert_eq!(part.len(), 575);
     // (4 steps of 0.157 m x 0.284 m in the building)
     let found = search(&part, 2.2).expect("a staircase");
@@ -154,14 +158,7 @@ fn a_person_crossing_a_side_face_over_its_landing_is_no_step() {
 /// map.)
 #[test]
 fn a_person_beside_the_upper_flight_is_no_part_of_it() {
-    let part: Vec<(DVec2, f64)> = include_str!("../../tests/data/office16_two_flights.txt")
-        .lines()
-        .filter(|l| !l.starts_with('#'))
-        .map(|l| {
-            let v: Vec<f64> = l.split(' ').map(|x| x.parse().expect("a number")).collect();
-            (DVec2::new(v[0], v[1]), v[2])
-        })
-        .collect();
+    let part = returns(include_str!("../../tests/data/office16_two_flights.txt"));
     assert_eq!(part.len(), 2931);
     // As `find_stairs` reads a part: its levels from the returns on surfaces, its edges from
     // all of them.

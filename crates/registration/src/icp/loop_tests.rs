@@ -10,7 +10,8 @@ use glam::{DAffine3, DVec3, Vec3};
 
 /// Correspondences of a fixed source onto the target pose of the iteration
 /// (`target_at(k)` on the `k`-th call), every source point paired with itself moved there; on
-/// odd calls (with `extra`) one more pair with a 5 cm residual, as a pair that enters the gate by turns.
+/// odd calls (with `extra`) one more pair with a 5 cm residual, as a pair that enters the gate
+/// by turns.
 struct Scripted<F: Fn(usize) -> DAffine3> {
     source: Vec<Vec3>,
     target_at: F,

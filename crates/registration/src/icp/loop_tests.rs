@@ -61,7 +61,7 @@ fn lattice() -> Vec<Vec3> {
 #[test]
 fn a_pose_alternating_between_two_on_the_final_gate_converges_early() {
     let c = IcpConfig::default();
-    // The target pose 3 translation epsilons one way, then the other, by turns.
+    // The target pose 1.5 translation epsilons either side of the origin by turns (3 apart).
     let a = 1.5 * c.translation_epsilon_m;
     let mut pairs = Scripted {
         source: lattice(),

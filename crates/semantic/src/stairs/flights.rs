@@ -4,8 +4,9 @@
 //! least as deep as the stair is wide) and climbs again. Each flight is found on its own: the
 //! lower one on the points before the landing's far edge (the landing is its top level), the
 //! upper one on the points from just before that edge on and across the lower one's width (the
-//! two are in line), with heights measured from the landing (its foot stands there). A staircase is thus reported as its flights, each with its
-//! own step count, as a building file describes it (`[[stairs]]` with `base_m`).
+//! two are in line), with heights measured from the landing (its foot stands there). A
+//! staircase is thus reported as its flights, each with its own step count, as a building file
+//! describes it (`[[stairs]]` with `base_m`).
 //!
 //! Either flight may be hidden or only glimpsed (a survey that saw the staircase from above,
 //! or its side face past a wall). Where the lower one is no plausible staircase, the upper one

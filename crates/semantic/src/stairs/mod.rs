@@ -32,7 +32,8 @@
 //! `min_step_fill` fraction of what the local point density promises), at least
 //! `min_width_m` wide; one seen from its side only gets `default_width_m` only where the floor
 //! beside it is hidden (a staircase hides the floor under it; clutter beside a side face does
-//! not).
+//! not) and its returns on the steps lie on one vertical plane (clutter at step heights
+//! along a line, such as a crate's edge and a person's streak crossing it, does not).
 //!
 //! A flight whose top riser stands alone one run past its top step (its tread above the laser,
 //! the side face unseen there, so the blobs part it from the flight) gets that step back (see

@@ -164,3 +164,50 @@ fn one_thin_step_is_allowed_with_all_levels_seen_but_one() {
     assert!(finish(&side, profile(steps - 1), &sc, &c).is_some());
     assert!(finish(&side, profile(steps - 2), &sc, &c).is_none());
 }
+
+/// Regression: on mixed-26 a crate's edge, a person's streak crossing over it diagonally and
+/// returns beside it stood at three heights 0.2 m apart along one direction, within 0.6 m
+/// across it: a 3-step flight seen from its side only, on no staircase. Its steps' returns
+/// lay 0.17-0.18 m apart across the direction by turns; a side face is one plane.
+#[test]
+fn steps_on_no_one_plane_are_no_side_face() {
+    let (rise, run, steps) = (0.2, 0.24, 3u32);
+    let (side, points) = side_face((rise, run, steps), |_, top| (None, top), &[]);
+    let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(5.0), 0.25);
+    let sc = Scene::with_one_index(&points, &index, 0.0, 2.6);
+    let c = StairsConfig::default();
+    let profile = |dir| Profile {
+        dir,
+        rise,
+        run,
+        front1: 0.0,
+        steps,
+        found: steps,
+        score: f64::from(steps),
+    };
+    // The side face itself is a staircase; along a direction 3 degrees off the face (its
+    // steps' returns drifting across it step by step) still.
+    assert!(finish(&side, profile(DVec2::X), &sc, &c).is_some());
+    let turned = DVec2::from_angle(3f64.to_radians());
+    assert!(finish(&side, profile(turned), &sc, &c).is_some());
+    // The other steps' returns 0.17 m across from the middle one's, the floor hidden beside
+    // them as under the rest: no staircase.
+    // (Their lowest returns, 2 cm up, would read as floor seen beside the middle step.)
+    let bent: Vec<(DVec2, f64)> = side
+        .iter()
+        .filter(|(_, z)| *z > 0.05)
+        .map(|&(q, z)| {
+            let middle = (run..2.0 * run).contains(&q.x);
+            (q + DVec2::Y * if middle { 0.0 } else { 0.17 }, z)
+        })
+        .collect();
+    let points = over_floor(
+        &bent,
+        DVec2::new(-1.5, -2.0),
+        (150, 100),
+        DVec2::new(1.82, 1.3),
+    );
+    let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(5.0), 0.25);
+    let sc = Scene::with_one_index(&points, &index, 0.0, 2.6);
+    assert!(finish(&bent, profile(DVec2::X), &sc, &c).is_none());
+}

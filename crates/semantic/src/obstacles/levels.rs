@@ -5,7 +5,8 @@
 //! other by small steps, so the cluster takes both.
 //!
 //! Within a cluster, a level is a height that many cells' tops share (within half a step);
-//! its core is a connected region of such cells as large as a thing the stage scores. Every
+//! its core is a region of such cells as large as a thing the stage scores (patches under a
+//! seat's width apart are one region: a surface seen from afar is seen in patches). Every
 //! other cell goes to the nearest core (through the cluster's cells), and two regions whose
 //! levels differ by more than a step stay apart where they meet along a short junction, no
 //! longer than one thing's side (`MAX_JUNCTION_M`). The parts of one thing meet along its whole
@@ -26,6 +27,10 @@ const MAX_JUNCTION_M: f64 = 0.8;
 const BIN_M: f64 = 0.02;
 /// At most this many levels per cluster (a cap against pathological input).
 const MAX_LEVELS: usize = 16;
+/// A level's cells this far apart still make one core: a seat or a crate's top seen from afar
+/// is patches of returns (grazing rays, its backrest's shadow) with empty cells between them,
+/// which are no gap between things (under a seat's 0.45 m).
+const CORE_REACH_M: f64 = 0.4;
 
 /// `cells` (indices into `frame`'s grid, row-major) split into things of different heights
 /// (see the module docs); `tops` holds every grid cell's top, `step` the largest step of a
@@ -43,7 +48,8 @@ pub(super) fn split_levels(
     }
     let top = |k: usize| tops[k] as f64;
     // 1. The levels and their cores.
-    let cores = cores(&cells, top, frame.width_px as usize, step, min_core);
+    let reach = ((CORE_REACH_M / cell_m).round() as usize).max(2);
+    let cores = cores(&cells, top, frame.width_px as usize, step, min_core, reach);
     if cores.len() < 2 {
         return vec![cells];
     }
@@ -76,13 +82,15 @@ pub(super) fn split_levels(
 }
 
 /// The levels of the cells' tops and their cores: (level, the core's cells), each core a
-/// connected region of at least `min_core` cells whose tops lie within half a step of its level.
+/// region of at least `min_core` cells whose tops lie within half a step of its level, each
+/// within `reach` cells of another.
 fn cores(
     cells: &[usize],
     top: impl Fn(usize) -> f64,
     width: usize,
     step: f64,
     min_core: usize,
+    reach: usize,
 ) -> Vec<(f64, Vec<usize>)> {
     let half = step / 2.0;
     let mut free: Vec<usize> = cells.to_vec();
@@ -113,8 +121,8 @@ fn cores(
             .filter(|&k| (top(k) - best).abs() <= half)
             .collect();
         free.retain(|&k| (top(k) - best).abs() > half);
-        // Its cores: the connected regions of those cells large enough to be a thing.
-        let regions = components_of(&on, width, 2);
+        // Its cores: the regions of those cells large enough to be a thing.
+        let regions = components_of(&on, width, reach);
         out.extend(
             regions
                 .into_iter()
@@ -268,6 +276,45 @@ mod tests {
             .expect("seat");
         assert_eq!(seat.iter().filter(|&&k| y(k) < 1.9).count(), 20, "{seat:?}");
         assert!(seat.iter().all(|&k| y(k) < 2.0), "{seat:?}");
+    }
+
+    /// Regression (office-34 of seeds 31-35: a chair at a desk went into the desk's box): the
+    /// seat seen from afar is two patches of returns 0.4 m apart with lower returns (its legs)
+    /// between them, neither patch a thing's surface on its own.
+    #[test]
+    fn a_seat_seen_in_patches_beside_a_desk_is_split_off() {
+        let frame = crate::obstacles::test_grid();
+        let (cells, tops) = scene(&frame, |p| {
+            let (x, y) = (p.x, p.y);
+            if x > 2.0 && x < 3.5 && y > 2.0 && y < 2.8 {
+                // The desk: its top, 0.8 m deep.
+                Some(0.62)
+            } else if y > 2.9 && y < 3.1 && (x > 2.2 && x < 2.4 || x > 2.6 && x < 2.8) {
+                // The seat's two patches, 2 x 2 cells each, 0.4 m apart (centres).
+                Some(0.36)
+            } else if y > 2.9 && y < 3.1 && x > 2.4 && x < 2.6 {
+                // Between them, returns off its legs.
+                Some(0.2)
+            } else if (x - 2.15).abs() < 0.05 && y > 2.8 && y < 2.9 {
+                // Mixed pixels climbing from the seat to the desk at one end.
+                Some(0.49)
+            } else {
+                None
+            }
+        });
+        let y = |k: usize| pixel_center(&frame, 0.0, (k / frame.width_px as usize) as f64).y;
+        let parts = split_levels(cells, &tops, &frame, 0.1);
+        assert_eq!(
+            parts.len(),
+            2,
+            "{:?}",
+            parts.iter().map(Vec::len).collect::<Vec<_>>()
+        );
+        let seat = parts
+            .iter()
+            .find(|p| p.iter().any(|&k| y(k) > 2.9))
+            .expect("seat");
+        assert!(seat.iter().all(|&k| y(k) > 2.8), "{seat:?}");
     }
 
     #[test]

@@ -139,7 +139,7 @@ pub(super) fn drop_wall_slivers(
 }
 
 /// `k` takes `o` in: the box along `dir` around both, their hulls, heights and points.
-fn absorb(k: &mut DetectedObstacle, o: &DetectedObstacle, dir: DVec2) {
+pub(super) fn absorb(k: &mut DetectedObstacle, o: &DetectedObstacle, dir: DVec2) {
     let mut pts: Vec<DVec2> = rect_corners(k.center, k.dir, k.size).to_vec();
     pts.extend(rect_corners(o.center, o.dir, o.size));
     let n = dir.perp();
@@ -167,7 +167,7 @@ fn absorb(k: &mut DetectedObstacle, o: &DetectedObstacle, dir: DVec2) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use cloud::EntityClass;
+    use crate::obstacles::test_cluster as cluster;
 
     /// The default configuration with `max_top_step_m` (0.3 m vertical gap, 0.2 m slivers).
     fn config(max_top_step_m: f64) -> ObstacleConfig {
@@ -176,28 +176,6 @@ mod tests {
             max_vertical_gap_m: 0.3,
             sliver_max_across_m: 0.2,
             ..ObstacleConfig::default()
-        }
-    }
-
-    fn cluster(
-        center: [f64; 2],
-        dir: DVec2,
-        size: [f64; 2],
-        z: (f64, f64),
-        overhead: bool,
-    ) -> DetectedObstacle {
-        let c = DVec2::from_array(center);
-        DetectedObstacle {
-            class: EntityClass::Obstacle,
-            center: c,
-            dir,
-            size,
-            z_range: z,
-            hull: rect_corners(c, dir, size).to_vec(),
-            fill: 1.0,
-            support: 100,
-            overhead,
-            rules: Vec::new(),
         }
     }
 

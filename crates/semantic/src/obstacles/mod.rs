@@ -34,8 +34,10 @@
 //!    inside its footprint's hull, is part of it; overhead pieces
 //!    continuing each other along one line across gaps up to `column_max_across_m` (a duct cut
 //!    where beams cross it) are one; thin clusters along a wall's face are its residue, dropped;
-//!    a standing cluster along a wall whose floor between it and the wall was never seen (a
-//!    cabinet seen from the room as its front face) reaches back to the wall ([`backing`]).
+//!    two thin clusters side by side a thing's depth apart, of one height, are its faces (a
+//!    seat seen along its front and back edges, [`faces`]); a standing cluster along a wall
+//!    whose floor between it and the wall was never seen (a cabinet seen from the room as its
+//!    front face) reaches back to the wall ([`backing`]).
 //! 6. Classes ([`classify`]): a low cluster standing on the floor, reaching the ceiling and at
 //!    most `column_max_across_m` across is a `column`; a high cluster at least
 //!    `beam_min_length_m` long and twice as long as wide is a `beam` (its bottom is above head
@@ -48,6 +50,7 @@ mod backing;
 mod classify;
 mod cluster;
 mod config;
+mod faces;
 mod fit;
 mod frames;
 mod fringe;
@@ -67,6 +70,7 @@ use classify::{classify, fit_cluster};
 use cloud::EntityClass;
 use cluster::{components, BandGrid};
 pub use config::ObstacleConfig;
+use faces::join_faces;
 use frames::{split_frame, MAX_FRAME_FILL, MIN_FRAME_ACROSS_M};
 use fringe::without_fringe;
 use glam::{DVec2, Vec3};
@@ -250,12 +254,13 @@ pub(crate) fn find_obstacles(
     // 5-6. Put together, then classed.
     let out = absorb_parts(out, frame.resolution_m, c);
     let out = join_collinear(out, c.column_max_across_m);
-    let mut out = drop_wall_slivers(
+    let out = drop_wall_slivers(
         out,
         sc.walls,
         c.sliver_max_across_m,
         c.wall_margin_m + c.sliver_max_across_m,
     );
+    let mut out = join_faces(out, c);
     let seen = floor_seen(&frame, sc.points, sc.floor, c.min_above_floor_m);
     back_onto_walls(&mut out, sc.walls, &frame, &seen, sc.floor);
     for o in &mut out {
@@ -321,6 +326,31 @@ pub(crate) fn test_grid() -> ImageFrame {
         resolution_m: 0.1,
         width_px: 100,
         height_px: 60,
+    }
+}
+
+/// A cluster with the box `size` around `center` along `dir` as its hull, z range `z` (the
+/// merge steps' tests).
+#[cfg(test)]
+pub(crate) fn test_cluster(
+    center: [f64; 2],
+    dir: DVec2,
+    size: [f64; 2],
+    z: (f64, f64),
+    overhead: bool,
+) -> DetectedObstacle {
+    let c = DVec2::from_array(center);
+    DetectedObstacle {
+        class: EntityClass::Obstacle,
+        center: c,
+        dir,
+        size,
+        z_range: z,
+        hull: fit::rect_corners(c, dir, size).to_vec(),
+        fill: 1.0,
+        support: 100,
+        overhead,
+        rules: Vec::new(),
     }
 }
 

@@ -245,6 +245,31 @@ mod tests {
         (cells, tops)
     }
 
+    /// The y of cell `k`'s centre.
+    fn row_y(frame: &ImageFrame, k: usize) -> f64 {
+        pixel_center(frame, 0.0, (k / frame.width_px as usize) as f64).y
+    }
+
+    /// `cells` split in two (asserted, with a step of 0.1 m); the part holding a cell `in_seat`.
+    fn seat_split_off(
+        cells: Vec<usize>,
+        tops: &[f32],
+        frame: &ImageFrame,
+        in_seat: impl Fn(usize) -> bool,
+    ) -> Vec<usize> {
+        let parts = split_levels(cells, tops, frame, 0.1);
+        assert_eq!(
+            parts.len(),
+            2,
+            "{:?}",
+            parts.iter().map(Vec::len).collect::<Vec<_>>()
+        );
+        parts
+            .into_iter()
+            .find(|p| p.iter().any(|&k| in_seat(k)))
+            .expect("seat")
+    }
+
     #[test]
     fn a_seat_joined_to_a_desk_by_mixed_pixels_is_split_off() {
         let frame = crate::obstacles::test_grid();
@@ -261,19 +286,9 @@ mod tests {
                 None
             }
         });
-        let y = |k: usize| pixel_center(&frame, 0.0, (k / frame.width_px as usize) as f64).y;
-        let parts = split_levels(cells, &tops, &frame, 0.1);
-        assert_eq!(
-            parts.len(),
-            2,
-            "{:?}",
-            parts.iter().map(Vec::len).collect::<Vec<_>>()
-        );
+        let y = |k: usize| row_y(&frame, k);
         // The seat's part holds the seat's 20 cells and none of the desk's.
-        let seat = parts
-            .iter()
-            .find(|p| p.iter().any(|&k| y(k) < 1.9))
-            .expect("seat");
+        let seat = seat_split_off(cells, &tops, &frame, |k| y(k) < 1.9);
         assert_eq!(seat.iter().filter(|&&k| y(k) < 1.9).count(), 20, "{seat:?}");
         assert!(seat.iter().all(|&k| y(k) < 2.0), "{seat:?}");
     }
@@ -302,18 +317,8 @@ mod tests {
                 None
             }
         });
-        let y = |k: usize| pixel_center(&frame, 0.0, (k / frame.width_px as usize) as f64).y;
-        let parts = split_levels(cells, &tops, &frame, 0.1);
-        assert_eq!(
-            parts.len(),
-            2,
-            "{:?}",
-            parts.iter().map(Vec::len).collect::<Vec<_>>()
-        );
-        let seat = parts
-            .iter()
-            .find(|p| p.iter().any(|&k| y(k) > 2.9))
-            .expect("seat");
+        let y = |k: usize| row_y(&frame, k);
+        let seat = seat_split_off(cells, &tops, &frame, |k| y(k) > 2.9);
         assert!(seat.iter().all(|&k| y(k) > 2.8), "{seat:?}");
     }
 

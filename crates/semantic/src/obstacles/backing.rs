@@ -7,6 +7,7 @@
 //! A floor seen there (under a desk or table, behind a free-standing panel, in a gap a robot
 //! could use) leaves the box as fitted.
 
+use super::classify::set_box_rule;
 use super::fit::{convex_hull, rect_corners};
 use super::merge::PARALLEL_COS;
 use super::DetectedObstacle;
@@ -91,15 +92,11 @@ pub(super) fn back_onto_walls(
         hull.extend(rect_corners(o.center, o.dir, o.size));
         o.hull = convex_hull(&hull);
         o.fill = (o.fill * old_area / (o.size[0] * o.size[1]).max(1e-9)).clamp(0.0, 1.0);
-        // (the box's rule: `classify` keeps the first two rules and adds the class's)
         let why = format!(
             "box: along the wall it stands against, from its seen front back to the wall's face {:.2} m behind (the floor between was never seen)",
             d1 - d0
         );
-        match o.rules.get_mut(1) {
-            Some(r) => *r = why,
-            None => o.rules.push(why),
-        }
+        set_box_rule(o, why);
     }
 }
 

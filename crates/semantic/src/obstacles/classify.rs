@@ -114,3 +114,12 @@ pub(super) fn classify(
     o.rules.truncate(2);
     o.rules.push(why);
 }
+
+/// Replaces the rule that says how `o`'s box was fitted (its second: [`classify`] keeps the
+/// first two rules, the points and the box, and adds the class's).
+pub(super) fn set_box_rule(o: &mut DetectedObstacle, why: String) {
+    match o.rules.get_mut(1) {
+        Some(r) => *r = why,
+        None => o.rules.push(why),
+    }
+}

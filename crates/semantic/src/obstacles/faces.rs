@@ -4,6 +4,7 @@
 //! clusters side by side along one direction, a thing's depth apart, standing on the floor to
 //! the same height, each too thin to be the thing; their union's box is the thing.
 
+use super::classify::set_box_rule;
 use super::merge::absorb;
 use super::{DetectedObstacle, ObstacleConfig};
 use glam::DVec2;
@@ -44,17 +45,13 @@ pub(super) fn join_faces(
         } else {
             other.dir
         };
-        // (the box's rule: `classify` keeps the first two rules and adds the class's)
         let why = format!(
             "box: around two faces of one thing {:.2} and {:.2} m long side by side, the cells between them unseen",
             found[i].size[0].max(other.size[0]),
             found[i].size[0].min(other.size[0])
         );
         absorb(&mut found[i], &other, dir);
-        match found[i].rules.get_mut(1) {
-            Some(r) => *r = why,
-            None => found[i].rules.push(why),
-        }
+        set_box_rule(&mut found[i], why);
     }
 }
 

@@ -97,6 +97,21 @@ export function pixelsDiffer(a, b) {
   return n / (a.length / 4);
 }
 
+/**
+ * Polls the canvas until its picture differs from `reference` in more than `fraction` of the
+ * pixels (the frame with the change has been drawn) or `timeoutMs` passes; returns the last
+ * pixels either way, for the caller to judge. A fixed wait is not enough: software WebGL on a
+ * loaded machine can draw fewer than two frames a second.
+ */
+export async function pixelsOnceChanged(page, reference, fraction, timeoutMs = 20_000) {
+  const t0 = Date.now();
+  for (;;) {
+    const px = await page.evaluate(canvasPixels);
+    if (pixelsDiffer(reference, px) > fraction || Date.now() - t0 > timeoutMs) return px;
+    await sleep(200);
+  }
+}
+
 /** Throws unless the canvas stats show a rendered world (not blank). */
 export function assertNotBlank(canvas) {
   if (canvas.width < 100 || canvas.height < 100) throw new Error(`the canvas is ${canvas.width}x${canvas.height}`);

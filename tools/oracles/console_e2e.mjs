@@ -18,7 +18,9 @@
 //
 //     node tools/oracles/console_e2e.mjs URL OUT_DIR [--expect-cloud]
 import path from 'node:path';
-import { run, canvasStats, canvasPixels, pixelsDiffer, assertNotBlank, sleep } from './browser.mjs';
+import {
+  run, canvasStats, canvasPixels, pixelsDiffer, pixelsOnceChanged, assertNotBlank, sleep,
+} from './browser.mjs';
 
 const [url, outDir, flag] = process.argv.slice(2);
 if (!url || !outDir) {
@@ -47,9 +49,26 @@ await run('console_e2e', outDir, 240_000, async (s) => {
     const d = document.getElementById('clock').dataset;
     return { x: Number(d.x), y: Number(d.y), yaw: Number(d.yaw), t: Number(d.time) };
   });
+  // Waits for the simulation's clock to advance `secs` simulated seconds: the page's waits are
+  // on the simulation and the picture, never on the wall clock alone (on a loaded machine the
+  // page may see only a few states a second).
+  const simWait = async (secs) => {
+    const t = (await clock()).t;
+    await page.waitForFunction((end) => Number(document.getElementById('clock').dataset.time) >= end, t + secs,
+      { timeout: 60_000, polling: 100 })
+      .catch(async () => {
+        const page_ = await page.evaluate(() => `${document.getElementById('status').textContent}; ${document.getElementById('clock').textContent}`);
+        throw new Error(`the simulation did not advance ${secs} s: ${JSON.stringify(await clock())} (page: ${page_})`);
+      });
+  };
+  // Holds an input until the robot is `metres` from `from` (up to 30 s; the step's own check
+  // then judges how far and which way it went).
+  const untilMoved = (from, metres) => page.waitForFunction(([x, y, m]) => {
+    const d = document.getElementById('clock').dataset;
+    return Math.hypot(Number(d.x) - x, Number(d.y) - y) > m;
+  }, [from.x, from.y, metres], { timeout: 30_000, polling: 100 }).catch(() => {});
   // A few simulated tenths of a second, so that the robot has settled on its wheels.
-  const tStart = (await clock()).t;
-  await page.waitForFunction((t) => Number(document.getElementById('clock').dataset.time) > t + 0.5, tStart);
+  await simWait(0.5);
 
   // ---- 1. the canvas is not blank; the minimap is drawn ------------------------------------
   s.mark('canvas');
@@ -76,17 +95,15 @@ await run('console_e2e', outDir, 240_000, async (s) => {
   if (expectCloud) {
     s.mark('cloud');
     await page.waitForSelector('#cloud-section:not([hidden])', { timeout: 60_000 });
+    // Each change is waited for (up to 20 s) rather than slept on; then judged below.
     const off = await page.evaluate(canvasPixels);
     await page.check('#cloud');
-    await sleep(500);
-    const on = await page.evaluate(canvasPixels);
+    const on = await pixelsOnceChanged(page, off, 0.02);
     await page.screenshot({ path: path.join(outDir, 'console_cloud.png') });
     await page.selectOption('#cloud-mode', 'height');
-    await sleep(500);
-    const height = await page.evaluate(canvasPixels);
+    const height = await pixelsOnceChanged(page, on, 0.02);
     await page.uncheck('#cloud');
-    await sleep(300);
-    const offAgain = await page.evaluate(canvasPixels);
+    const offAgain = await pixelsOnceChanged(page, height, 0.02);
     cloud = {
       info: await page.evaluate(() => document.getElementById('cloud-info').textContent),
       toggle_changed: Number(pixelsDiffer(off, on).toFixed(4)),
@@ -105,9 +122,9 @@ await run('console_e2e', outDir, 240_000, async (s) => {
   await page.evaluate(() => document.activeElement && document.activeElement.blur());
   const before = await clock();
   await page.keyboard.down('w');
-  await sleep(1500);
+  await untilMoved(before, 0.4);
   await page.keyboard.up('w');
-  await sleep(700); // the stop arrives, the robot comes to rest
+  await simWait(0.7); // the stop arrives, the robot comes to rest
   const after = await clock();
   const dx = after.x - before.x, dy = after.y - before.y;
   const moved = Math.hypot(dx, dy);
@@ -118,9 +135,9 @@ await run('console_e2e', outDir, 240_000, async (s) => {
   s.mark('buttons');
   const forward = page.locator('[data-drive=forward]');
   await forward.dispatchEvent('pointerdown');
-  await sleep(1000);
+  await untilMoved(after, 0.4);
   await forward.dispatchEvent('pointerup');
-  await sleep(700);
+  await simWait(0.7);
   const afterButton = await clock();
   const buttonDx = afterButton.x - after.x;
   if (!(buttonDx > 0.2)) throw new Error(`the forward button moved the robot ${buttonDx.toFixed(3)} m east`);
@@ -130,9 +147,9 @@ await run('console_e2e', outDir, 240_000, async (s) => {
   await page.evaluate(() => {
     window.__fakePad = { id: 'semsim test pad', index: 0, connected: true, axes: [0, 0.8, 0, 0], buttons: [] };
   });
-  await sleep(1000);
+  await untilMoved(afterButton, 0.4);
   await page.evaluate(() => { window.__fakePad.axes = [0, 0, 0, 0]; });
-  await sleep(700);
+  await simWait(0.7);
   const afterPad = await clock();
   const padDx = afterPad.x - afterButton.x;
   const padLabel = await page.evaluate(() => document.getElementById('gamepad').textContent);
@@ -159,7 +176,10 @@ await run('console_e2e', outDir, 240_000, async (s) => {
   await page.screenshot({ path: path.join(outDir, 'console_wall_event.png') });
   s.mark('follow');
   await page.check('input[name=camera][value=follow]');
-  await sleep(500);
+  // The page writes the follow camera's distance when it first places it; one more frame after.
+  await page.waitForFunction(() => document.getElementById('view').dataset.followDistance !== undefined,
+    null, { timeout: 60_000, polling: 100 });
+  await simWait(0.2);
   const followDistance = await page.evaluate(() => document.getElementById('view').dataset.followDistance);
   await page.screenshot({ path: path.join(outDir, 'console_follow.png') });
   const followCanvas = await page.evaluate(canvasStats);

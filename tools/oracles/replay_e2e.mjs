@@ -13,7 +13,9 @@
 //
 //     node tools/oracles/replay_e2e.mjs URL OUT_DIR [ID:DEGREES@TIME_S]
 import path from 'node:path';
-import { run, canvasStats, canvasPixels, pixelsDiffer, assertNotBlank, sleep } from './browser.mjs';
+import {
+  run, canvasStats, canvasPixels, pixelsDiffer, pixelsOnceChanged, assertNotBlank, sleep,
+} from './browser.mjs';
 
 const [url, outDir, door] = process.argv.slice(2);
 if (!url || !outDir) {
@@ -51,9 +53,8 @@ await run('replay_e2e', outDir, 200_000, async (s) => {
     el.value = String((Number(el.min) + Number(el.max)) / 2);
     el.dispatchEvent(new Event('input', { bubbles: true }));
   });
-  await sleep(500);
+  const pixelsMiddle = await pixelsOnceChanged(page, pixelsStart, 0.001);
   const middle = await clock();
-  const pixelsMiddle = await page.evaluate(canvasPixels);
   await page.screenshot({ path: path.join(outDir, 'replay_middle.png') });
   const moved = Math.hypot(middle.x - start.x, middle.y - start.y);
   const changed = pixelsDiffer(pixelsStart, pixelsMiddle);

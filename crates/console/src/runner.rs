@@ -133,10 +133,8 @@ impl Runner {
         if !self.running() {
             return self.next_state;
         }
-        let steps = self.session.sim().steps() + 1 - self.anchor.1;
-        let due =
-            self.anchor.0 + Duration::from_secs_f64(steps as f64 * self.dt_secs() / self.speed);
-        due.min(self.next_state)
+        let step_secs = self.dt_secs() / self.speed;
+        next_step_due(self.anchor, self.session.sim().steps(), step_secs).min(self.next_state)
     }
 
     /// Takes the steps real time asks for.
@@ -329,6 +327,15 @@ impl Runner {
     }
 }
 
+/// When the step after `steps` is due, real-time pacing counting from `anchor` (a real instant
+/// and the step count then) at `step_secs` real seconds a step. A thread that dropped its lag
+/// re-anchors ahead of the steps it has taken (the rest are due at once): then the next step is
+/// due at the anchor, not before it (a subtraction that overflowed there stopped the thread).
+fn next_step_due(anchor: (Instant, u64), steps: u64, step_secs: f64) -> Instant {
+    let ahead = (steps + 1).saturating_sub(anchor.1);
+    anchor.0 + Duration::from_secs_f64(ahead as f64 * step_secs)
+}
+
 /// Spawns the thread.
 pub(crate) fn spawn(
     runner: Runner,
@@ -338,4 +345,25 @@ pub(crate) fn spawn(
         .name("semsim-console-sim".into())
         .spawn(move || runner.run(controls))
         .map_err(|_| ConsoleError::SimulationThread)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_thread_behind_its_anchor_takes_its_next_step_at_once() {
+        let now = Instant::now();
+        // Re-anchored at step 40 after taking 12 of the steps due: step 13 is due now.
+        assert_eq!(next_step_due((now, 40), 12, 0.01), now);
+        // On time: step 41 after 40 taken, one step period after the anchor.
+        assert_eq!(
+            next_step_due((now, 40), 40, 0.01),
+            now + Duration::from_secs_f64(0.01)
+        );
+        assert_eq!(
+            next_step_due((now, 40), 49, 0.01),
+            now + Duration::from_secs_f64(0.1)
+        );
+    }
 }

@@ -38,22 +38,10 @@ pub(super) fn envelope(
     nb: usize,
     window_m: f64,
 ) -> Vec<(f64, f64)> {
-    let mut bins: Vec<Vec<f64>> = vec![Vec::new(); nb];
-    let (mut z_lo, mut z_hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for (q, z) in pts {
-        let v = (q.dot(dir) - s_lo) / BIN_M;
-        if v >= 0.0 && (v as usize) < nb && z.is_finite() {
-            bins[v as usize].push(*z);
-            z_lo = z_lo.min(*z);
-            z_hi = z_hi.max(*z);
-        }
-    }
-    if z_hi < z_lo {
+    let bins = Bins::new(pts, dir, s_lo, nb);
+    let Some((z_lo, z_hi)) = bins.heights() else {
         return Vec::new();
-    }
-    // (each bin highest first: its top is the first point with others at its height)
-    bins.iter_mut()
-        .for_each(|zs| zs.sort_unstable_by(|a, b| b.total_cmp(a)));
+    };
     // The points of the bins within the window, counted per 1 cm of height (a Fenwick tree
     // for the count within a band of heights), slid along the bins.
     let levels = (((z_hi - z_lo) / BIN_M) as usize + 1).min(1_000_000);
@@ -61,19 +49,21 @@ pub(super) fn envelope(
     let level = |z: f64| (((z - z_lo) / BIN_M) as usize).min(levels - 1);
     let w = (window_m / BIN_M).round().max(0.0) as usize;
     let mut tree = Fenwick::new(levels);
-    for zs in bins.iter().take(w) {
+    for zs in (0..w.min(nb)).map(|i| bins.of(i)) {
         zs.iter().for_each(|&z| tree.add(level(z), 1));
     }
     let mut out = Vec::new();
     for i in 0..nb {
-        if let Some(zs) = bins.get(i + w) {
-            zs.iter().for_each(|&z| tree.add(level(z), 1));
+        if i + w < nb {
+            bins.of(i + w).iter().for_each(|&z| tree.add(level(z), 1));
         }
         if i > w {
-            bins[i - w - 1].iter().for_each(|&z| tree.add(level(z), -1));
+            bins.of(i - w - 1)
+                .iter()
+                .for_each(|&z| tree.add(level(z), -1));
         }
         // The highest point of the bin with others at its height.
-        let top = bins[i].iter().copied().find(|&z| {
+        let top = bins.of(i).iter().copied().find(|&z| {
             let band =
                 tree.below(level(z + SAME_SURFACE_M) + 1) - tree.below(level(z - SAME_SURFACE_M));
             band > CONTINUATION
@@ -83,6 +73,58 @@ pub(super) fn envelope(
         }
     }
     out
+}
+
+/// The heights of the points per bin along a direction, each bin's highest first (its top is
+/// the first point with others at its height), in one array (a counting sort by bin: a vector
+/// per bin made the envelope the stairs stage's hot spot).
+struct Bins {
+    /// Where each bin's heights start in `heights` (`nb + 1` entries).
+    start: Vec<usize>,
+    heights: Vec<f64>,
+}
+
+impl Bins {
+    fn new(pts: &[(DVec2, f64)], dir: DVec2, s_lo: f64, nb: usize) -> Bins {
+        let bin_of = |(q, z): &(DVec2, f64)| {
+            let v = (q.dot(dir) - s_lo) / BIN_M;
+            (v >= 0.0 && (v as usize) < nb && z.is_finite()).then_some(v as usize)
+        };
+        let bin: Vec<Option<usize>> = pts.iter().map(bin_of).collect();
+        let mut start = vec![0usize; nb + 1];
+        bin.iter().flatten().for_each(|&k| start[k + 1] += 1);
+        for k in 0..nb {
+            start[k + 1] += start[k];
+        }
+        let mut next = start.clone();
+        let mut heights = vec![0.0; start[nb]];
+        for (k, (_, z)) in bin.iter().zip(pts) {
+            if let Some(k) = *k {
+                heights[next[k]] = *z;
+                next[k] += 1;
+            }
+        }
+        for k in 0..nb {
+            heights[start[k]..start[k + 1]].sort_unstable_by(|a, b| b.total_cmp(a));
+        }
+        Bins { start, heights }
+    }
+
+    /// The heights in bin `k`, highest first.
+    fn of(&self, k: usize) -> &[f64] {
+        &self.heights[self.start[k]..self.start[k + 1]]
+    }
+
+    /// The lowest and highest height binned, if any.
+    fn heights(&self) -> Option<(f64, f64)> {
+        let lo = self.heights.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = self
+            .heights
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max);
+        (lo <= hi).then_some((lo, hi))
+    }
 }
 
 /// Spikes over the envelope (see [`without_spikes`]) are this share of the shortest run wide at

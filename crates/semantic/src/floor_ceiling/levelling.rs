@@ -3,6 +3,7 @@
 use super::FloorCeilingConfig;
 use crate::points::quantile;
 use glam::{DAffine3, DQuat, DVec3, Vec3};
+use rayon::prelude::*;
 
 /// Fits the floor plane of the finite points (input frame). Returns `map_from_input` and the tilt.
 pub(crate) fn level_transform(points: &[Vec3], c: &FloorCeilingConfig) -> (DAffine3, f64) {
@@ -11,14 +12,13 @@ pub(crate) fn level_transform(points: &[Vec3], c: &FloorCeilingConfig) -> (DAffi
     }
     // Third-lowest z per cell (robust against a couple of stray points below the floor), over
     // the cloud's robust XY extent (0.1 % to 99.9 %), at most 2048 cells a side.
-    let mut xs: Vec<f64> = points.iter().map(|p| p.x as f64).collect();
-    let mut ys: Vec<f64> = points.iter().map(|p| p.y as f64).collect();
-    let (Some(x0), Some(x1), Some(y0), Some(y1)) = (
-        quantile(&mut xs, 0.001),
-        quantile(&mut xs, 0.999),
-        quantile(&mut ys, 0.001),
-        quantile(&mut ys, 0.999),
-    ) else {
+    // (x and y on the two threads: each a copy of the cloud's coordinate, selected twice)
+    let extent = |axis: fn(&Vec3) -> f32| {
+        let mut v: Vec<f64> = points.iter().map(|p| axis(p) as f64).collect();
+        (quantile(&mut v, 0.001), quantile(&mut v, 0.999))
+    };
+    let ((x0, x1), (y0, y1)) = rayon::join(|| extent(|p| p.x), || extent(|p| p.y));
+    let (Some(x0), Some(x1), Some(y0), Some(y1)) = (x0, x1, y0, y1) else {
         return (DAffine3::IDENTITY, 0.0);
     };
     let cell = c.level_cell_m.max((x1 - x0).max(y1 - y0) / 2048.0);
@@ -50,20 +50,28 @@ pub(crate) fn level_transform(points: &[Vec3], c: &FloorCeilingConfig) -> (DAffi
     }
     let max_slope = c.max_tilt_deg.to_radians().tan();
     let mut rng = cloud::Rng::new(0x5eed_f100);
+    // The 400 random triples drawn in order, their planes' inliers counted in parallel, the
+    // first of the most inliers kept.
+    let pick = |r: &mut cloud::Rng| samples[r.int(0, samples.len() as i64 - 1) as usize];
+    let triples: Vec<[DVec3; 3]> = (0..400)
+        .map(|_| [pick(&mut rng), pick(&mut rng), pick(&mut rng)])
+        .collect();
+    let counted: Vec<Option<(usize, [f64; 3])>> = triples
+        .par_iter()
+        .map(|&[a, b, d]| {
+            let plane = plane_through(a, b, d)?;
+            if plane[0].hypot(plane[1]) > max_slope {
+                return None;
+            }
+            let inliers = samples
+                .iter()
+                .filter(|s| (s.z - eval(plane, **s)).abs() < c.plane_tolerance_m)
+                .count();
+            Some((inliers, plane))
+        })
+        .collect();
     let mut best: Option<(usize, [f64; 3])> = None;
-    for _ in 0..400 {
-        let pick = |r: &mut cloud::Rng| samples[r.int(0, samples.len() as i64 - 1) as usize];
-        let (a, b, d) = (pick(&mut rng), pick(&mut rng), pick(&mut rng));
-        let Some(plane) = plane_through(a, b, d) else {
-            continue;
-        };
-        if plane[0].hypot(plane[1]) > max_slope {
-            continue;
-        }
-        let inliers = samples
-            .iter()
-            .filter(|s| (s.z - eval(plane, **s)).abs() < c.plane_tolerance_m)
-            .count();
+    for (inliers, plane) in counted.into_iter().flatten() {
         if best.is_none_or(|(n, _)| inliers > n) {
             best = Some((inliers, plane));
         }
@@ -98,16 +106,18 @@ pub(crate) fn level_transform(points: &[Vec3], c: &FloorCeilingConfig) -> (DAffi
             let (a0, b0) = (plane[0], plane[1]);
             let mut best = (sharpness(&near, a0, b0), a0, b0);
             let k = (span / d) as i32;
-            for i in -k..=k {
-                for j in -k..=k {
-                    let (a, b) = (a0 + i as f64 * d, b0 + j as f64 * d);
-                    if a.hypot(b) > max_slope {
-                        continue;
-                    }
-                    let v = sharpness(&near, a, b);
-                    if v.0 > best.0 .0 {
-                        best = (v, a, b);
-                    }
+            // (the grid's slopes scored in parallel, then taken in order: the first sharpest)
+            let grid: Vec<(f64, f64)> = (-k..=k)
+                .flat_map(|i| (-k..=k).map(move |j| (a0 + i as f64 * d, b0 + j as f64 * d)))
+                .filter(|(a, b)| a.hypot(*b) <= max_slope)
+                .collect();
+            let scored: Vec<(usize, f64)> = grid
+                .par_iter()
+                .map(|&(a, b)| sharpness(&near, a, b))
+                .collect();
+            for (v, &(a, b)) in scored.into_iter().zip(&grid) {
+                if v.0 > best.0 .0 {
+                    best = (v, a, b);
                 }
             }
             let ((_, c), a, b) = best;

@@ -241,10 +241,14 @@ fn console_renders_and_drives_in_a_real_browser() {
     for name in SCREENSHOTS {
         let _ = std::fs::copy(shots.join(name), keep.join(name));
     }
-    assert_eq!(
-        code, 0,
-        "the browser test failed after {took:.1?}:\nstdout:\n{out}\nstderr:\n{err}"
-    );
+    if code != 0 {
+        // What the server printed too (a stopped simulation thread says why there).
+        let (server_code, server_err) = server.stop();
+        panic!(
+            "the browser test failed after {took:.1?}:\nstdout:\n{out}\nstderr:\n{err}\n\
+             the console (exit {server_code}) printed:\n{server_err}"
+        );
+    }
     eprintln!("console_e2e.mjs ({took:.1?}): {out}");
     let line = out
         .lines()
@@ -370,7 +374,13 @@ fn a_recorded_run_replays_in_a_real_browser_with_its_doors() {
     for name in REPLAY_SCREENSHOTS {
         let _ = std::fs::copy(shots.join(name), keep.join(name));
     }
-    assert_eq!(code, 0, "the replay browser test failed:\n{out}\n{err}");
+    if code != 0 {
+        let (server_code, server_err) = server.stop();
+        panic!(
+            "the replay browser test failed:\n{out}\n{err}\n\
+             the console (exit {server_code}) printed:\n{server_err}"
+        );
+    }
     let line = out
         .lines()
         .rev()

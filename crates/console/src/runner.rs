@@ -341,9 +341,20 @@ pub(crate) fn spawn(
     runner: Runner,
     controls: Receiver<Control>,
 ) -> Result<std::thread::JoinHandle<()>> {
+    let hub = Arc::clone(&runner.hub);
     std::thread::Builder::new()
         .name("semsim-console-sim".into())
-        .spawn(move || runner.run(controls))
+        .spawn(move || {
+            // A bug that stops the thread is said to every page (and on stderr, by the panic
+            // hook), not left as a world frozen without a word.
+            let run =
+                std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| runner.run(controls)));
+            if run.is_err() {
+                let m = "the simulation stopped (a bug in semsim, its message is on the console's \
+                         stderr); the world shown is its last state";
+                hub.publish(&ServerMessage::error(m), Keep::Backlog);
+            }
+        })
         .map_err(|_| ConsoleError::SimulationThread)
 }
 

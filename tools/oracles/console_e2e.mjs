@@ -57,8 +57,8 @@ await run('console_e2e', outDir, 240_000, async (s) => {
     await page.waitForFunction((end) => Number(document.getElementById('clock').dataset.time) >= end, t + secs,
       { timeout: 60_000, polling: 100 })
       .catch(async () => {
-        const page_ = await page.evaluate(() => `${document.getElementById('status').textContent}; ${document.getElementById('clock').textContent}`);
-        throw new Error(`the simulation did not advance ${secs} s: ${JSON.stringify(await clock())} (page: ${page_})`);
+        const shown = await page.evaluate(() => `${document.getElementById('status').textContent}; ${document.getElementById('clock').textContent}`);
+        throw new Error(`the simulation did not advance ${secs} s: ${JSON.stringify(await clock())} (page: ${shown})`);
       });
   };
   // Holds an input until the robot is `metres` from `from` (up to 30 s; the step's own check

@@ -141,6 +141,13 @@ impl Server {
             err,
         )
     }
+
+    /// Fails the test with `what` and what the console printed (a stopped simulation thread
+    /// says why there).
+    fn fail(&mut self, what: &str) -> ! {
+        let (code, err) = self.stop();
+        panic!("{what}\nthe console (exit {code}) printed:\n{err}");
+    }
 }
 
 impl Drop for Server {
@@ -178,10 +185,7 @@ fn start_console(dir: &Path, args: &[&str]) -> (Server, String) {
     });
     match rx.recv_timeout(SERVER_TIMEOUT) {
         Ok(line) => (server, line.trim_start_matches("console: ").to_string()),
-        Err(_) => {
-            let (code, err) = server.stop();
-            panic!("semsim console printed no URL (exit {code}):\n{err}");
-        }
+        Err(_) => server.fail("semsim console printed no URL"),
     }
 }
 
@@ -242,12 +246,9 @@ fn console_renders_and_drives_in_a_real_browser() {
         let _ = std::fs::copy(shots.join(name), keep.join(name));
     }
     if code != 0 {
-        // What the server printed too (a stopped simulation thread says why there).
-        let (server_code, server_err) = server.stop();
-        panic!(
-            "the browser test failed after {took:.1?}:\nstdout:\n{out}\nstderr:\n{err}\n\
-             the console (exit {server_code}) printed:\n{server_err}"
-        );
+        server.fail(&format!(
+            "the browser test failed after {took:.1?}:\nstdout:\n{out}\nstderr:\n{err}"
+        ));
     }
     eprintln!("console_e2e.mjs ({took:.1?}): {out}");
     let line = out
@@ -375,11 +376,7 @@ fn a_recorded_run_replays_in_a_real_browser_with_its_doors() {
         let _ = std::fs::copy(shots.join(name), keep.join(name));
     }
     if code != 0 {
-        let (server_code, server_err) = server.stop();
-        panic!(
-            "the replay browser test failed:\n{out}\n{err}\n\
-             the console (exit {server_code}) printed:\n{server_err}"
-        );
+        server.fail(&format!("the replay browser test failed:\n{out}\n{err}"));
     }
     let line = out
         .lines()

@@ -39,7 +39,7 @@ pub(super) fn envelope(
     window_m: f64,
 ) -> Vec<(f64, f64)> {
     let bins = Bins::new(pts, dir, s_lo, nb);
-    let Some((z_lo, z_hi)) = bins.heights() else {
+    let Some((z_lo, z_hi)) = bins.span() else {
         return Vec::new();
     };
     // The points of the bins within the window, counted per 1 cm of height (a Fenwick tree
@@ -116,7 +116,7 @@ impl Bins {
     }
 
     /// The lowest and highest height binned, if any.
-    fn heights(&self) -> Option<(f64, f64)> {
+    fn span(&self) -> Option<(f64, f64)> {
         let lo = self.heights.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = self
             .heights

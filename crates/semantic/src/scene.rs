@@ -50,9 +50,8 @@ impl Scene<'_> {
         }
     }
 
-    /// True for a point on the floor or the ceiling.
-    pub fn on_slab(&self, i: usize, tol: f64) -> bool {
-        let z = self.z(i);
+    /// True for a height `z` at the floor's or the ceiling's (within `tol`).
+    pub fn on_slab(&self, z: f64, tol: f64) -> bool {
         (z - self.floor).abs() <= tol || (z - self.ceiling).abs() <= tol
     }
 }

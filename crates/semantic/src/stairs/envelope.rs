@@ -26,7 +26,7 @@ const SAME_SURFACE_M: f64 = 0.03;
 
 /// Other points that must continue a point's surface: two (one could be a second stray return
 /// next to the first).
-const CONTINUATION: i64 = 2;
+const CONTINUATION: usize = 2;
 
 /// The highest point per bin with `CONTINUATION` others within `window_m` along `dir` and
 /// `SAME_SURFACE_M` in height, from `s_lo` (`nb` bins): `(along, highest)` of the bins that
@@ -42,31 +42,30 @@ pub(super) fn envelope(
     let Some((z_lo, z_hi)) = bins.span() else {
         return Vec::new();
     };
-    // The points of the bins within the window, counted per 1 cm of height (a Fenwick tree
-    // for the count within a band of heights), slid along the bins.
-    let levels = (((z_hi - z_lo) / BIN_M) as usize + 1).min(1_000_000);
+    // Heights per 1 cm level; a bin's levels are in its heights' order (highest first).
+    let top_level = ((z_hi - z_lo) / BIN_M) as usize;
     // (a height under the lowest casts to level 0)
-    let level = |z: f64| (((z - z_lo) / BIN_M) as usize).min(levels - 1);
+    let level = |z: f64| (((z - z_lo) / BIN_M) as usize).min(top_level);
+    let levels: Vec<usize> = bins.heights.iter().map(|&z| level(z)).collect();
     let w = (window_m / BIN_M).round().max(0.0) as usize;
-    let mut tree = Fenwick::new(levels);
-    for zs in (0..w.min(nb)).map(|i| bins.of(i)) {
-        zs.iter().for_each(|&z| tree.add(level(z), 1));
-    }
+    // The points of bin `k` whose levels lie in `lo..=hi` (a bin's levels never rise).
+    let in_band = |k: usize, lo: usize, hi: usize| {
+        let l = &levels[bins.start[k]..bins.start[k + 1]];
+        l.partition_point(|&v| v >= lo) - l.partition_point(|&v| v > hi)
+    };
     let mut out = Vec::new();
     for i in 0..nb {
-        if i + w < nb {
-            bins.of(i + w).iter().for_each(|&z| tree.add(level(z), 1));
-        }
-        if i > w {
-            bins.of(i - w - 1)
-                .iter()
-                .for_each(|&z| tree.add(level(z), -1));
-        }
+        // The bins within the window, the bin's own first (where a surface's points are).
+        let window = std::iter::once(i)
+            .chain((i.saturating_sub(w)..(i + w + 1).min(nb)).filter(|&k| k != i));
         // The highest point of the bin with others at its height.
         let top = bins.of(i).iter().copied().find(|&z| {
-            let band =
-                tree.below(level(z + SAME_SURFACE_M) + 1) - tree.below(level(z - SAME_SURFACE_M));
-            band > CONTINUATION
+            let (lo, hi) = (level(z - SAME_SURFACE_M), level(z + SAME_SURFACE_M));
+            let mut band = 0;
+            window.clone().any(|k| {
+                band += in_band(k, lo, hi);
+                band > CONTINUATION
+            })
         });
         if let Some(top) = top {
             out.push((s_lo + (i as f64 + 0.5) * BIN_M, top));
@@ -196,38 +195,6 @@ fn without_spikes(env: &[(f64, f64)], max_rise_m: f64, width_m: f64) -> Vec<(f64
         .filter(|(_, &dropped)| !dropped)
         .map(|(e, _)| *e)
         .collect()
-}
-
-/// Counts per height level with prefix sums in O(log n).
-struct Fenwick {
-    tree: Vec<i64>,
-}
-
-impl Fenwick {
-    fn new(n: usize) -> Fenwick {
-        Fenwick {
-            tree: vec![0; n + 1],
-        }
-    }
-
-    fn add(&mut self, i: usize, v: i64) {
-        let mut k = i + 1;
-        while k < self.tree.len() {
-            self.tree[k] += v;
-            k += k & k.wrapping_neg();
-        }
-    }
-
-    /// The count at levels under `i`.
-    fn below(&self, i: usize) -> i64 {
-        let mut k = i.min(self.tree.len() - 1);
-        let mut s = 0;
-        while k > 0 {
-            s += self.tree[k];
-            k -= k & k.wrapping_neg();
-        }
-        s
-    }
 }
 
 #[cfg(test)]

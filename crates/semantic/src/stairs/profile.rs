@@ -8,6 +8,7 @@ use super::StairsConfig;
 use crate::points::quantile;
 use glam::DVec2;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Returns up to this far above the grid's top level still lie on it (the levels' tolerance).
 const ABOVE_TOP_M: f64 = 0.035;
@@ -255,6 +256,21 @@ struct Fit {
     best: f64,
 }
 
+/// Scores within this of the best are optima (and averaged); a pass is cut short only when it
+/// falls below the best by more.
+const PRUNE_MARGIN: f64 = 1e-9;
+
+/// Raises the best score seen `known` (an `f64`'s bits) to `v` if that is higher.
+fn raise(known: &AtomicU64, v: f64) {
+    let mut seen = known.load(Ordering::Relaxed);
+    while v > f64::from_bits(seen) {
+        match known.compare_exchange_weak(seen, v.to_bits(), Ordering::Relaxed, Ordering::Relaxed) {
+            Ok(_) => break,
+            Err(now) => seen = now,
+        }
+    }
+}
+
 /// The run and start of `n` steps of `rise` that explain the envelope `(along, highest)` best
 /// (see `profile`).
 fn fit_steps(
@@ -274,7 +290,12 @@ fn fit_steps(
     };
     // The envelope is in order along the direction, so the levels at `s` and at `s + 1.5 cm`
     // only climb: each is advanced past the front edges `s0 + k run` it has crossed.
-    let score = |run: f64, s0: f64| -> f64 {
+    // A score is the violations (never positive), the support (at most 5 on each of the
+    // `n` levels) and the risers' bands: once the violations so far leave it short of the best
+    // already scored (`known`), the point can be no optimum and its pass ends (scored -inf).
+    let most_support = 5.0 * f64::from(n.min(64));
+    let score = |run: f64, s0: f64, known: f64| -> f64 {
+        let bands = risers.score(run, s0);
         let mut v = 0.0;
         let mut support = [0u8; 65];
         let (mut k, mut k_ahead) = (0u32, 0u32);
@@ -290,12 +311,15 @@ fn fit_steps(
                 // (over the flight: see above)
             } else if above > 0.0 {
                 v -= 3.0;
+                if v + most_support + bands < known - PRUNE_MARGIN {
+                    return f64::NEG_INFINITY;
+                }
             } else if k > 0 && z >= rise * f64::from(k) - 0.035 {
                 let slot = &mut support[(k as usize).min(64)];
                 *slot = slot.saturating_add(1);
             }
         }
-        v + support.iter().map(|&n| f64::from(n.min(5))).sum::<f64>() + risers.score(run, s0)
+        v + support.iter().map(|&n| f64::from(n.min(5))).sum::<f64>() + bands
     };
     // The first step starts at most a run before the first point (its front may be unseen)
     // and before the first point half a rise up.
@@ -304,21 +328,26 @@ fn fit_steps(
     let runs = ((c.run_m[1] - c.run_m[0]) / 0.002 + 1e-6).floor() as usize + 1;
     let starts = ((first + 0.05 - s_start) / 0.005 + 1e-6).floor().max(0.0) as usize + 1;
     // Every (run, start) on the grid scored, the runs in parallel (a grid of a few 10^4
-    // points, each a pass over the envelope).
+    // points, each a pass over the envelope), each pass cut short by the best score any
+    // thread has seen (which points are cut varies with the threads; the optima do not).
+    let known = AtomicU64::new(f64::NEG_INFINITY.to_bits());
     let scored: Vec<(f64, f64, f64)> = (0..runs)
         .into_par_iter()
         .flat_map_iter(|i| {
             let run = c.run_m[0] + i as f64 * 0.002;
+            let known = &known;
             (0..starts).map(move |j| {
                 let s0 = s_start + j as f64 * 0.005;
-                (run, s0, score(run, s0))
+                let v = score(run, s0, f64::from_bits(known.load(Ordering::Relaxed)));
+                raise(known, v);
+                (run, s0, v)
             })
         })
         .collect();
     let best = scored.iter().map(|o| o.2).fold(f64::NEG_INFINITY, f64::max);
     let optimal: Vec<(f64, f64)> = scored
         .iter()
-        .filter(|o| (o.2 - best).abs() <= 1e-9)
+        .filter(|o| (o.2 - best).abs() <= PRUNE_MARGIN)
         .map(|o| (o.0, o.1))
         .collect();
     if optimal.is_empty() {

@@ -124,27 +124,23 @@ impl Grid {
 
 impl Grid {
     /// Whether member `i` has at least `n` other members within `radius` (at most one edge):
-    /// the cubes around it are searched until that many are found.
+    /// the cubes around it are searched, its own first (where most of them lie), until that
+    /// many are found.
     fn has_neighbours(&self, points: &[Vec3], i: usize, radius: f32, n: usize) -> bool {
         let p = points[i];
         let (x, y, z) = cell(p, self.edge);
+        let around = (-1..=1)
+            .flat_map(|dx| (-1..=1).flat_map(move |dy| (-1..=1).map(move |dz| (dx, dy, dz))));
         let mut found = 0usize;
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                for dz in -1..=1 {
-                    let Some(v) = self.cells.get(&(x + dx, y + dy, z + dz)) else {
-                        continue;
-                    };
-                    for &j in v {
-                        found += usize::from(j != i && p.distance(points[j]) <= radius);
-                        if found >= n {
-                            return true;
-                        }
-                    }
-                }
-            }
-        }
-        false
+        std::iter::once((0, 0, 0))
+            .chain(around.filter(|&d| d != (0, 0, 0)))
+            .filter_map(|(dx, dy, dz)| self.cells.get(&(x + dx, y + dy, z + dz)))
+            .any(|v| {
+                v.iter().any(|&j| {
+                    found += usize::from(j != i && p.distance(points[j]) <= radius);
+                    found >= n
+                })
+            })
     }
 }
 

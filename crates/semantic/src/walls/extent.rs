@@ -59,8 +59,7 @@ pub(crate) fn find_extent(
         let mut across = vec![(0u32, f64::INFINITY, f64::NEG_INFINITY); nb];
         let mut face_pts = Vec::new();
         sc.upright
-            .for_each_near_line(sc.points, line, r0, r1, hw, |i, s, d| {
-                let z = sc.z(i);
+            .for_each_near_line_z(sc.points, line, r0, r1, hw, |_, s, d, z| {
                 if z < z_lo || z > z_hi {
                     return;
                 }

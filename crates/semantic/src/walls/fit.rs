@@ -90,8 +90,7 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
     );
     let mut orientation = FaceOrientation::new(hi - lo, &faces);
     sc.index
-        .for_each_near_line(sc.points, &line, lo, hi, hw + strip.1, |i, s, d| {
-            let z = sc.z(i);
+        .for_each_near_line_z(sc.points, &line, lo, hi, hw + strip.1, |_, s, d, z| {
             if !crossed(s, z) {
                 let face = z >= z_lo && z <= z_hi && on_face(d, &faces);
                 profile.add(((s - lo) / BIN_M) as usize, d, z, face);
@@ -105,7 +104,7 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
                 bins[b] = true;
                 reach.add(b, z);
             }
-            if sc.on_slab(i, 0.04) {
+            if sc.on_slab(z, 0.04) {
                 for (k, f) in faces.iter().enumerate() {
                     let off = d - f;
                     if off.abs() >= strip.0 && off.abs() <= strip.1 {

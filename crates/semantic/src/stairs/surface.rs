@@ -40,15 +40,7 @@ pub(super) fn on_surfaces(
     let mut nearest: Vec<f32> = members
         .iter()
         .step_by(stride)
-        .map(|&i| {
-            let mut best = cap;
-            coarse.for_each_near(points[i], |j| {
-                if j != i {
-                    best = best.min(points[i].distance(points[j]));
-                }
-            });
-            best
-        })
+        .map(|&i| coarse.nearest(points, i, cap))
         .collect();
     nearest.sort_by(f32::total_cmp);
     // (the 90th percentile: a candidate's spacing varies, treads seen at grazing angles are
@@ -107,18 +99,36 @@ impl Grid {
         Grid { edge, cells }
     }
 
-    /// Calls `f` with every member in the 27 cubes around `p` (all within one edge of it).
-    fn for_each_near(&self, p: Vec3, mut f: impl FnMut(usize)) {
+    /// The distance from member `i` to its nearest other member, if under `cap` (at most one
+    /// edge; else `cap`): its own cube is searched first, then those of the 26 around it
+    /// that come nearer than the nearest found so far.
+    fn nearest(&self, points: &[Vec3], i: usize, cap: f32) -> f32 {
+        let p = points[i];
         let (x, y, z) = cell(p, self.edge);
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                for dz in -1..=1 {
-                    if let Some(v) = self.cells.get(&(x + dx, y + dy, z + dz)) {
-                        v.iter().for_each(|&j| f(j));
+        // The distance from `p` to the cube `(x, y, z) + d` along one axis.
+        let gap = |v: f32, c: i32, d: i32| match d {
+            -1 => v - c as f32 * self.edge,
+            1 => (c + 1) as f32 * self.edge - v,
+            _ => 0.0,
+        };
+        let mut best = cap;
+        let around = (-1..=1)
+            .flat_map(|dx| (-1..=1).flat_map(move |dy| (-1..=1).map(move |dz| (dx, dy, dz))));
+        for (dx, dy, dz) in std::iter::once((0, 0, 0)).chain(around.filter(|&d| d != (0, 0, 0))) {
+            let g = Vec3::new(gap(p.x, x, dx), gap(p.y, y, dy), gap(p.z, z, dz));
+            // (a millimetre's margin for the rounding of a point into its cube)
+            if g.length() - 1e-3 >= best {
+                continue;
+            }
+            if let Some(v) = self.cells.get(&(x + dx, y + dy, z + dz)) {
+                for &j in v {
+                    if j != i {
+                        best = best.min(p.distance(points[j]));
                     }
                 }
             }
         }
+        best
     }
 }
 

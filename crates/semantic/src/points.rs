@@ -44,8 +44,9 @@ impl XyIndex {
             if !keep(p) {
                 return None;
             }
-            let c = ((p.x as f64 - min.x) / cell_m).floor();
-            let r = ((p.y as f64 - min.y) / cell_m).floor();
+            // (for a non-negative value the cast is the floor)
+            let c = (p.x as f64 - min.x) / cell_m;
+            let r = (p.y as f64 - min.y) / cell_m;
             (c >= 0.0 && r >= 0.0 && (c as usize) < cols && (r as usize) < rows)
                 .then(|| r as usize * cols + c as usize)
         };
@@ -274,7 +275,8 @@ pub(crate) fn window_counts(
 ) -> Vec<usize> {
     let mut cumulative = vec![0usize; n + 1];
     for v in values {
-        let b = ((v - lo) / bin_m).floor();
+        // (for a non-negative value the cast is the floor)
+        let b = (v - lo) / bin_m;
         if b >= 0.0 && (b as usize) < n {
             cumulative[b as usize + 1] += 1;
         }

@@ -48,15 +48,22 @@ pub(crate) fn find_extent(
     let (z_lo, z_hi) = (sc.floor + 0.05, sc.ceiling - 0.05);
     let (f_lo, f_hi) = (faces[0] - 2.0 * tol, faces[faces.len() - 1] + 2.0 * tol);
     let (mut e0, mut e1) = (0.5f64, 0.5f64);
-    // The points `(along, across, height)` between the wall's heights within the searched
-    // range, walked once: a grown range walks only the stretches it adds.
-    let mut near: Vec<(f64, f64, f64)> = Vec::new();
+    // The points between the wall's heights within the searched range, walked once (a grown
+    // range walks only the stretches it adds): `(along, height)` on a face, and
+    // `(along, across, height)` off the faces (see below).
+    type Seen = (Vec<(f64, f64)>, Vec<(f64, f64, f64)>);
+    let mut seen: Seen = (Vec::new(), Vec::new());
     let mut walked: Option<(f64, f64)> = None;
-    let walk = |near: &mut Vec<(f64, f64, f64)>, s0: f64, s1: f64, keep: &dyn Fn(f64) -> bool| {
+    let walk = |seen: &mut Seen, s0: f64, s1: f64, keep: &dyn Fn(f64) -> bool| {
         sc.upright
             .for_each_near_line_z(sc.points, line, s0, s1, hw, |_, s, d, z| {
-                if !(z < z_lo || z > z_hi) && keep(s) {
-                    near.push((s, d, z));
+                if z < z_lo || z > z_hi || !keep(s) {
+                    return;
+                }
+                if on_face(d) {
+                    seen.0.push((s, z));
+                } else if d < f_lo || d > f_hi {
+                    seen.1.push((s, d, z));
                 }
             });
     };
@@ -64,34 +71,30 @@ pub(crate) fn find_extent(
     for _ in 0..8 {
         let (r0, r1) = (a - e0, b + e1);
         match walked {
-            None => walk(&mut near, r0, r1, &|_| true),
+            None => walk(&mut seen, r0, r1, &|_| true),
             Some((w0, w1)) => {
                 if r0 < w0 {
-                    walk(&mut near, r0, w0, &|s| s < w0);
+                    walk(&mut seen, r0, w0, &|s| s < w0);
                 }
                 if r1 > w1 {
-                    walk(&mut near, w1, r1, &|s| s > w1);
+                    walk(&mut seen, w1, r1, &|s| s > w1);
                 }
             }
         }
         walked = Some((r0, r1));
-        // Face points, and per 3 cm of the line the spread of the points off the faces: a
-        // surface across the line (another wall's face at a corner or junction) covers many
-        // distances; the face points there belong to the corner, not to this wall's extent.
+        let (on_faces, off_faces) = &seen;
+        // Per 3 cm of the line the spread of the points off the faces: a surface across the
+        // line (another wall's face at a corner or junction) covers many distances; the face
+        // points there belong to the corner, not to this wall's extent.
         let bin = 0.03;
         let nb = (((r1 - r0) / bin).ceil() as usize + 1).min(10_000_000);
+        let bin_of = |s: f64| (((s - r0) / bin) as usize).min(nb - 1);
         let mut across = vec![(0u32, f64::INFINITY, f64::NEG_INFINITY); nb];
-        let mut face_pts = Vec::new();
-        for &(s, d, z) in &near {
-            let k = (((s - r0) / bin) as usize).min(nb - 1);
-            if on_face(d) {
-                face_pts.push((k, s, z));
-            } else if d < f_lo || d > f_hi {
-                let x = &mut across[k];
-                x.0 |= across_mark(d, hw);
-                x.1 = x.1.min(z);
-                x.2 = x.2.max(z);
-            }
+        for &(s, d, z) in off_faces {
+            let x = &mut across[bin_of(s)];
+            x.0 |= across_mark(d, hw);
+            x.1 = x.1.min(z);
+            x.2 = x.2.max(z);
         }
         // A crossing surface hides the face points at its own heights only (a cupboard in
         // front of a wall leaves the wall above it).
@@ -102,10 +105,10 @@ pub(crate) fn find_extent(
                 crossing(x.0) && z >= x.1 - 0.1 && z <= x.2 + 0.1
             })
         };
-        let s_vals: Vec<f64> = face_pts
+        let s_vals: Vec<f64> = on_faces
             .iter()
-            .filter(|(k, _, z)| !hidden(*k, *z))
-            .map(|p| p.1)
+            .filter(|&&(s, z)| !hidden(bin_of(s), z))
+            .map(|p| p.0)
             .collect();
         let (lo, hi) = extent(&s_vals, a, b, c.max_gap_m)?;
         let grow_lo = lo <= r0 + c.max_gap_m;

@@ -23,20 +23,30 @@ pub(crate) fn face_peaks(ds: &[f64], hw: f64, c: &WallConfig) -> Vec<(f64, usize
         .map(|i| (-hw + (i as f64 + 0.5) * bin, s[i]))
         .collect();
     peaks.sort_by_key(|p| std::cmp::Reverse(p.1));
-    // Refine each peak to the mean of its points.
+    // Refine each peak to the mean of its points (one pass over the points: each adds to the
+    // peaks within the tolerance of it, the peaks' bins in order).
+    let tol = c.face_tolerance_m;
+    let mut by_offset: Vec<usize> = (0..peaks.len()).collect();
+    by_offset.sort_by(|&i, &j| peaks[i].0.total_cmp(&peaks[j].0));
+    // (from -0.0, as `Iterator::sum` of floats starts)
+    let mut sums = vec![(-0.0f64, 0usize); peaks.len()];
+    for &d in ds {
+        let first = by_offset.partition_point(|&k| peaks[k].0 < d - tol - bin);
+        for &k in by_offset[first..]
+            .iter()
+            .take_while(|&&k| peaks[k].0 <= d + tol + bin)
+        {
+            if (d - peaks[k].0).abs() <= tol {
+                sums[k].0 += d;
+                sums[k].1 += 1;
+            }
+        }
+    }
     peaks
-        .into_iter()
-        .map(|(o, n)| {
-            let near: Vec<f64> = ds
-                .iter()
-                .copied()
-                .filter(|d| (d - o).abs() <= c.face_tolerance_m)
-                .collect();
-            let mean = if near.is_empty() {
-                o
-            } else {
-                near.iter().sum::<f64>() / near.len() as f64
-            };
+        .iter()
+        .zip(&sums)
+        .map(|(&(o, n), &(sum, count))| {
+            let mean = if count == 0 { o } else { sum / count as f64 };
             (mean, n)
         })
         .collect()

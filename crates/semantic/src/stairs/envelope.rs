@@ -103,8 +103,12 @@ impl Bins {
                 next[k] += 1;
             }
         }
+        // (points given highest first leave every bin sorted)
         for k in 0..nb {
-            heights[start[k]..start[k + 1]].sort_unstable_by(|a, b| b.total_cmp(a));
+            let bin = &mut heights[start[k]..start[k + 1]];
+            if !bin.is_sorted_by(|a, b| a.total_cmp(b).is_ge()) {
+                bin.sort_unstable_by(|a, b| b.total_cmp(a));
+            }
         }
         Bins { start, heights }
     }

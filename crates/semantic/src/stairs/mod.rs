@@ -287,6 +287,9 @@ pub(crate) fn find_stairs(
                     (DVec2::new(p.x as f64, p.y as f64), p.z as f64 - sc.floor)
                 })
                 .collect();
+            // Both highest first: a profile's envelope takes each bin's points in that order,
+            // and binned in order they need no sorting per bin.
+            let (pts, all) = (highest_first(pts), highest_first(all));
             Search {
                 pts: &pts,
                 all: &all,
@@ -315,3 +318,9 @@ fn across(xy: &[DVec2], dir: DVec2) -> f64 {
 
 #[cfg(test)]
 mod tests;
+
+/// The points `(xy, height)` sorted by height, highest first.
+fn highest_first(mut pts: Vec<(DVec2, f64)>) -> Vec<(DVec2, f64)> {
+    pts.sort_by(|a, b| b.1.total_cmp(&a.1));
+    pts
+}

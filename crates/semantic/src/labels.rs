@@ -96,12 +96,11 @@ pub(crate) fn label_points(
             .filter(|(_, o)| o.wall == wi)
             .collect();
         index.for_each_near_line(
-            points,
             &w.line,
             -tol,
             w.length + tol,
             w.thickness / 2.0 + tol,
-            |i, s, _| {
+            |i, s, _, _| {
                 let z = points[i].z as f64;
                 if z < w.z_range.0 - tol || z > w.z_range.1 + tol {
                     return;
@@ -136,12 +135,11 @@ pub(crate) fn label_points(
         let dir = DVec2::from_angle(a).rotate(into);
         let line = crate::points::Line2 { origin: hinge, dir };
         index.for_each_near_line(
-            points,
             &line,
             -tol,
             width + tol,
             d.leaf_thickness / 2.0 + tol,
-            |i, _, _| {
+            |i, _, _, _| {
                 let z = points[i].z as f64;
                 if z > w.z_range.0 + tol && z <= o.top_z + tol {
                     set(&mut labels[i], ids.openings[k].2, EntityClass::Door);
@@ -159,12 +157,11 @@ pub(crate) fn label_points(
                 dir: s.dir,
             };
             index.for_each_near_line(
-                points,
                 &line,
                 a - tol,
                 b + tol,
                 s.width / 2.0 + tol,
-                |i, _, _| {
+                |i, _, _, _| {
                     let z = points[i].z as f64;
                     if z > floor + tol && z <= top + tol {
                         set(&mut labels[i], id, EntityClass::Stairs);
@@ -193,7 +190,7 @@ pub(crate) fn label_obstacles(
             dir: o.dir,
         };
         let (half_len, half_w) = (o.size[0] / 2.0 + tol, o.size[1] / 2.0 + tol);
-        index.for_each_near_line(points, &line, -half_len, half_len, half_w, |i, _, _| {
+        index.for_each_near_line(&line, -half_len, half_len, half_w, |i, _, _, _| {
             let z = points[i].z as f64;
             let l = &mut labels[i];
             if l.entity == 0 && z >= o.z_range.0 - tol && z <= o.z_range.1 + tol {

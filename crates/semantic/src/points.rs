@@ -81,61 +81,11 @@ impl XyIndex {
     }
 
     /// Calls `f` with every indexed point near the rectangle along `line` from `s0` to `s1`,
-    /// within `half_width` across; `f` gets the point index, along- and across-coordinates.
-    /// Only the cells the (turned) rectangle overlaps are visited, row by row: a diagonal wall
+    /// within `half_width` across; `f` gets the point index, its along- and across-coordinates
+    /// and its height. Only the cells the (turned) rectangle overlaps are visited, row by row: a diagonal wall
     /// reads a strip of cells, not its bounding box.
     pub fn for_each_near_line(
         &self,
-        _points: &[Vec3],
-        line: &Line2,
-        s0: f64,
-        s1: f64,
-        half_width: f64,
-        mut f: impl FnMut(usize, f64, f64),
-    ) {
-        let n = line.normal() * half_width;
-        let (a, b) = (line.at(s0), line.at(s1));
-        let corners = [a - n, b - n, b + n, a + n];
-        let lo = corners.iter().fold(DVec2::INFINITY, |m, c| m.min(*c));
-        let hi = corners.iter().fold(DVec2::NEG_INFINITY, |m, c| m.max(*c));
-        let r0 = ((lo.y - self.min.y) / self.cell_m).floor().max(0.0);
-        let r1 = ((hi.y - self.min.y) / self.cell_m).floor();
-        // (NaN coordinates fail every comparison: nothing is visited)
-        let visits = r0 <= r1 && r1 >= 0.0 && r0 < self.rows as f64;
-        if !visits {
-            return;
-        }
-        let r1 = (r1 as usize).min(self.rows - 1);
-        for r in r0 as usize..=r1 {
-            // The rectangle's x range within this row of cells (a little padding for rounding).
-            let y0 = self.min.y + r as f64 * self.cell_m;
-            let Some((x0, x1)) = x_range_in_strip(&corners, y0, y0 + self.cell_m) else {
-                continue;
-            };
-            let c0 = ((x0 - 1e-6 - self.min.x) / self.cell_m).floor().max(0.0);
-            let c1 = ((x1 + 1e-6 - self.min.x) / self.cell_m).floor();
-            if c1 < 0.0 || c0 >= self.cols as f64 {
-                continue;
-            }
-            let (c0, c1) = (c0 as usize, (c1 as usize).min(self.cols - 1));
-            let from = self.start[r * self.cols + c0] as usize;
-            let to = self.start[r * self.cols + c1 + 1] as usize;
-            for (&i, p) in self.items[from..to].iter().zip(&self.at[from..to]) {
-                let (s, d) = line.coords(DVec2::new(p.x as f64, p.y as f64));
-                if s >= s0 && s <= s1 && d.abs() <= half_width {
-                    f(i as usize, s, d);
-                }
-            }
-        }
-    }
-
-    /// Calls `f` with every indexed point near the rectangle along `line` from `s0` to `s1`,
-    /// within `half_width` across; `f` gets the point index, along- and across-coordinates.
-    /// Only the cells the (turned) rectangle overlaps are visited, row by row: a diagonal wall
-    /// reads a strip of cells, not its bounding box.
-    pub fn for_each_near_line_z(
-        &self,
-        _points: &[Vec3],
         line: &Line2,
         s0: f64,
         s1: f64,

@@ -122,12 +122,11 @@ pub(crate) fn find_leaf(
     let (z0, z1) = (sc.floor + c.leaf_level_m[0], sc.floor + c.leaf_level_m[1]);
     let mut pts: Vec<(DVec2, f64, f64)> = Vec::new(); // (xy, s, d)
     sc.upright.for_each_near_line(
-        sc.points,
         &w.line,
         o.s0 - width - 0.1,
         o.s1 + width + 0.1,
         width + 0.1,
-        |i, s, d| {
+        |i, s, d, _| {
             let p = sc.points[i];
             let z = p.z as f64;
             if z < z0 || z > z1 {

@@ -47,12 +47,11 @@ pub(super) fn extend_top(
         let (mut t_lo, mut t_hi, mut highest) =
             (f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
         sc.index.for_each_near_line(
-            sc.points,
             &line,
             front - RISER_BAND_M,
             front + RISER_BAND_M,
             half,
-            |i, _, t| {
+            |i, _, t, _| {
                 if !usable(i) {
                     return;
                 }

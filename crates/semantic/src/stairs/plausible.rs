@@ -72,13 +72,8 @@ pub(crate) fn finish(
             dir,
         };
         let (mut left, mut right) = (0usize, 0usize);
-        sc.index.for_each_near_line(
-            sc.points,
-            &line,
-            -length / 2.0,
-            length / 2.0,
-            0.4,
-            |i, _, d| {
+        sc.index
+            .for_each_near_line(&line, -length / 2.0, length / 2.0, 0.4, |i, _, d, _| {
                 if (sc.points[i].z as f64 - sc.floor).abs() <= 0.03 && d.abs() >= 0.05 {
                     if d > 0.0 {
                         left += 1;
@@ -86,8 +81,7 @@ pub(crate) fn finish(
                         right += 1;
                     }
                 }
-            },
-        );
+            });
         if left > right {
             t0 = t1 - c.default_width_m;
         } else {
@@ -103,12 +97,11 @@ pub(crate) fn finish(
         let mut floor_seen = 0usize;
         let inner = c.default_width_m / 2.0 - 0.1;
         sc.index.for_each_near_line(
-            sc.points,
             &line,
             -length / 2.0 + 0.05,
             length / 2.0 - 0.05,
             inner.max(0.0),
-            |i, _, _| {
+            |i, _, _, _| {
                 floor_seen += usize::from((sc.points[i].z as f64 - sc.floor).abs() <= 0.03);
             },
         );
@@ -147,12 +140,11 @@ pub(crate) fn finish(
         };
         let mut floor_seen = 0usize;
         sc.index.for_each_near_line(
-            sc.points,
             &line,
             -length / 2.0,
             length / 2.0,
             (t1 - t0) / 4.0,
-            |i, _, _| {
+            |i, _, _, _| {
                 floor_seen += usize::from((sc.points[i].z as f64 - sc.floor).abs() <= 0.03);
             },
         );
@@ -310,12 +302,11 @@ fn floor_density(sc: &Scene, dir: DVec2, s: (f64, f64), t: (f64, f64)) -> f64 {
     let mut cells = std::collections::HashSet::new();
     let mut n = 0usize;
     sc.index.for_each_near_line(
-        sc.points,
         &line,
         s.0 - outer,
         s.1 + outer,
         half + outer,
-        |i, a, d| {
+        |i, a, d, _| {
             let near = a > s.0 - inner && a < s.1 + inner && d.abs() < half + inner;
             if near || (sc.points[i].z as f64 - sc.floor).abs() > 0.03 {
                 return;

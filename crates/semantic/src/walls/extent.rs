@@ -56,7 +56,7 @@ pub(crate) fn find_extent(
     let mut walked: Option<(f64, f64)> = None;
     let walk = |seen: &mut Seen, s0: f64, s1: f64, keep: &dyn Fn(f64) -> bool| {
         sc.upright
-            .for_each_near_line_z(sc.points, line, s0, s1, hw, |_, s, d, z| {
+            .for_each_near_line(line, s0, s1, hw, |_, s, d, z| {
                 if z < z_lo || z > z_hi || !keep(s) {
                     return;
                 }
@@ -99,11 +99,16 @@ pub(crate) fn find_extent(
         // A crossing surface hides the face points at its own heights only (a cupboard in
         // front of a wall leaves the wall above it).
         // Noise spreads a crossing surface into the neighbouring bins: they are hidden too.
+        // (most bins have no crossing surface beside them: their points are not hidden)
+        let beside: Vec<bool> = (0..nb)
+            .map(|k| (k.saturating_sub(1)..(k + 2).min(nb)).any(|j| crossing(across[j].0)))
+            .collect();
         let hidden = |k: usize, z: f64| {
-            (k.saturating_sub(1)..(k + 2).min(nb)).any(|j| {
-                let x = &across[j];
-                crossing(x.0) && z >= x.1 - 0.1 && z <= x.2 + 0.1
-            })
+            beside[k]
+                && (k.saturating_sub(1)..(k + 2).min(nb)).any(|j| {
+                    let x = &across[j];
+                    crossing(x.0) && z >= x.1 - 0.1 && z <= x.2 + 0.1
+                })
         };
         let s_vals: Vec<f64> = on_faces
             .iter()

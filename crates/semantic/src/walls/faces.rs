@@ -82,7 +82,7 @@ pub(crate) fn refine_line(
     for _ in 0..3 {
         let mut near: Vec<(usize, f64)> = Vec::new();
         sc.band_index
-            .for_each_near_line_z(sc.points, &line, a - 0.1, b + 0.1, hw, |i, _, d, z| {
+            .for_each_near_line(&line, a - 0.1, b + 0.1, hw, |i, _, d, z| {
                 if in_band(z) {
                     near.push((i, d));
                 }
@@ -120,7 +120,7 @@ pub(crate) fn refine_line(
     }
     let mut ds = Vec::new();
     sc.band_index
-        .for_each_near_line_z(sc.points, &line, a - 0.1, b + 0.1, hw, |_, _, d, z| {
+        .for_each_near_line(&line, a - 0.1, b + 0.1, hw, |_, _, d, z| {
             if in_band(z) {
                 ds.push(d);
             }

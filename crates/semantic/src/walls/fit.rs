@@ -90,7 +90,7 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
     );
     let mut orientation = FaceOrientation::new(hi - lo, &faces);
     sc.index
-        .for_each_near_line_z(sc.points, &line, lo, hi, hw + strip.1, |_, s, d, z| {
+        .for_each_near_line(&line, lo, hi, hw + strip.1, |_, s, d, z| {
             if !crossed(s, z) {
                 let face = z >= z_lo && z <= z_hi && on_face(d, &faces);
                 profile.add(((s - lo) / BIN_M) as usize, d, z, face);

@@ -69,12 +69,11 @@ pub(crate) fn merge_through_gaps(
 pub(crate) fn seen_through(w: &WallFit, s0: f64, s1: f64, sc: &Scene) -> bool {
     let mut n = 0;
     sc.index.for_each_near_line(
-        sc.points,
         &w.line,
         s0 + 0.05,
         s1 - 0.05,
         w.thickness / 2.0 + 1.0,
-        |i, _, d| {
+        |i, _, d, _| {
             let z = sc.z(i);
             let hit = if w.measured {
                 (z - sc.floor).abs() <= 0.04 && d.abs() <= w.thickness / 2.0 - 0.02

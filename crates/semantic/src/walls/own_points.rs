@@ -25,12 +25,11 @@ pub(crate) fn retain_walls_with_own_points(walls: &mut Vec<WallFit>, sc: &Scene,
     walls.retain_mut(|w| {
         let (mut total, mut own) = (0usize, Vec::new());
         sc.upright.for_each_near_line(
-            sc.points,
             &w.line,
             -tol,
             w.length + tol,
             w.thickness / 2.0 + tol,
-            |i, _, _| {
+            |i, _, _, _| {
                 let z = sc.z(i);
                 if z < w.z_range.0 - tol || z > w.z_range.1 + tol {
                     return;

@@ -75,13 +75,8 @@ pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) ->
     let half = w.thickness / 2.0;
     let body = if w.measured { half } else { BODY_DEPTH_M };
     let depth = body.max(half + FRONT_M.1) + face_tolerance_m;
-    sc.index.for_each_near_line(
-        sc.points,
-        &w.line,
-        -reach,
-        w.length + reach,
-        depth,
-        |i, s, d| {
+    sc.index
+        .for_each_near_line(&w.line, -reach, w.length + reach, depth, |i, s, d, _| {
             let k = ((s + reach) / ROW_BIN_M).floor();
             if k < 0.0 || k as usize >= n {
                 return;
@@ -113,8 +108,7 @@ pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) ->
                     face[k] += 1;
                 }
             }
-        },
-    );
+        });
     // A face "not seen at any height" holds under a quarter of what the candidate's faces
     // typically hold per bin: the mixed pixels at two pillars' edges spill returns into the
     // gap between them (9-15 % of a face's in hall-10's 0.28 m gaps). A glass pane in an
@@ -182,7 +176,7 @@ fn free_past(w: &WallFit, s0: f64, s1: f64, sc: &Scene) -> bool {
     };
     let mut n = 0;
     sc.index
-        .for_each_near_line(sc.points, &w.line, s0, s1, reach, |i, _, d| {
+        .for_each_near_line(&w.line, s0, s1, reach, |i, _, d, _| {
             let in_body = if w.measured {
                 d.abs() <= w.thickness / 2.0
             } else {

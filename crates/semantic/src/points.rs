@@ -296,13 +296,14 @@ mod tests {
     #[test]
     fn index_finds_points_near_a_line() {
         let pts: Vec<Vec3> = (0..100)
-            .map(|i| Vec3::new(i as f32 * 0.1, (i % 3) as f32 * 0.1, 1.0))
+            .map(|i| Vec3::new(i as f32 * 0.1, (i % 3) as f32 * 0.1, 0.5 + i as f32 * 0.01))
             .collect();
         let idx = XyIndex::new(&pts, DVec2::new(0.0, 0.0), DVec2::new(10.0, 1.0), 0.5);
         let line = Line2::through(DVec2::new(0.0, 0.0), DVec2::new(1.0, 0.0));
         let mut n = 0;
-        idx.for_each_near_line(&pts, &line, 2.0, 4.0, 0.05, |_, s, d| {
+        idx.for_each_near_line(&line, 2.0, 4.0, 0.05, |i, s, d, z| {
             assert!((2.0..=4.0).contains(&s) && d.abs() <= 0.05);
+            assert_eq!(z, pts[i].z as f64, "the height handed over is the point's");
             n += 1;
         });
         assert_eq!(n, 7);
@@ -322,7 +323,7 @@ mod tests {
             dir,
         };
         let mut seen = Vec::new();
-        idx.for_each_near_line(&pts, &line, -0.5, 7.0, 0.12, |i, _, _| seen.push(i));
+        idx.for_each_near_line(&line, -0.5, 7.0, 0.12, |i, _, _, _| seen.push(i));
         let want: Vec<usize> = (0..pts.len())
             .filter(|&i| {
                 let (s, d) = line.coords(DVec2::new(pts[i].x as f64, pts[i].y as f64));

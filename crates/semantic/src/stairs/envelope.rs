@@ -285,4 +285,81 @@ mod tests {
         rising.push((1.0, 0.9));
         assert_eq!(without_spikes(&rising, 0.23, 0.15), rising);
     }
+    /// The envelope by its definition, point by point (quadratic in the points): for each bin,
+    /// its highest point with more than `CONTINUATION` points (itself included) within the
+    /// window's bins and `SAME_SURFACE_M` in height (on the same 1 cm levels).
+    fn by_definition(
+        pts: &[(DVec2, f64)],
+        dir: DVec2,
+        s_lo: f64,
+        nb: usize,
+        window_m: f64,
+    ) -> Vec<(f64, f64)> {
+        let binned: Vec<(usize, f64)> = pts
+            .iter()
+            .filter_map(|(q, z)| {
+                let v = (q.dot(dir) - s_lo) / BIN_M;
+                (v >= 0.0 && (v as usize) < nb && z.is_finite()).then_some((v as usize, *z))
+            })
+            .collect();
+        let z_lo = binned.iter().map(|b| b.1).fold(f64::INFINITY, f64::min);
+        let level = |z: f64| ((z - z_lo) / BIN_M) as usize;
+        let w = (window_m / BIN_M).round() as usize;
+        let mut out = Vec::new();
+        for i in 0..nb {
+            let mut own: Vec<f64> = binned.iter().filter(|b| b.0 == i).map(|b| b.1).collect();
+            own.sort_by(|a, b| b.total_cmp(a));
+            let top = own.into_iter().find(|&z| {
+                let (lo, hi) = (level(z - SAME_SURFACE_M), level(z + SAME_SURFACE_M));
+                let band = binned
+                    .iter()
+                    .filter(|b| b.0.abs_diff(i) <= w && (lo..=hi).contains(&level(b.1)))
+                    .count();
+                band > CONTINUATION
+            });
+            if let Some(top) = top {
+                out.push((s_lo + (i as f64 + 0.5) * BIN_M, top));
+            }
+        }
+        out
+    }
+
+    /// Treads, risers and scattered strays along a turned direction, in any order and highest
+    /// first: the windowed search (sorted bins, binary search per bin, the own bin first)
+    /// returns exactly the envelope by its definition.
+    #[test]
+    fn the_windowed_search_is_the_envelope_by_its_definition() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut rand = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let dir = DVec2::new(0.8, 0.6);
+        for case in 0..6 {
+            let mut pts: Vec<(DVec2, f64)> = (0..1500)
+                .map(|_| {
+                    let s = rand() * 2.0;
+                    let z = if rand() < 0.15 {
+                        rand() * 1.2
+                    } else {
+                        0.17 * ((s / 0.28).floor() + 1.0) + (rand() - 0.5) * 0.02
+                    };
+                    (dir * s + dir.perp() * (rand() - 0.5), z)
+                })
+                .collect();
+            if case % 2 == 1 {
+                pts.sort_by(|a, b| b.1.total_cmp(&a.1));
+            }
+            let window_m = 0.05 + 0.02 * case as f64;
+            let got = envelope(&pts, dir, -0.1, 220, window_m);
+            assert!(got.len() > 150, "case {case}: {} bins", got.len());
+            assert_eq!(
+                got,
+                by_definition(&pts, dir, -0.1, 220, window_m),
+                "case {case}"
+            );
+        }
+    }
 }

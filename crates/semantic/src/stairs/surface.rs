@@ -197,4 +197,36 @@ mod tests {
             points.len()
         );
     }
+    /// Members in clusters and scattered alone, cubes of several sizes: the nearest member
+    /// found with the farther cubes skipped is the nearest of all (within the cap).
+    #[test]
+    fn the_nearest_member_is_the_nearest_of_all() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rand = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let mut points = Vec::new();
+        for _ in 0..40 {
+            let c = Vec3::new(rand(), rand(), rand()) * 2.0 - Vec3::ONE;
+            for _ in 0..10 {
+                points.push(c + (Vec3::new(rand(), rand(), rand()) - Vec3::splat(0.5)) * 0.1);
+            }
+            points.push(Vec3::new(rand(), rand(), rand()) * 2.0 - Vec3::ONE);
+        }
+        let members: Vec<usize> = (0..points.len()).collect();
+        for cap in [0.02f32, 0.05, 0.15, 0.4] {
+            let grid = Grid::new(&points, &members, cap);
+            for &i in &members {
+                let want = members
+                    .iter()
+                    .filter(|&&j| j != i)
+                    .map(|&j| points[i].distance(points[j]))
+                    .fold(cap, f32::min);
+                assert_eq!(grid.nearest(&points, i, cap), want, "member {i}, cap {cap}");
+            }
+        }
+    }
 }

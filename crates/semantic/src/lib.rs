@@ -88,6 +88,8 @@ mod render;
 mod scene;
 mod skeleton;
 mod stairs;
+#[cfg(test)]
+mod test_rng;
 mod walls;
 
 pub use cloud::EntityClass;

@@ -329,13 +329,8 @@ mod tests {
     /// returns exactly the envelope by its definition.
     #[test]
     fn the_windowed_search_is_the_envelope_by_its_definition() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut rand = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::test_rng::TestRng::new(0x2545_f491_4f6c_dd1d);
+        let mut rand = move || rng.next_f64();
         let dir = DVec2::new(0.8, 0.6);
         for case in 0..6 {
             let mut pts: Vec<(DVec2, f64)> = (0..1500)

@@ -201,13 +201,8 @@ mod tests {
     /// found with the farther cubes skipped is the nearest of all (within the cap).
     #[test]
     fn the_nearest_member_is_the_nearest_of_all() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rand = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 40) as f32 / (1u64 << 24) as f32
-        };
+        let mut rng = crate::test_rng::TestRng::new(0x9e37_79b9_7f4a_7c15);
+        let mut rand = move || rng.next_f32();
         let mut points = Vec::new();
         for _ in 0..40 {
             let c = Vec3::new(rand(), rand(), rand()) * 2.0 - Vec3::ONE;

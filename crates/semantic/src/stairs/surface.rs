@@ -112,9 +112,7 @@ impl Grid {
             _ => 0.0,
         };
         let mut best = cap;
-        let around = (-1..=1)
-            .flat_map(|dx| (-1..=1).flat_map(move |dy| (-1..=1).map(move |dz| (dx, dy, dz))));
-        for (dx, dy, dz) in std::iter::once((0, 0, 0)).chain(around.filter(|&d| d != (0, 0, 0))) {
+        for (dx, dy, dz) in own_cube_first() {
             let g = Vec3::new(gap(p.x, x, dx), gap(p.y, y, dy), gap(p.z, z, dz));
             // (a millimetre's margin for the rounding of a point into its cube)
             if g.length() - 1e-3 >= best {
@@ -139,11 +137,8 @@ impl Grid {
     fn has_neighbours(&self, points: &[Vec3], i: usize, radius: f32, n: usize) -> bool {
         let p = points[i];
         let (x, y, z) = cell(p, self.edge);
-        let around = (-1..=1)
-            .flat_map(|dx| (-1..=1).flat_map(move |dy| (-1..=1).map(move |dz| (dx, dy, dz))));
         let mut found = 0usize;
-        std::iter::once((0, 0, 0))
-            .chain(around.filter(|&d| d != (0, 0, 0)))
+        own_cube_first()
             .filter_map(|(dx, dy, dz)| self.cells.get(&(x + dx, y + dy, z + dz)))
             .any(|v| {
                 v.iter().any(|&j| {
@@ -152,6 +147,13 @@ impl Grid {
                 })
             })
     }
+}
+
+/// The offsets of a cube and the 26 around it, the cube itself first.
+fn own_cube_first() -> impl Iterator<Item = (i32, i32, i32)> {
+    let around =
+        (-1..=1).flat_map(|dx| (-1..=1).flat_map(move |dy| (-1..=1).map(move |dz| (dx, dy, dz))));
+    std::iter::once((0, 0, 0)).chain(around.filter(|&d| d != (0, 0, 0)))
 }
 
 fn cell(p: Vec3, edge: f32) -> (i32, i32, i32) {

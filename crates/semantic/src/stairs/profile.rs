@@ -291,16 +291,29 @@ fn fit_steps(
     // The envelope is in order along the direction, so the levels at `s` and at `s + 1.5 cm`
     // only climb: each is advanced past the front edges `s0 + k run` it has crossed.
     // A score is the violations (never positive), the support (at most 5 on each of the
-    // `n` levels) and the risers' bands: once the violations so far leave it short of the best
-    // already scored (`known`), the point can be no optimum and its pass ends (scored -inf).
-    let most_support = 5.0 * f64::from(n.min(64));
+    // `n` levels, final for the levels the pass has left behind) and the risers' bands: once
+    // the violations and the support so far leave it short of the best already scored
+    // (`known`), even with 5 on every level still ahead, the point can be no optimum and its
+    // pass ends (scored -inf).
+    let most_support = |k: u32, behind: f64| {
+        if n > 64 {
+            5.0 * 64.0
+        } else {
+            behind + 5.0 * f64::from(n + 1 - k.max(1))
+        }
+    };
     let score = |run: f64, s0: f64, known: f64| -> f64 {
         let bands = risers.score(run, s0);
         let mut v = 0.0;
         let mut support = [0u8; 65];
+        let mut behind = 0.0;
         let (mut k, mut k_ahead) = (0u32, 0u32);
         for &(s, z) in env {
+            let k_was = k;
             while k < n && s >= s0 + f64::from(k) * run {
+                if k > 0 {
+                    behind += f64::from(support[(k as usize).min(64)].min(5));
+                }
                 k += 1;
             }
             while k_ahead < n && s + 0.015 >= s0 + f64::from(k_ahead) * run {
@@ -311,12 +324,14 @@ fn fit_steps(
                 // (over the flight: see above)
             } else if above > 0.0 {
                 v -= 3.0;
-                if v + most_support + bands < known - PRUNE_MARGIN {
-                    return f64::NEG_INFINITY;
-                }
             } else if k > 0 && z >= rise * f64::from(k) - 0.035 {
                 let slot = &mut support[(k as usize).min(64)];
                 *slot = slot.saturating_add(1);
+            }
+            if (k != k_was || above > 0.0 && above <= rise)
+                && v + most_support(k, behind) + bands < known - PRUNE_MARGIN
+            {
+                return f64::NEG_INFINITY;
             }
         }
         v + support.iter().map(|&n| f64::from(n.min(5))).sum::<f64>() + bands

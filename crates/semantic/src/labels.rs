@@ -100,8 +100,7 @@ pub(crate) fn label_points(
             -tol,
             w.length + tol,
             w.thickness / 2.0 + tol,
-            |i, s, _, _| {
-                let z = points[i].z as f64;
+            |i, s, _, z| {
                 if z < w.z_range.0 - tol || z > w.z_range.1 + tol {
                     return;
                 }
@@ -139,8 +138,7 @@ pub(crate) fn label_points(
             -tol,
             width + tol,
             d.leaf_thickness / 2.0 + tol,
-            |i, _, _, _| {
-                let z = points[i].z as f64;
+            |i, _, _, z| {
                 if z > w.z_range.0 + tol && z <= o.top_z + tol {
                     set(&mut labels[i], ids.openings[k].2, EntityClass::Door);
                 }
@@ -161,8 +159,7 @@ pub(crate) fn label_points(
                 a - tol,
                 b + tol,
                 s.width / 2.0 + tol,
-                |i, _, _, _| {
-                    let z = points[i].z as f64;
+                |i, _, _, z| {
                     if z > floor + tol && z <= top + tol {
                         set(&mut labels[i], id, EntityClass::Stairs);
                     }
@@ -176,7 +173,6 @@ pub(crate) fn label_points(
 /// Labels the points inside each obstacle's box (grown by `tolerance_m`) that no other entity
 /// labelled with the obstacle's id and class.
 pub(crate) fn label_obstacles(
-    points: &[Vec3],
     index: &XyIndex,
     obstacles: &[crate::obstacles::DetectedObstacle],
     ids: &[u32],
@@ -190,8 +186,7 @@ pub(crate) fn label_obstacles(
             dir: o.dir,
         };
         let (half_len, half_w) = (o.size[0] / 2.0 + tol, o.size[1] / 2.0 + tol);
-        index.for_each_near_line(&line, -half_len, half_len, half_w, |i, _, _, _| {
-            let z = points[i].z as f64;
+        index.for_each_near_line(&line, -half_len, half_len, half_w, |i, _, _, z| {
             let l = &mut labels[i];
             if l.entity == 0 && z >= o.z_range.0 - tol && z <= o.z_range.1 + tol {
                 *l = Label {

@@ -82,8 +82,8 @@ impl XyIndex {
 
     /// Calls `f` with every indexed point near the rectangle along `line` from `s0` to `s1`,
     /// within `half_width` across; `f` gets the point index, its along- and across-coordinates
-    /// and its height. Only the cells the (turned) rectangle overlaps are visited, row by row: a diagonal wall
-    /// reads a strip of cells, not its bounding box.
+    /// and its height. Only the cells the (turned) rectangle overlaps are visited, row by row:
+    /// a diagonal wall reads a strip of cells, not its bounding box.
     pub fn for_each_near_line(
         &self,
         line: &Line2,

@@ -26,10 +26,6 @@ impl Scene<'_> {
         DVec2::new(self.points[i].x as f64, self.points[i].y as f64)
     }
 
-    pub fn z(&self, i: usize) -> f64 {
-        self.points[i].z as f64
-    }
-
     /// A scene whose every index is `index` (tests: flat clouds that need no separate bands).
     #[cfg(test)]
     pub fn with_one_index<'a>(

@@ -126,9 +126,7 @@ pub(crate) fn find_leaf(
         o.s0 - width - 0.1,
         o.s1 + width + 0.1,
         width + 0.1,
-        |i, s, d, _| {
-            let p = sc.points[i];
-            let z = p.z as f64;
+        |i, s, d, z| {
             if z < z0 || z > z1 {
                 return;
             }
@@ -136,6 +134,7 @@ pub(crate) fn find_leaf(
             if d.abs() <= half_t + face_tol && (s < o.s0 + 0.03 || s > o.s1 - 0.03) {
                 return;
             }
+            let p = sc.points[i];
             pts.push((DVec2::new(p.x as f64, p.y as f64), s, d));
         },
     );

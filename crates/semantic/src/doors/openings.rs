@@ -132,8 +132,7 @@ fn bin_wall(
 
     let near_wall = face_tol.max(half_t);
     sc.index
-        .for_each_near_line(&w.line, 0.0, w.length, reach, |i, s, d, _| {
-            let z = sc.points[i].z as f64;
+        .for_each_near_line(&w.line, 0.0, w.length, reach, |_, s, d, z| {
             let b = ((s / c.bin_m) as usize).min(n - 1);
             if level.contains(z) && w.faces.iter().any(|f| (d - f).abs() <= near_wall) {
                 at_wall[b] = at_wall[b].saturating_add(1);

@@ -165,7 +165,6 @@ pub fn build_semantic_map(cloud: &PointCloud, config: &SemanticConfig) -> Result
         &config.net,
     );
     label_obstacles(
-        &mp.points,
         &indexes.index,
         &obstacles,
         &obstacle_ids,

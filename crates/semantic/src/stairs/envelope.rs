@@ -285,6 +285,7 @@ mod tests {
         rising.push((1.0, 0.9));
         assert_eq!(without_spikes(&rising, 0.23, 0.15), rising);
     }
+
     /// The envelope by its definition, point by point (quadratic in the points): for each bin,
     /// its highest point with more than `CONTINUATION` points (itself included) within the
     /// window's bins and `SAME_SURFACE_M` in height (on the same 1 cm levels).

@@ -51,11 +51,11 @@ pub(super) fn extend_top(
             front - RISER_BAND_M,
             front + RISER_BAND_M,
             half,
-            |i, _, t, _| {
+            |i, _, t, z| {
                 if !usable(i) {
                     return;
                 }
-                let h = sc.z(i) - foot;
+                let h = z - foot;
                 if h > lo && h <= top + 0.03 {
                     on_riser += 1;
                     (t_lo, t_hi, highest) = (t_lo.min(t), t_hi.max(t), highest.max(h));

@@ -316,11 +316,11 @@ fn across(xy: &[DVec2], dir: DVec2) -> f64 {
     crate::points::quantile(&mut t, 0.99).unwrap_or(0.0) - lo
 }
 
-#[cfg(test)]
-mod tests;
-
 /// The points `(xy, height)` sorted by height, highest first.
 fn highest_first(mut pts: Vec<(DVec2, f64)>) -> Vec<(DVec2, f64)> {
     pts.sort_by(|a, b| b.1.total_cmp(&a.1));
     pts
 }
+
+#[cfg(test)]
+mod tests;

@@ -73,8 +73,8 @@ pub(crate) fn finish(
         };
         let (mut left, mut right) = (0usize, 0usize);
         sc.index
-            .for_each_near_line(&line, -length / 2.0, length / 2.0, 0.4, |i, _, d, _| {
-                if (sc.points[i].z as f64 - sc.floor).abs() <= 0.03 && d.abs() >= 0.05 {
+            .for_each_near_line(&line, -length / 2.0, length / 2.0, 0.4, |_, _, d, z| {
+                if (z - sc.floor).abs() <= 0.03 && d.abs() >= 0.05 {
                     if d > 0.0 {
                         left += 1;
                     } else {
@@ -101,8 +101,8 @@ pub(crate) fn finish(
             -length / 2.0 + 0.05,
             length / 2.0 - 0.05,
             inner.max(0.0),
-            |i, _, _, _| {
-                floor_seen += usize::from((sc.points[i].z as f64 - sc.floor).abs() <= 0.03);
+            |_, _, _, z| {
+                floor_seen += usize::from((z - sc.floor).abs() <= 0.03);
             },
         );
         if floor_seen > c.min_step_points {
@@ -144,8 +144,8 @@ pub(crate) fn finish(
             -length / 2.0,
             length / 2.0,
             (t1 - t0) / 4.0,
-            |i, _, _, _| {
-                floor_seen += usize::from((sc.points[i].z as f64 - sc.floor).abs() <= 0.03);
+            |_, _, _, z| {
+                floor_seen += usize::from((z - sc.floor).abs() <= 0.03);
             },
         );
         // Seen at the density of the floor around it (less what its top shadows from far
@@ -306,9 +306,9 @@ fn floor_density(sc: &Scene, dir: DVec2, s: (f64, f64), t: (f64, f64)) -> f64 {
         s.0 - outer,
         s.1 + outer,
         half + outer,
-        |i, a, d, _| {
+        |_, a, d, z| {
             let near = a > s.0 - inner && a < s.1 + inner && d.abs() < half + inner;
-            if near || (sc.points[i].z as f64 - sc.floor).abs() > 0.03 {
+            if near || (z - sc.floor).abs() > 0.03 {
                 return;
             }
             n += 1;

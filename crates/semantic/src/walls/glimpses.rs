@@ -60,8 +60,7 @@ fn reach(w: &WallFit, faces: &[f64], direction: f64, sc: &Scene, c: &WallConfig)
         (from - span, from)
     };
     sc.upright
-        .for_each_near_line(&w.line, s0, s1, hw, |i, s, d, _| {
-            let z = sc.z(i);
+        .for_each_near_line(&w.line, s0, s1, hw, |_, s, d, z| {
             let beyond = (s - from) * direction;
             if z < z_lo || z > z_hi || beyond <= 0.0 {
                 return;

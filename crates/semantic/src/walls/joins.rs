@@ -73,8 +73,7 @@ pub(crate) fn seen_through(w: &WallFit, s0: f64, s1: f64, sc: &Scene) -> bool {
         s0 + 0.05,
         s1 - 0.05,
         w.thickness / 2.0 + 1.0,
-        |i, _, d, _| {
-            let z = sc.z(i);
+        |_, _, d, z| {
             let hit = if w.measured {
                 (z - sc.floor).abs() <= 0.04 && d.abs() <= w.thickness / 2.0 - 0.02
             } else {

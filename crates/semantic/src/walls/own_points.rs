@@ -29,8 +29,7 @@ pub(crate) fn retain_walls_with_own_points(walls: &mut Vec<WallFit>, sc: &Scene,
             -tol,
             w.length + tol,
             w.thickness / 2.0 + tol,
-            |i, _, _, _| {
-                let z = sc.z(i);
+            |i, _, _, z| {
                 if z < w.z_range.0 - tol || z > w.z_range.1 + tol {
                     return;
                 }

@@ -76,12 +76,12 @@ pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) ->
     let body = if w.measured { half } else { BODY_DEPTH_M };
     let depth = body.max(half + FRONT_M.1) + face_tolerance_m;
     sc.index
-        .for_each_near_line(&w.line, -reach, w.length + reach, depth, |i, s, d, _| {
+        .for_each_near_line(&w.line, -reach, w.length + reach, depth, |_, s, d, z| {
             let k = ((s + reach) / ROW_BIN_M).floor();
             if k < 0.0 || k as usize >= n {
                 return;
             }
-            let (k, above_floor) = (k as usize, sc.z(i) - sc.floor);
+            let (k, above_floor) = (k as usize, z - sc.floor);
             let inside = if w.measured {
                 d.abs() <= half - DEEP_M.min(half / 2.0)
             } else {
@@ -101,7 +101,7 @@ pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) ->
                 floor_in_front[k] += 1;
             }
             if above_floor > 0.1 && faces.iter().any(|f| (d - f).abs() <= face_tolerance_m) {
-                if sc.z(i) < sc.ceiling - CEILING_BAND_M {
+                if z < sc.ceiling - CEILING_BAND_M {
                     face_any_height[k] += 1;
                 }
                 if above_floor < HEAD_HEIGHT_M {
@@ -176,14 +176,14 @@ fn free_past(w: &WallFit, s0: f64, s1: f64, sc: &Scene) -> bool {
     };
     let mut n = 0;
     sc.index
-        .for_each_near_line(&w.line, s0, s1, reach, |i, _, d, _| {
+        .for_each_near_line(&w.line, s0, s1, reach, |_, _, d, z| {
             let in_body = if w.measured {
                 d.abs() <= w.thickness / 2.0
             } else {
                 let behind = -w.free_side * d;
                 (0.0..=BODY_DEPTH_M).contains(&behind)
             };
-            if in_body && (sc.z(i) - sc.floor).abs() <= FLOOR_TOL_M {
+            if in_body && (z - sc.floor).abs() <= FLOOR_TOL_M {
                 n += 1;
             }
         });

@@ -82,10 +82,22 @@ pub(crate) fn profile_near(
             running
         })
         .collect();
-    let (rise0, offset, top_level) = level_grid(&maxima, c)?;
     let mut highest: Vec<f64> = env.iter().map(|e| e.1).collect();
     highest.sort_by(|x, y| y.total_cmp(x));
     let top_height = *highest.get(1)?;
+    // The grid of levels. An upper flight seen from the floor below may show none: the rays
+    // grazing each nosing leave mixed pixels over its tread, up towards the next riser, and
+    // the running maximum climbs through them instead of resting on the tread (office-17 and
+    // office-9 of the held-out seeds). The rise of the flight below stands in then (a
+    // staircase's risers are uniform; heights are measured from the landing, the grid's 0),
+    // and the fit of the steps below decides where they are, or that there are none.
+    let (rise0, offset, top_level) = match level_grid(&maxima, c) {
+        Some(grid) => grid,
+        None => {
+            let rise = rise_hint?;
+            (rise, 0.0, (top_height / rise).round())
+        }
+    };
     // The step count from the top level over the rise of the levels; with the levels seen
     // on a side face (a few centimetres under the treads: the edge between two scan lines,
     // a voxel's centroid) the rise can be off by enough to miss the count by one, so the

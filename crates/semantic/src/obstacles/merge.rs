@@ -28,6 +28,12 @@ pub(super) const PARALLEL_COS: f64 = 0.984_807_753; // cos(10 degrees)
 /// thing's edge is part of it (a chair's backrest over its seat), while a thing as deep as a
 /// seat or a cabinet rising above its neighbour stands beside it (a chair at a desk, a
 /// cabinet behind it).
+///
+/// A thin part no higher than the host (by a step) must lie mostly within the host's own box,
+/// not only in the margin around it: a chair pushed in at a desk and seen across the desk is
+/// its backrest alone, a thin panel beside the desk's edge about as high as the desk's top
+/// (under head height, and beside a host deeper than a sliver: beside a pillar or a cabinet,
+/// such a strip is its face, smeared; beside a panel, its continuation).
 pub(super) fn absorb_parts(
     mut found: Vec<DetectedObstacle>,
     margin_m: f64,
@@ -56,7 +62,19 @@ pub(super) fn absorb_parts(
                 && o.z_range.0 <= k.z_range.0 + max_step_m
                 && o.size[1] > c.sliver_max_across_m;
             let on_footprint = !(lower || beside) || intersection_area(&part, &k.hull) / own >= 0.5;
-            if inside >= 0.5 && on_footprint && host.is_none_or(|h| inside > h.0) {
+            // A thin part whose top is the host's (within a step) lying beside the host's box,
+            // within only the margin, is a thing of its own: the backrest of a chair pushed in
+            // at a desk, all the laser saw of the chair across the desk (its seat hidden under
+            // the desk's top), 0.1 m over the desk's top at most. (A backrest rises over its
+            // seat's top by far more; a strip beside a pillar or a cabinet rising over head
+            // height is its face, smeared; one beside a thin host is its continuation.)
+            let thin_beside = !lower
+                && o.z_range.1 <= k.z_range.1 + max_step_m
+                && o.z_range.1 < k.z_range.0 + c.head_height_m
+                && k.size[1] > c.sliver_max_across_m
+                && o.size[1] <= c.sliver_max_across_m
+                && intersection_area(&part, &rect_corners(k.center, k.dir, k.size)) / own < 0.5;
+            if inside >= 0.5 && on_footprint && !thin_beside && host.is_none_or(|h| inside > h.0) {
                 host = Some((inside, n));
             }
         }
@@ -236,6 +254,30 @@ mod tests {
         let out = absorb_parts(vec![seat, back], 0.1, &config(0.1));
         assert_eq!(out.len(), 1, "{out:#?}");
         assert!((out[0].z_range.1 - 0.87).abs() < 1e-9);
+    }
+
+    /// Regression (office-31 of seeds 31-35; chairs at desks missed in office 11-25): a chair
+    /// pushed in at a desk and seen across the desk showed only its backrest (0.47 x 0.09 m,
+    /// 0.09 m over the desk's top), its seat hidden under the desk's top. The backrest lay
+    /// beside the desk's box, within the margin the box is grown by, and went into the desk.
+    #[test]
+    fn a_backrest_beside_a_desks_box_is_a_thing_of_its_own() {
+        let desk = cluster([0.0, 0.0], DVec2::X, [1.65, 0.89], (0.0, 0.77), false);
+        let back = cluster([0.0, 0.49], DVec2::X, [0.47, 0.09], (0.0, 0.86), false);
+        let out = absorb_parts(vec![desk.clone(), back], 0.1, &config(0.1));
+        assert_eq!(out.len(), 2, "{out:#?}");
+        assert!(out.iter().any(|o| (o.size[1] - 0.09).abs() < 1e-9));
+        // A strip of the desk's own edge, inside its box, is the desk's.
+        let edge = cluster([0.0, 0.4], DVec2::X, [0.47, 0.09], (0.0, 0.77), false);
+        assert_eq!(absorb_parts(vec![desk, edge], 0.1, &config(0.1)).len(), 1);
+        // Beside a pillar, rising over head height, such a strip is the pillar's face (garage-9
+        // had read one as a second column); beside a panel, its continuation.
+        let pillar = cluster([0.0, 0.0], DVec2::X, [0.51, 0.47], (0.0, 2.87), false);
+        let face = cluster([0.0, 0.28], DVec2::X, [0.42, 0.09], (0.0, 2.87), false);
+        assert_eq!(absorb_parts(vec![pillar, face], 0.1, &config(0.1)).len(), 1);
+        let panel = cluster([0.0, 0.0], DVec2::X, [1.72, 0.14], (0.0, 0.9), false);
+        let strip = cluster([0.0, 0.13], DVec2::X, [0.9, 0.1], (0.0, 0.9), false);
+        assert_eq!(absorb_parts(vec![panel, strip], 0.1, &config(0.1)).len(), 1);
     }
 
     #[test]

@@ -87,10 +87,10 @@ pub(crate) fn profile_near(
     let top_height = *highest.get(1)?;
     // The grid of levels. An upper flight seen from the floor below may show none: the rays
     // grazing each nosing leave mixed pixels over its tread, up towards the next riser, and
-    // the running maximum climbs through them instead of resting on the tread (office-17 and
-    // office-9 of the held-out seeds). The rise of the flight below stands in then (a
-    // staircase's risers are uniform; heights are measured from the landing, the grid's 0),
-    // and the fit of the steps below decides where they are, or that there are none.
+    // the running maximum climbs through them instead of resting on the tread (office-17 of
+    // the held-out seeds). The rise of the flight below stands in then (a staircase's risers
+    // are uniform; heights are measured from the landing, the grid's 0), and the grid search
+    // of the steps (`fit_steps`) decides where they are, or that there are none.
     let (rise0, offset, top_level) = match level_grid(&maxima, c) {
         Some(grid) => grid,
         None => {

@@ -179,13 +179,19 @@ fn mid_landing(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<(f6
     let env = of_flight(&env, c);
     let least = c.min_steps as f64 * c.rise_m[0];
     // The running maximum; a level stretch starts where it last rose by more than the
-    // measurement's few centimetres. It ends in a climb: within a tread's depth the profile
-    // stands half the lowest rise above it (the first return of the rise may be a mixed pixel
-    // between the landing and the next tread, only a few centimetres up).
+    // measurement's few centimetres, and holds within half the lowest rise of the height it
+    // started at (a ramp's side face, sampled sparsely, creeps up by a centimetre or two per
+    // return and never jumps: garage-28 of the fresh seeds read a 9 degree ramp's as a
+    // flight's landing, with more of the ramp climbing beyond it). It ends in a climb: within
+    // a tread's depth the profile stands half the lowest rise above it (the first return of
+    // the rise may be a mixed pixel between the landing and the next tread, only a few
+    // centimetres up).
+    let creep = 0.5 * c.rise_m[0];
     let mut running = f64::NEG_INFINITY;
     let mut since = lo;
+    let mut since_height = f64::NEG_INFINITY;
     for (k, &(s, z)) in env.iter().enumerate() {
-        if z > running + 0.03 {
+        if z > running + 0.03 || z > since_height + creep {
             let level = running;
             let climbs = env[k..]
                 .iter()
@@ -197,6 +203,7 @@ fn mid_landing(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<(f6
                 return Some((s - BIN_M / 2.0, level));
             }
             since = s;
+            since_height = running.max(z);
         }
         running = running.max(z);
     }

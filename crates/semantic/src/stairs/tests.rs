@@ -149,6 +149,19 @@ fn a_person_crossing_a_side_face_over_its_landing_is_no_step() {
     assert!((found[0].run - 0.284).abs() < 0.03, "run {}", found[0].run);
 }
 
+/// Regression: fresh garage-28's 9 degree ramp was reported as a 5-step flight (rise 0.111 m,
+/// run 0.407 m) ending on a landing, on the ramp's side face: sampled sparsely, the face's top
+/// edge has its running maximum creep up by a centimetre or two per return and never jump, so
+/// a stretch of it 0.6 m long read as level (each rise under the 3 cm a level allows), and the
+/// ramp climbing on beyond it as the next flight. A level stretch holds within half the lowest
+/// rise (5 cm) of the height it started at. (The returns on the face, from the bench's map.)
+#[test]
+fn a_ramps_side_face_creeping_up_is_no_landing() {
+    let part = returns(include_str!("../../tests/data/garage28_ramp_face.txt"));
+    assert_eq!(part.len(), 250);
+    assert_eq!(search(&part, 4.9), None);
+}
+
 /// Regression: held-out office-16's staircase with a mid landing (two flights of 4 steps) had
 /// a person's streak 0.25 m in front of the upper flight's side face, a wall of returns up to
 /// 0.18 m over the landing just before the upper flight's first riser: read along the flight

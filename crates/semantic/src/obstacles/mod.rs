@@ -25,6 +25,9 @@
 //!    A high cluster filling little of its box, wider than a member is, may be a frame of
 //!    beams and the ducts under them, joined where they cross: split into its members
 //!    ([`frames`]).
+//!    A low cluster standing from the floor to the ceiling and longer than a column is across
+//!    is cut at the gaps its returns show (a row of hollow pillars whose gaps the mixed pixels
+//!    fill, [`pillar_rows`]), each part fitted on its own.
 //! 4. Each cluster's box: the smallest-area rectangle around its footprint's convex hull
 //!    ([`fit`]; along a wall instead if that is at most 15 % larger), z from its points; a
 //!    bottom near the floor stands on it.
@@ -60,6 +63,7 @@ mod levels;
 mod merge;
 mod necks;
 mod partitions;
+mod pillar_rows;
 
 use crate::image_frame::{pixel_center, pixel_range, ImageFrame};
 use crate::map::OrientedBox;
@@ -78,6 +82,7 @@ use levels::split_levels;
 use merge::{absorb_parts, drop_wall_slivers, join_collinear};
 use necks::split_at_necks;
 use partitions::classify_partition;
+use pillar_rows::{may_be_a_pillar_row, split_pillar_row};
 
 /// A surface the laser saw of a thing is at least this large (m²): a seat 0.45 m square seen in
 /// part, the front of a cabinet 0.35 m deep along 0.2-0.3 m. Smaller groups of cells are edges,
@@ -184,13 +189,13 @@ pub(crate) fn find_obstacles(
         .flat_map(|cells| split_at_necks(cells, &frame))
         .flat_map(|cells| split_levels(cells, &tops, &frame, c.max_top_step_m))
         .map(|cells| without_fringe(cells, w, frame.resolution_m));
-    for cells in low_clusters {
+    let mut fit_low = |cells: &[usize]| -> Option<DetectedObstacle> {
         let members: Vec<u32> = cells
             .iter()
             .flat_map(|&k| low_grid.points(k).iter().copied())
             .collect();
         if members.len() < c.min_points {
-            continue;
+            return None;
         }
         let mut zs: Vec<f64> = members
             .iter()
@@ -213,8 +218,19 @@ pub(crate) fn find_obstacles(
         // The footprint is the low points' (the cells of a column also hold the beam it
         // carries); the climbed points are labelled by the box.
         let bottom = quantile(&mut zs, 0.01).unwrap_or(top);
-        if let Some(o) = fit_cluster(sc, &members, cells.len(), (bottom, top), false, &frame, c) {
-            out.push(o);
+        fit_cluster(sc, &members, cells.len(), (bottom, top), false, &frame, c)
+    };
+    for cells in low_clusters {
+        let Some(o) = fit_low(&cells) else {
+            continue;
+        };
+        // A row of pillars is its pillars (see `pillar_rows`), each fitted on its own.
+        let pillars = may_be_a_pillar_row(&o, sc.floor, sc.ceiling, c)
+            .then(|| split_pillar_row(cells, &low_grid, &frame))
+            .filter(|parts| parts.len() > 1);
+        match pillars {
+            Some(parts) => out.extend(parts.iter().filter_map(|p| fit_low(p))),
+            None => out.push(o),
         }
     }
     // 3. High clusters: what is left above head height. Cells a column climbed through still

@@ -24,17 +24,47 @@ const MAX_DEPTH: usize = 8;
 /// `cells` (indices into `frame`'s grid, row-major) cut at their necks (see the module docs).
 pub(super) fn split_at_necks(cells: Vec<usize>, frame: &ImageFrame) -> Vec<Vec<usize>> {
     let mut out = Vec::new();
-    split(cells, frame, 0, &mut out);
+    let by_cells = Necks {
+        weight: &|_| 1,
+        share: NECK_SHARE,
+    };
+    split(cells, frame, &by_cells, 0, &mut out);
     out
 }
 
-fn split(cells: Vec<usize>, frame: &ImageFrame, depth: usize, out: &mut Vec<Vec<usize>>) {
+/// How slices are weighed and how light a neck is.
+pub(super) struct Necks<'a> {
+    /// A cell's weight in its slice (1: slices count cells).
+    pub weight: &'a dyn Fn(usize) -> usize,
+    /// A neck weighs at most this fraction of the median slice.
+    pub share: f64,
+}
+
+/// `cells` cut where their slices, weighed as `necks` says, are necks (see the module docs).
+pub(super) fn split_at_weighed_necks(
+    cells: Vec<usize>,
+    frame: &ImageFrame,
+    necks: &Necks,
+) -> Vec<Vec<usize>> {
+    let mut out = Vec::new();
+    split(cells, frame, necks, 0, &mut out);
+    out
+}
+
+fn split(
+    cells: Vec<usize>,
+    frame: &ImageFrame,
+    necks: &Necks,
+    depth: usize,
+    out: &mut Vec<Vec<usize>>,
+) {
     let pts = cell_centres(&cells, frame);
+    let weights: Vec<usize> = cells.iter().map(|&k| (necks.weight)(k)).collect();
     let axes = min_area_rect(&convex_hull(&pts), &[]).map(|(_, d, _)| [d, d.perp()]);
     let cut = match axes {
         Some(axes) if depth < MAX_DEPTH => axes
             .iter()
-            .filter_map(|&d| neck(&pts, d, frame.resolution_m))
+            .filter_map(|&d| neck(&pts, &weights, d, frame.resolution_m, necks.share))
             .min_by(|a, b| a.0.total_cmp(&b.0)),
         _ => None,
     };
@@ -51,20 +81,30 @@ fn split(cells: Vec<usize>, frame: &ImageFrame, depth: usize, out: &mut Vec<Vec<
             above.push(k);
         }
     }
-    split(below, frame, depth + 1, out);
-    split(above, frame, depth + 1, out);
+    split(below, frame, necks, depth + 1, out);
+    split(above, frame, necks, depth + 1, out);
 }
 
-/// The thinnest neck of the cells at `pts` across direction `d`: (its share of the median
-/// slice, `d`, and the span along `d` it covers); `None` if there is none.
-fn neck(pts: &[DVec2], d: DVec2, cell_m: f64) -> Option<(f64, DVec2, f64, f64)> {
+/// The thinnest neck of the cells at `pts` (weighing `weights`) across direction `d`: (its
+/// share of the median slice, `d`, and the span along `d` it covers); `None` if there is none.
+fn neck(
+    pts: &[DVec2],
+    weights: &[usize],
+    d: DVec2,
+    cell_m: f64,
+    share: f64,
+) -> Option<(f64, DVec2, f64, f64)> {
     let s: Vec<f64> = pts.iter().map(|p| p.dot(d)).collect();
-    let (lo, count) = slice_counts(&s, cell_m)?;
-    let n = count.len();
+    let (lo, cells) = slice_counts(&s, cell_m)?;
+    let n = cells.len();
+    let mut count = vec![0usize; n];
+    for (v, w) in s.iter().zip(weights) {
+        count[(((v - lo) / cell_m).round() as usize).min(n - 1)] += w;
+    }
     let mut full: Vec<usize> = count.iter().copied().filter(|&c| c > 0).collect();
     full.sort_unstable();
     let median = *full.get(full.len() / 2)? as f64;
-    let thin = |i: usize| count[i] as f64 <= NECK_SHARE * median;
+    let thin = |i: usize| count[i] as f64 <= share * median;
     let side = (MIN_SIDE_M / cell_m).round() as usize;
     // Slices fuller than a neck's before each slice, and after it.
     let mut before = vec![0usize; n + 1];

@@ -58,6 +58,20 @@ pub(super) fn fit_cluster(
     Some(o)
 }
 
+/// Whether `o` stands on the floor (a low cluster whose bottom is near it) and whether it
+/// reaches the ceiling, each within `full_height_margin_m`.
+pub(super) fn reaches(
+    o: &DetectedObstacle,
+    floor: f64,
+    ceiling: f64,
+    c: &ObstacleConfig,
+) -> (bool, bool) {
+    let (bottom, top) = o.z_range;
+    let near = c.full_height_margin_m;
+    let on_floor = !o.overhead && bottom - floor <= c.min_above_floor_m + near;
+    (on_floor, ceiling - top <= near)
+}
+
 /// Sets the class of `o` from its box (its z range is the measured one or one set by an
 /// earlier call: a bottom near the floor stands on it, a top near the ceiling reaches it), and
 /// its last rule to why: a low cluster standing on the floor, reaching the ceiling and at most
@@ -71,9 +85,7 @@ pub(super) fn classify(
     c: &ObstacleConfig,
 ) {
     let (bottom, top) = o.z_range;
-    let near = c.full_height_margin_m;
-    let on_floor = !o.overhead && bottom - floor <= c.min_above_floor_m + near;
-    let to_ceiling = ceiling - top <= near;
+    let (on_floor, to_ceiling) = reaches(o, floor, ceiling, c);
     let z0 = if on_floor { floor } else { bottom };
     // A cluster of one height (a ledge seen edge-on) still has a box: half a cell tall at least.
     let z1 = if to_ceiling { ceiling } else { top }.max(z0 + cell_m / 2.0);

@@ -77,17 +77,26 @@ pub(super) fn cell_centres(cells: &[usize], frame: &ImageFrame) -> Vec<DVec2> {
 /// `values` counted in slices `cell_m` wide, the first centred on the smallest: that smallest
 /// value and the counts; `None` for no values.
 pub(super) fn slice_counts(values: &[f64], cell_m: f64) -> Option<(f64, Vec<usize>)> {
+    slice_sums(values, |_| 1, cell_m)
+}
+
+/// [`slice_counts`] with value `i` weighing `weight(i)`: the sums of the weights per slice.
+pub(super) fn slice_sums(
+    values: &[f64],
+    weight: impl Fn(usize) -> usize,
+    cell_m: f64,
+) -> Option<(f64, Vec<usize>)> {
     let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     if hi < lo {
         return None;
     }
     let n = (((hi - lo) / cell_m).round() as usize + 1).min(1_000_000);
-    let mut count = vec![0usize; n];
-    for v in values {
-        count[(((v - lo) / cell_m).round() as usize).min(n - 1)] += 1;
+    let mut sum = vec![0usize; n];
+    for (i, v) in values.iter().enumerate() {
+        sum[(((v - lo) / cell_m).round() as usize).min(n - 1)] += weight(i);
     }
-    Some((lo, count))
+    Some((lo, sum))
 }
 
 /// The connected components of the cells for which `occupied` holds, each a list of cell

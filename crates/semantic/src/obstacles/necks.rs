@@ -7,7 +7,7 @@
 //! neck with enough of it on both sides to be a thing (`MIN_SIDE_M`), and the parts are cut
 //! again; the cells of the neck are left out (stray returns, not a thing).
 
-use super::cluster::{cell_centres, slice_counts};
+use super::cluster::{cell_centres, slice_sums};
 use super::fit::{convex_hull, min_area_rect};
 use crate::image_frame::ImageFrame;
 use glam::DVec2;
@@ -95,12 +95,8 @@ fn neck(
     share: f64,
 ) -> Option<(f64, DVec2, f64, f64)> {
     let s: Vec<f64> = pts.iter().map(|p| p.dot(d)).collect();
-    let (lo, cells) = slice_counts(&s, cell_m)?;
-    let n = cells.len();
-    let mut count = vec![0usize; n];
-    for (v, w) in s.iter().zip(weights) {
-        count[(((v - lo) / cell_m).round() as usize).min(n - 1)] += w;
-    }
+    let (lo, count) = slice_sums(&s, |i| weights[i], cell_m)?;
+    let n = count.len();
     let mut full: Vec<usize> = count.iter().copied().filter(|&c| c > 0).collect();
     full.sort_unstable();
     let median = *full.get(full.len() / 2)? as f64;

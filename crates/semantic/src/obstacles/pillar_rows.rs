@@ -10,6 +10,7 @@
 //! open) is cut where its slices hold under half the returns of its typical slice; each part
 //! is then fitted and classed on its own (a column if it is one).
 
+use super::classify::reaches;
 use super::cluster::BandGrid;
 use super::necks::{split_at_weighed_necks, Necks};
 use super::{DetectedObstacle, ObstacleConfig};
@@ -29,11 +30,8 @@ pub(super) fn may_be_a_pillar_row(
     ceiling: f64,
     c: &ObstacleConfig,
 ) -> bool {
-    let (bottom, top) = o.z_range;
-    let near = c.full_height_margin_m;
-    let on_floor = bottom - floor <= c.min_above_floor_m + near;
-    let to_ceiling = ceiling - top <= near;
-    !o.overhead && on_floor && to_ceiling && o.size[0] > c.column_max_across_m
+    let (on_floor, to_ceiling) = reaches(o, floor, ceiling, c);
+    on_floor && to_ceiling && o.size[0] > c.column_max_across_m
 }
 
 /// `cells` of the low band `grid` cut where their slices hold under [`GAP_SHARE`] of the

@@ -22,6 +22,7 @@ use serde::{Deserialize, Serialize};
 /// | 10 | `obstacle` | anything else standing on the floor and occupying space (cars, shelves, clutter) |
 /// | 11 | `column` | a pillar: a free-standing vertical post from the floor to the ceiling |
 /// | 12 | `beam` | a downstand beam, duct or pipe under the ceiling, above head height |
+/// | 13 | `ramp` | a sloped floor rising from the floor, driven up (car-park and wheelchair ramps) |
 #[derive(
     Debug, Clone, Copy, PartialEq, Eq, Hash, Default, PartialOrd, Ord, Serialize, Deserialize,
 )]
@@ -57,11 +58,15 @@ pub enum EntityClass {
     /// A downstand beam, duct or pipe under the ceiling, above head height: a robot passes
     /// under it.
     Beam = 12,
+    /// A ramp: a sloped floor rising from the floor, which robots and people drive and walk
+    /// up. In a semantic map its box rises along its own x axis, from the floor at its -x end
+    /// to its top at its +x end.
+    Ramp = 13,
 }
 
 impl EntityClass {
     /// All classes, in code order.
-    pub const ALL: [EntityClass; 13] = [
+    pub const ALL: [EntityClass; 14] = [
         EntityClass::Unknown,
         EntityClass::Floor,
         EntityClass::Ceiling,
@@ -75,6 +80,7 @@ impl EntityClass {
         EntityClass::Obstacle,
         EntityClass::Column,
         EntityClass::Beam,
+        EntityClass::Ramp,
     ];
 
     /// The class for a stored code; `None` for codes no class has.
@@ -103,6 +109,7 @@ impl EntityClass {
             EntityClass::Obstacle => "obstacle",
             EntityClass::Column => "column",
             EntityClass::Beam => "beam",
+            EntityClass::Ramp => "ramp",
         }
     }
 

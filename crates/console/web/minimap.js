@@ -4,7 +4,7 @@
 // projected onto the ground, in its class colour) is drawn once; the robot every frame.
 import * as THREE from 'three';
 
-const DRAWN = ['floor', 'stairs', 'furniture', 'column', 'obstacle', 'wall', 'wall_above_door', 'door'];
+const DRAWN = ['floor', 'ramp', 'stairs', 'furniture', 'column', 'obstacle', 'wall', 'wall_above_door', 'door'];
 const SIZE_PX = 200;
 const MARGIN_PX = 8;
 

@@ -85,7 +85,7 @@ export function addWorld(v, gltf) {
 }
 
 /** What the follow camera cannot see through. */
-const SOLID = new Set(['wall', 'wall_above_door', 'door', 'column', 'beam', 'furniture', 'stairs', 'obstacle']);
+const SOLID = new Set(['wall', 'wall_above_door', 'door', 'column', 'beam', 'furniture', 'stairs', 'obstacle', 'ramp']);
 
 /** Loads the world from a URL. */
 export async function loadWorldUrl(v, url) {

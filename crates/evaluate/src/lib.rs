@@ -24,7 +24,8 @@
 //!   because a step was never seen is told from one the map got wrong;
 //! - obstacles (boxes of class furniture, obstacle or column taller and longer than 0.3 m),
 //!   columns and beams if they carry at least `min_bin_points` points (see `obstacles.rs` for
-//!   their matching by footprint overlap, and the count of walls standing on beams or columns).
+//!   their matching by footprint overlap, and the count of walls standing on beams or columns);
+//! - ramps if they carry at least `min_bin_points` points (see `ramps.rs`).
 //!
 //! # Matching
 //! Greedy one-to-one, best first. Walls: directions within `wall_max_angle_deg`, the detected
@@ -62,6 +63,7 @@ mod frame;
 mod ground_truth;
 mod labels;
 mod obstacles;
+mod ramps;
 mod report;
 mod score;
 mod slabs;
@@ -75,6 +77,7 @@ pub use frame::registration_frame;
 pub use ground_truth::{check_ground_truth, check_ground_truth_in_frame, EvalError};
 pub use labels::{evaluate_labels, LabelEvaluation};
 pub use obstacles::ObstacleMatch;
+pub use ramps::RampMatch;
 pub use score::ClassScore;
 pub use stairs::{StairsMatch, StairsSeen};
 pub use walls::WallMatch;
@@ -82,6 +85,7 @@ pub use walls::WallMatch;
 use cloud::PointCloud;
 use doors::evaluate_doors;
 use obstacles::evaluate_obstacles;
+use ramps::evaluate_ramps;
 use scanner::Building;
 use semantic::SemanticMap;
 use serde::{Deserialize, Serialize};
@@ -115,6 +119,9 @@ pub struct Evaluation {
     /// Beams.
     #[serde(default)]
     pub beams: ClassScore,
+    /// Ramps (truth: the building's ramps the scans saw; map: its `ramp` entities).
+    #[serde(default)]
+    pub ramps: ClassScore,
     /// Map walls standing where only beams or columns stand (their centre line mostly on them).
     #[serde(default)]
     pub walls_on_beams_or_columns: usize,
@@ -138,6 +145,9 @@ pub struct Evaluation {
     /// Matched obstacles, columns and beams.
     #[serde(default)]
     pub obstacle_matches: Vec<ObstacleMatch>,
+    /// Matched ramps.
+    #[serde(default)]
+    pub ramp_matches: Vec<RampMatch>,
     /// Expected elements not found (names, walls with their piece).
     pub missed: Vec<String>,
     /// Map entities matching nothing expected (ids).
@@ -180,5 +190,6 @@ pub fn evaluate_in_frame(
     evaluate_stairs(&mut ev, map, building, &t, c);
     evaluate_slabs(&mut ev, map, building, &t, c);
     evaluate_obstacles(&mut ev, map, building, &t, c);
+    evaluate_ramps(&mut ev, map, building, &t, c);
     ev
 }

@@ -22,6 +22,7 @@ impl fmt::Display for Evaluation {
             ("obstacles", &self.obstacles),
             ("columns", &self.columns),
             ("beams", &self.beams),
+            ("ramps", &self.ramps),
         ] {
             writeln!(
                 f,
@@ -44,6 +45,13 @@ impl fmt::Display for Evaluation {
                 f,
                 "\nstairs {}: {} steps (truth {}), rise error {:+.3} m, run error {:+.3} m",
                 s.truth, s.steps, s.steps_truth, s.rise_error_m, s.run_error_m
+            )?;
+        }
+        for r in &self.ramp_matches {
+            write!(
+                f,
+                "\nramp {}: pitch error {:+.2} deg, rise error {:+.3} m",
+                r.truth, r.pitch_error_deg, r.rise_error_m
             )?;
         }
         for s in self.stairs_seen.iter().filter(|s| s.steps_seen < s.steps) {
@@ -82,6 +90,7 @@ mod tests {
             "wall endpoint error",
             "obstacles",
             "beams",
+            "ramps",
             "walls on beams or columns: 0",
             "missed: walls[3]",
         ] {

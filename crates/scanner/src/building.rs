@@ -204,7 +204,7 @@ fn is_zero(v: &f64) -> bool {
 
 /// A ramp: a straight sloped slab whose top rises from the floor at `start_m` to `rise_m`
 /// over `length_m` (measured on the floor) in the direction `direction_deg`. Walkable: its
-/// ground-truth class is `floor` (see the README's building file section).
+/// ground-truth class is `ramp` (see the README's building file section).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Ramp {

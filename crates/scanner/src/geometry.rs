@@ -177,10 +177,10 @@ impl BuildingGeometry {
 }
 
 /// A ramp: one slab pitched so that its top runs from the foot on the floor to the head at
-/// `rise_m`. Class `floor`: a ramp is walked and driven on like the floor (a robot's wheels
-/// on it are on the floor), and it is neither an obstacle nor a staircase.
+/// `rise_m`. Class `ramp`: it is walked and driven on like the floor, and it is neither an
+/// obstacle nor a staircase.
 fn add_ramp(g: &mut Builder, r: &Ramp, i: usize) {
-    let id = g.entity(EntityClass::Floor, format!("ramps[{i}]"));
+    let id = g.entity(EntityClass::Ramp, format!("ramps[{i}]"));
     let pitch = r.pitch_rad();
     let dir = r.direction();
     let slope_len = r.length_m.hypot(r.rise_m);

@@ -16,9 +16,10 @@
 //! 4. The semantic net ([`NetConfig`]): entities with ids, oriented boxes, support, confidence
 //!    and rules; relations (parallel, orthogonal, above, under, equal height, available inside,
 //!    connected via joint, near) computed from the geometry.
-//! 5. Obstacles, columns and beams ([`ObstacleConfig`]): what the points no entity labelled
-//!    occupy, clustered on an XY grid per height band (below and above head height), each an
-//!    oriented box; added to the net and the labels.
+//! 5. Ramps ([`RampConfig`]): sloped planes of the points no entity labelled that meet the
+//!    floor; then obstacles, columns and beams ([`ObstacleConfig`]): what the points no entity
+//!    labelled occupy, clustered on an XY grid per height band (below and above head height),
+//!    each an oriented box; added to the net and the labels.
 //!
 //! [`build_semantic_map`] runs them all and returns a [`MapOutput`]: the [`SemanticMap`]
 //! (versioned JSON, `schema/semantic_map.schema.json`), per-point labels, the intermediate
@@ -84,6 +85,7 @@ mod obstacles;
 mod pipeline;
 mod points;
 mod projection;
+mod ramps;
 mod render;
 mod scene;
 mod skeleton;
@@ -103,7 +105,7 @@ pub use labels::LabelConfig;
 pub use map::{
     DoorInfo, Entity, FloorInfo, HingeEdge, ObstacleInfo, OpeningInfo, OrientedBox, Relation,
     RelationType, SemanticMap, StairsInfo, SwingSide, WallInfo, MAP_CLASSES, MAP_CLASSES_V1,
-    MAP_FORMAT, MAP_VERSION, READ_VERSIONS,
+    MAP_CLASSES_V3, MAP_FORMAT, MAP_VERSION, READ_VERSIONS,
 };
 pub use merge::{MergeConfig, Segment};
 pub use net::NetConfig;
@@ -112,6 +114,7 @@ pub use obstacles::{convex_intersection_area, ObstacleConfig};
 pub use pipeline::{build_semantic_map, MapOutput, SemanticConfig, StageTime};
 pub use points::{undirected_angle_deg, Line2};
 pub use projection::{HeightBand, ProjectionConfig, ProjectionValue};
+pub use ramps::RampConfig;
 pub use render::{class_color, render_labels, render_segments, render_top_view, save_png};
 pub use skeleton::skeletonize;
 pub use stairs::StairsConfig;

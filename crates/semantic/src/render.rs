@@ -41,6 +41,7 @@ pub fn class_color(class: EntityClass) -> [u8; 3] {
         EntityClass::Obstacle => [150, 40, 120],
         EntityClass::Column => [90, 90, 90],
         EntityClass::Beam => [120, 120, 60],
+        EntityClass::Ramp => [200, 190, 110],
     }
 }
 

@@ -87,3 +87,29 @@ fn obstacles_need_their_section_and_round_trip() {
         .expect_err("no obstacle section");
     assert!(matches!(err, SemanticError::InvalidEntity { .. }), "{err}");
 }
+
+/// Version 4 added ramps: a ramp reads from a version 4 file and is an unknown class in a
+/// version 3 one (which knew none), naming the file.
+#[test]
+fn a_ramp_is_read_from_version_4_and_unknown_to_version_3() {
+    let mut value: Value = serde_json::from_str(&default_map().to_json_string()).expect("JSON");
+    assert_eq!(value["version"], 4);
+    let mut ramp = value["entities"][0].clone();
+    ramp["id"] = Value::from(10_000);
+    ramp["class"] = Value::from("ramp");
+    ramp["geometry"] = serde_json::json!({"center_m": [2.0, 1.0, 0.25], "size_m": [6.0, 2.0, 0.5], "yaw_deg": 90.0});
+    for key in ["wall", "door", "opening", "stairs", "obstacle", "floor"] {
+        ramp.as_object_mut().expect("object").remove(key);
+    }
+    value["entities"].as_array_mut().expect("array").push(ramp);
+    let map = SemanticMap::from_json_str(&value.to_string(), Path::new("v4.json")).expect("v4");
+    assert_eq!(map.of_class(EntityClass::Ramp).count(), 1);
+    value["version"] = Value::from(3);
+    let err = SemanticMap::from_json_str(&value.to_string(), Path::new("v3.json"))
+        .expect_err("a ramp in version 3");
+    assert!(
+        matches!(err, SemanticError::UnknownClass { ref class, .. } if class == "ramp"),
+        "{err}"
+    );
+    assert!(err.to_string().contains("v3.json"), "{err}");
+}

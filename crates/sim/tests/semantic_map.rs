@@ -101,3 +101,47 @@ fn semantic_map_file_errors_name_the_file() {
     let err = WorldSpec::from_semantic_map_file(&missing).err().unwrap();
     assert!(err.to_string().contains("nothing.json"), "{err}");
 }
+
+/// A map's ramp (version 4) is a slope the robot drives up: from the floor at its foot
+/// (x = 2) to 0.5 m at its head (x = 8), 2 m wide.
+#[test]
+fn the_robot_drives_up_a_mapped_ramp() {
+    let identity = "[1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0]";
+    let entity = |id: u32, class: &str, c: [f64; 3], s: [f64; 3]| {
+        format!(
+            r#"{{"id":{id},"class":"{class}","geometry":{{"center_m":{c:?},"size_m":{s:?},"yaw_deg":0.0}},"support_points":1000,"confidence":0.9,"rules":["test"]}}"#
+        )
+    };
+    let text = format!(
+        r#"{{"format":"semsim.semantic_map","version":4,"input_from_map":{identity},"entities":[{},{}],"relations":[]}}"#,
+        entity(1, "floor", [5.0, 0.0, -0.1], [12.0, 6.0, 0.2]),
+        entity(2, "ramp", [5.0, 0.0, 0.25], [6.0, 2.0, 0.5]),
+    );
+    let map =
+        semantic::SemanticMap::from_json_str(&text, std::path::Path::new("map.json")).unwrap();
+    let spec = WorldSpec::from_semantic_map(&map).unwrap();
+    let blocks: Vec<_> = spec.fixed.iter().filter(|f| f.entity == 2).collect();
+    assert_eq!(blocks.len(), 50, "one block per centimetre of rise");
+    let o = common::run(
+        &spec,
+        r#"
+        robot = "pioneer3at"
+        time_limit_s = 20.0
+        start = { x_m = 0.5, y_m = 0.0, yaw_deg = 0.0 }
+        [[waypoints]]
+        x_m = 7.4
+        y_m = 0.0
+        speed_mps = 0.5
+        tolerance_m = 0.15
+        [rules]
+        no_tipping = true
+        "#,
+    );
+    let t = timeline(&o);
+    let (first, last) = (o.trajectory[0].pose, o.trajectory.last().unwrap().pose);
+    assert!(last.x_m > 7.0, "drove up: {last:?}\n{t}");
+    // At x = 7.4 the ramp's top is 0.45 m up: the robot stands that much higher.
+    let climbed = last.z_m - first.z_m;
+    assert!((climbed - 0.45).abs() < 0.05, "climbed {climbed} m\n{t}");
+    assert!(o.verdict.passed, "{:?}\n{t}", o.verdict);
+}

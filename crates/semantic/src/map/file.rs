@@ -3,8 +3,8 @@
 //! `format` or `version`, entities lacking their class's geometry).
 
 use super::{
-    Entity, OrientedBox, RelationType, SemanticMap, MAP_CLASSES, MAP_CLASSES_V1, MAP_FORMAT,
-    MAP_VERSION, READ_VERSIONS,
+    Entity, OrientedBox, RelationType, SemanticMap, MAP_CLASSES, MAP_CLASSES_V1, MAP_CLASSES_V3,
+    MAP_FORMAT, MAP_VERSION, READ_VERSIONS,
 };
 use crate::error::{Result, SemanticError};
 use cloud::EntityClass;
@@ -36,8 +36,8 @@ impl SemanticMap {
     ///
     /// Unknown classes and relation types, dangling or duplicate ids, a wrong `format` or
     /// `version` and entities lacking their class's geometry are typed errors. A version 1 file
-    /// (no obstacles, columns, beams or `near`) or version 2 file (no `floor` section) is read
-    /// as the current version: both are subsets of it.
+    /// (no obstacles, columns, beams or `near`), version 2 file (no `floor` section) or
+    /// version 3 file (no ramps) is read as the current version: each is a subset of it.
     pub fn from_json_str(text: &str, path: &Path) -> Result<SemanticMap> {
         let syntax = |e: serde_json::Error| SemanticError::Syntax {
             path: path.to_path_buf(),
@@ -46,7 +46,7 @@ impl SemanticMap {
         let value: serde_json::Value = serde_json::from_str(text).map_err(syntax)?;
         precheck(&value, path)?;
         let mut map: SemanticMap = serde_json::from_value(value).map_err(syntax)?;
-        // Versions 1 and 2 are read as the current version (their content is a subset).
+        // Versions 1-3 are read as the current version (their content is a subset).
         map.version = MAP_VERSION;
         map.validate(path)?;
         Ok(map)
@@ -134,7 +134,11 @@ fn precheck(value: &serde_json::Value, path: &Path) -> Result<()> {
     }
     // Version 1 knew fewer classes and relation types.
     let v1 = version == 1;
-    let classes: &[EntityClass] = if v1 { &MAP_CLASSES_V1 } else { &MAP_CLASSES };
+    let classes: &[EntityClass] = match version {
+        1 => &MAP_CLASSES_V1,
+        2 | 3 => &MAP_CLASSES_V3,
+        _ => &MAP_CLASSES,
+    };
     let kinds: &[RelationType] = if v1 {
         &RelationType::ALL[..7]
     } else {

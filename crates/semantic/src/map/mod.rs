@@ -17,13 +17,13 @@ use serde::{Deserialize, Serialize};
 pub const MAP_FORMAT: &str = "semsim.semantic_map";
 /// The map file version this build writes. Version 2 added the classes `obstacle`, `column` and
 /// `beam` (with their `obstacle` section) and the relation `near`; version 3 the floor's
-/// `floor` section (where the floor was seen); version 1 and 2 files are still read (see
-/// [`READ_VERSIONS`]).
-pub const MAP_VERSION: u32 = 3;
+/// `floor` section (where the floor was seen); version 4 the class `ramp` (its box rises along
+/// its own x axis); version 1, 2 and 3 files are still read (see [`READ_VERSIONS`]).
+pub const MAP_VERSION: u32 = 4;
 /// The map file versions this build reads: version 1 (walls, openings, doors, stairs, floor and
-/// ceiling only) and version 2 (no `floor` section: the floor is its box) are subsets of
-/// version 3 and are read as such.
-pub const READ_VERSIONS: [u32; 3] = [1, 2, 3];
+/// ceiling only), version 2 (no `floor` section: the floor is its box) and version 3 (no
+/// ramps) are subsets of version 4 and are read as such.
+pub const READ_VERSIONS: [u32; 4] = [1, 2, 3, 4];
 
 /// An oriented box: centre, full size along its own axes (x along `yaw_deg`, y across, z up).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -89,10 +89,27 @@ impl OrientedBox {
 }
 
 /// The classes a semantic map's entities may have (the paper's L_sm and, from version 2, what
-/// occupies space besides: obstacles, columns, beams), in the order error messages list them.
+/// occupies space besides: obstacles, columns, beams; from version 4, ramps), in the order
+/// error messages list them.
 /// The other classes of [`EntityClass`] (`unknown`, `furniture`, `robot`) are point labels or
 /// simulation bodies, never map entities.
-pub const MAP_CLASSES: [EntityClass; 10] = [
+pub const MAP_CLASSES: [EntityClass; 11] = [
+    EntityClass::Wall,
+    EntityClass::WallAboveDoor,
+    EntityClass::Floor,
+    EntityClass::Ceiling,
+    EntityClass::Door,
+    EntityClass::FreeSpaceForDoor,
+    EntityClass::Stairs,
+    EntityClass::Obstacle,
+    EntityClass::Column,
+    EntityClass::Beam,
+    EntityClass::Ramp,
+];
+
+/// The classes a version 2 or 3 map file may hold (the first ten of [`MAP_CLASSES`]: no
+/// ramps).
+pub const MAP_CLASSES_V3: [EntityClass; 10] = [
     EntityClass::Wall,
     EntityClass::WallAboveDoor,
     EntityClass::Floor,

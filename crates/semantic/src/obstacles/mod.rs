@@ -58,7 +58,9 @@ mod fit;
 mod frames;
 mod fringe;
 
+pub(crate) use cluster::{components, BandGrid};
 pub use fit::intersection_area as convex_intersection_area;
+pub(crate) use fit::{convex_hull, min_area_rect, rect_corners};
 mod levels;
 mod merge;
 mod necks;
@@ -72,7 +74,6 @@ use crate::walls::WallFit;
 use backing::{back_onto_walls, floor_seen};
 use classify::{classify, fit_cluster};
 use cloud::EntityClass;
-use cluster::{components, BandGrid};
 pub use config::ObstacleConfig;
 use faces::join_faces;
 use frames::{split_frame, MAX_FRAME_FILL, MIN_FRAME_ACROSS_M};

@@ -21,6 +21,7 @@ use crate::noise_filter::{filter_mask, NoiseFilterConfig};
 use crate::obstacles::{find_obstacles, ObstacleConfig, ObstacleScene};
 use crate::points::MapPoints;
 use crate::projection::{frame_for, project, Projection, ProjectionConfig};
+use crate::ramps::{find_ramps, RampConfig, RampScene};
 use crate::scene::SceneIndexes;
 use crate::skeleton::thin;
 use crate::stairs::{find_stairs, DetectedStairs, StairsConfig};
@@ -63,6 +64,8 @@ pub struct SemanticConfig {
     pub labels: LabelConfig,
     /// Obstacles, columns and beams.
     pub obstacles: ObstacleConfig,
+    /// Ramps.
+    pub ramps: RampConfig,
 }
 
 impl SemanticConfig {
@@ -80,7 +83,8 @@ impl SemanticConfig {
         self.stairs.validate()?;
         self.net.validate()?;
         self.labels.validate()?;
-        self.obstacles.validate()
+        self.obstacles.validate()?;
+        self.ramps.validate()
     }
 }
 
@@ -135,9 +139,23 @@ pub fn build_semantic_map(cloud: &PointCloud, config: &SemanticConfig) -> Result
     // 5. Per-point labels of those entities (map points).
     let mut map_labels = label_points(&mp.points, &indexes.index, &det, &ids, &config.labels);
     clock.lap("labels");
-    // 6. Obstacles, columns and beams: what the points no entity labelled occupy; added to the
-    //    net (with their relations) and to the labels.
-    let explained: Vec<bool> = map_labels.iter().map(|l| l.entity != 0).collect();
+    // 6. Ramps, then obstacles, columns and beams: what the points no entity labelled
+    //    occupy; added to the net (with their relations) and to the labels.
+    let mut explained: Vec<bool> = map_labels.iter().map(|l| l.entity != 0).collect();
+    let (floor_z, ceiling_z) = (det.levels.floor_ref_m, det.levels.ceiling_ref_m);
+    let ramp_scene = RampScene {
+        points: &mp.points,
+        explained: &explained,
+        floor: floor_z,
+        image: &loc.frame,
+    };
+    let ramps = find_ramps(&ramp_scene, &config.ramps, pc.max_pixels);
+    for r in &ramps {
+        for &i in &r.points {
+            explained[i as usize] = true;
+        }
+    }
+    clock.lap("ramps");
     let keep_out: Vec<_> = map
         .entities
         .iter()
@@ -150,20 +168,24 @@ pub fn build_semantic_map(cloud: &PointCloud, config: &SemanticConfig) -> Result
     let obstacle_scene = ObstacleScene {
         points: &mp.points,
         explained: &explained,
-        floor: det.levels.floor_ref_m,
-        ceiling: det.levels.ceiling_ref_m,
+        floor: floor_z,
+        ceiling: ceiling_z,
         image: &loc.frame,
         walls: &det.walls,
         keep_out: &keep_out,
     };
     let obstacles = find_obstacles(&obstacle_scene, &config.obstacles, pc.max_pixels);
-    let obstacle_ids = add_obstacles(
-        &mut map,
-        &ids,
-        det.levels.floor_ref_m,
-        &obstacles,
-        &config.net,
-    );
+    let ramp_boxes: Vec<_> = ramps.iter().map(|r| r.as_obstacle()).collect();
+    let ramp_ids = add_obstacles(&mut map, &ids, floor_z, &ramp_boxes, &config.net);
+    for (r, &id) in ramps.iter().zip(&ramp_ids) {
+        for &i in &r.points {
+            map_labels[i as usize] = Label {
+                entity: id,
+                class: cloud::EntityClass::Ramp,
+            };
+        }
+    }
+    let obstacle_ids = add_obstacles(&mut map, &ids, floor_z, &obstacles, &config.net);
     label_obstacles(
         &indexes.index,
         &obstacles,

@@ -3,6 +3,7 @@
 //! `walls[4].doors[2].leaf`, `stairs[0]`, `boxes[1]`); each door opening also gets a free-space
 //! entity `walls[4].doors[2].free_space` with the next free ids.
 
+use super::ramp::{MAX_RAMP_BLOCKS, RAMP_STEP_M};
 use super::ImportConfig;
 use crate::error::{Result, SimError};
 use crate::spec::{
@@ -89,7 +90,8 @@ fn fixed_and_stairs(
             | EntityClass::Furniture
             | EntityClass::Obstacle
             | EntityClass::Column
-            | EntityClass::Beam => {
+            | EntityClass::Beam
+            | EntityClass::Ramp => {
                 for geometry in boxes_of(part) {
                     fixed.push(FixedBox {
                         entity: id,
@@ -274,12 +276,6 @@ fn free_space(d: &Door, w: &Wall, axis: &WallAxis, cfg: &ImportConfig) -> BoxSpe
         yaw_deg: axis.yaw.to_degrees(),
     }
 }
-
-/// The most blocks a pitched part (a ramp's slab) becomes.
-const MAX_RAMP_BLOCKS: f64 = 2000.0;
-/// The height of one block's step along a ramp (m): a centimetre is below what a wheel of any
-/// robot feels (kerbs and door sills are 2 cm and more).
-const RAMP_STEP_M: f64 = 0.01;
 
 /// The boxes of part `p` for the world, whose boxes turn about z only: the part itself, or for
 /// a pitched one (a ramp's slab) a run of yawed blocks following its top within [`RAMP_STEP_M`]

@@ -7,6 +7,7 @@
 //! Semantic entities have ids but no names: each gets `<class>_<id>` (e.g. `door_13`,
 //! `free_space_for_door_14`, `stairs_21`), usable in scenarios like the ids themselves.
 
+use super::ramp::wedge_blocks;
 use super::ImportConfig;
 use crate::error::Result;
 use crate::spec::{
@@ -88,6 +89,15 @@ impl WorldSpec {
                 | EntityClass::Obstacle
                 | EntityClass::Column
                 | EntityClass::Beam => spec.fixed.push(fixed(e.class, &e.geometry)),
+                // A ramp rises along its box's x axis: blocks following its slope.
+                EntityClass::Ramp => {
+                    for geometry in wedge_blocks(&box_of(&e.geometry)) {
+                        spec.fixed.push(FixedBox {
+                            geometry,
+                            ..fixed(EntityClass::Ramp, &e.geometry)
+                        });
+                    }
+                }
                 EntityClass::Wall => match &e.wall {
                     Some(w) if !w.solid_boxes.is_empty() => {
                         for b in &w.solid_boxes {

@@ -84,9 +84,14 @@ def row(name, evs, poses):
     errs = [e["wall_endpoint_error_mean_m"] for e in evs if e.get("wall_endpoint_error_mean_m") is not None]
     err = sum(errs) / len(errs) if errs else float("nan")
     bm = total(evs, "beams")
+    # Ramps: matched / seen (reported), the largest pitch error (evaluations without ramps: -).
+    rp = {k: sum(e.get("ramps", {}).get(k, 0) for e in evs) for k in ("expected", "detected", "matched")}
+    pitch = [abs(m["pitch_error_deg"]) for e in evs for m in e.get("ramp_matches", [])]
+    ramps = (f"{rp['matched']}/{rp['expected']} ({rp['detected']})"
+             + (f", {max(pitch):.2f}" if pitch else "")) if any("ramps" in e for e in evs) else "-"
     return (f"| {name} | {poses} | {f1(w):.3f} | {f1(d):.3f} | {exact}/{st['expected']} | {exact_full}/{len(full)} | "
             f"{false_stairs} | {recall:.3f} ({o['matched']}/{o['expected']}) | {beams} | {100 * err:.1f} | "
-            f"{bm['matched']}/{bm['expected']} ({bm['detected']}) |")
+            f"{bm['matched']}/{bm['expected']} ({bm['detected']}) | {ramps} |")
 
 lines = [
     "# The semantic map on every generator style",
@@ -100,12 +105,13 @@ lines = [
     "of its side; a step never seen cannot be counted); false stairs: staircases",
     "reported where there is none; beams as walls: walls reported on a beam or a row of pillars;",
     "endpoint error: mean of the buildings' mean wall endpoint errors; beams found: true beams, ducts",
-    "and pipes matched / seen (beams the map reports).",
+    "and pipes matched / seen (beams the map reports); ramps: true ramps matched / seen (ramps the map",
+    "reports), and the largest pitch error of a matched one (degrees).",
     "",
 ]
 header = ("| building | poses | walls F1 | doors F1 | stairs exact | every step seen | false stairs | "
-          "obstacles recall | beams as walls | endpoint error (cm) | beams found (reported) |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|")
+          "obstacles recall | beams as walls | endpoint error (cm) | beams found (reported) | ramps |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|")
 for style in styles:
     lines += [f"## {style}", "", header]
     evs, all_poses, failed = [], 0, 0
@@ -115,7 +121,7 @@ for style in styles:
         poses = sum(1 for n in os.listdir(scans) if n.endswith(".pcd")) if os.path.isdir(scans) else 0
         if os.path.exists(os.path.join(d, "failed.txt")):
             what = open(os.path.join(d, "failed.txt")).read().strip()
-            lines.append(f"| seed {seed} | {poses} | failed at `{what}` (see `{d}/log.txt`) | | | | | | | | |")
+            lines.append(f"| seed {seed} | {poses} | failed at `{what}` (see `{d}/log.txt`) | | | | | | | | | |")
             failed += 1
             continue
         ev = json.load(open(os.path.join(d, "eval.json")))

@@ -52,6 +52,9 @@ fn check(laser: &scanner::LaserConfig) {
     let out = build_semantic_map(&cloud, &SemanticConfig::default()).expect("map");
     let ev = evaluate::evaluate(&out.map, &b, Some(&cloud));
     eprintln!("{ev}");
+    for r in out.map.of_class(EntityClass::Ramp) {
+        eprintln!("ramp {}: {:?} {:?}", r.id, r.geometry, r.rules);
+    }
     // Both ramps found, rising the right way at the right pitch to the right height.
     assert_eq!(
         (ev.ramps.expected, ev.ramps.detected, ev.ramps.matched),

@@ -113,12 +113,13 @@ fn along(points: &[(DVec2, f64)], dir: DVec2, floor: f64, c: &RampConfig) -> Opt
     if seen_from - foot_u > head_u - seen_from {
         return None;
     }
-    // Across: the returns on the plane (its top, its side faces' top edges) along it.
+    // Across: the returns on or under the plane along it (its top, its side faces, its head's
+    // face a bin beyond the last on the line).
     let (mut v0, mut v1) = (f64::MAX, f64::MIN);
     let plane_at = |u: f64| floor + line.slope * (u - foot_u);
     for &(q, z) in points {
         let u = q.dot(dir);
-        if u >= seen_from && u <= head_u && (z - plane_at(u)).abs() <= c.surface_tolerance_m {
+        if u >= seen_from && u <= head_u + bin && z <= plane_at(u) + c.surface_tolerance_m {
             let v = q.dot(dir.perp());
             (v0, v1) = (v0.min(v), v1.max(v));
         }

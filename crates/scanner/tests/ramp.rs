@@ -1,5 +1,5 @@
 //! A ramp: a pitched slab whose top runs from the floor at its foot to `rise_m` at its head,
-//! labelled as floor (walkable).
+//! labelled `ramp` (walkable, neither an obstacle nor a staircase).
 
 use cloud::EntityClass;
 use glam::Vec3;
@@ -22,7 +22,7 @@ const HALL: &str = r#"
 "#;
 
 #[test]
-fn a_ray_down_onto_a_ramp_hits_its_slope_labelled_floor() {
+fn a_ray_down_onto_a_ramp_hits_its_slope_labelled_ramp() {
     let b = Building::from_toml_str(HALL, Path::new("hall.toml")).expect("valid");
     let g = BuildingGeometry::new(&b);
     let ramp = g
@@ -30,7 +30,7 @@ fn a_ray_down_onto_a_ramp_hits_its_slope_labelled_floor() {
         .iter()
         .find(|e| e.name == "ramps[0]")
         .expect("ramp entity");
-    assert_eq!(ramp.class, EntityClass::Floor);
+    assert_eq!(ramp.class, EntityClass::Ramp);
     for along in [0.5, 2.0, 4.0, 6.0, 7.5] {
         let origin = Vec3::new(2.0 + along, 3.0, 2.5);
         let (toi, label) = g

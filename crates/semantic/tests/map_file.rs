@@ -223,9 +223,9 @@ fn bad_files_give_typed_errors() {
     );
     let err = edit(&|v| v["format"] = Value::from("something else")).expect_err("format");
     assert!(matches!(err, SemanticError::WrongFormat { .. }), "{err}");
-    let err = edit(&|v| v["version"] = Value::from(4)).expect_err("version");
+    let err = edit(&|v| v["version"] = Value::from(5)).expect_err("version");
     assert!(
-        matches!(err, SemanticError::UnsupportedVersion { found: 4, .. }),
+        matches!(err, SemanticError::UnsupportedVersion { found: 5, .. }),
         "{err}"
     );
     let err = edit(&|v| v["entities"][1]["id"] = v["entities"][0]["id"].clone())

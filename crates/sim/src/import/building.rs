@@ -359,7 +359,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_ramp_becomes_floor_blocks_following_its_slope_within_a_centimetre() {
+    fn a_ramp_becomes_blocks_following_its_slope_within_a_centimetre() {
         let text = r#"
             [floor]
             min_m = [0.0, 0.0]
@@ -378,7 +378,7 @@ mod tests {
         let blocks: Vec<&FixedBox> = spec.fixed.iter().filter(|f| f.name == "ramps[0]").collect();
         assert!(blocks.len() >= 100, "{} blocks", blocks.len());
         for f in blocks {
-            assert_eq!(f.class, EntityClass::Floor);
+            assert_eq!(f.class, EntityClass::Ramp);
             let g = &f.geometry;
             let top = g.center_m[2] + g.half_extents_m[2];
             // The slope's height at the block's middle (the foot is at x = 2).

@@ -104,6 +104,17 @@ fn a_ramp_is_read_from_version_4_and_unknown_to_version_3() {
     value["entities"].as_array_mut().expect("array").push(ramp);
     let map = SemanticMap::from_json_str(&value.to_string(), Path::new("v4.json")).expect("v4");
     assert_eq!(map.of_class(EntityClass::Ramp).count(), 1);
+    // A ramp steeper than 45 degrees (higher than long) is no ramp: a typed error naming it.
+    let mut steep = value.clone();
+    let last = steep["entities"].as_array().expect("array").len() - 1;
+    steep["entities"][last]["geometry"]["size_m"] = serde_json::json!([0.2, 2.0, 0.5]);
+    let err = SemanticMap::from_json_str(&steep.to_string(), Path::new("steep.json"))
+        .expect_err("a ramp higher than long");
+    assert!(
+        matches!(err, SemanticError::InvalidEntity { id: 10_000, .. }),
+        "{err}"
+    );
+    assert!(err.to_string().contains("steep.json"), "{err}");
     value["version"] = Value::from(3);
     let err = SemanticMap::from_json_str(&value.to_string(), Path::new("v3.json"))
         .expect_err("a ramp in version 3");

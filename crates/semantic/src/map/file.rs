@@ -264,6 +264,15 @@ fn check_entity(e: &Entity) -> std::result::Result<(), String> {
                 }
             }
         }
+        EntityClass::Ramp => {
+            let [length, _, rise] = e.geometry.size_m;
+            if !(length > 0.0 && rise > 0.0 && rise <= length) {
+                return Err(format!(
+                    "a ramp rises along its box's x axis: its length ({length} m) and rise \
+                     ({rise} m) must be above 0, the rise at most the length"
+                ));
+            }
+        }
         _ => {}
     }
     Ok(())

@@ -105,7 +105,7 @@ pub use labels::LabelConfig;
 pub use map::{
     DoorInfo, Entity, FloorInfo, HingeEdge, ObstacleInfo, OpeningInfo, OrientedBox, Relation,
     RelationType, SemanticMap, StairsInfo, SwingSide, WallInfo, MAP_CLASSES, MAP_CLASSES_V1,
-    MAP_CLASSES_V3, MAP_FORMAT, MAP_VERSION, READ_VERSIONS,
+    MAP_FORMAT, MAP_VERSION, READ_VERSIONS,
 };
 pub use merge::{MergeConfig, Segment};
 pub use net::NetConfig;

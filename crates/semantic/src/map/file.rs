@@ -3,8 +3,8 @@
 //! `format` or `version`, entities lacking their class's geometry).
 
 use super::{
-    Entity, OrientedBox, RelationType, SemanticMap, MAP_CLASSES, MAP_CLASSES_V1, MAP_CLASSES_V3,
-    MAP_FORMAT, MAP_VERSION, READ_VERSIONS,
+    Entity, OrientedBox, RelationType, SemanticMap, MAP_CLASSES, MAP_CLASSES_V1, MAP_FORMAT,
+    MAP_VERSION, READ_VERSIONS,
 };
 use crate::error::{Result, SemanticError};
 use cloud::EntityClass;
@@ -136,7 +136,8 @@ fn precheck(value: &serde_json::Value, path: &Path) -> Result<()> {
     let v1 = version == 1;
     let classes: &[EntityClass] = match version {
         1 => &MAP_CLASSES_V1,
-        2 | 3 => &MAP_CLASSES_V3,
+        // Versions 2 and 3 knew every class but the last, `ramp`.
+        2 | 3 => &MAP_CLASSES[..MAP_CLASSES.len() - 1],
         _ => &MAP_CLASSES,
     };
     let kinds: &[RelationType] = if v1 {

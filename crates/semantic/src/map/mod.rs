@@ -89,8 +89,9 @@ impl OrientedBox {
 }
 
 /// The classes a semantic map's entities may have (the paper's L_sm and, from version 2, what
-/// occupies space besides: obstacles, columns, beams; from version 4, ramps), in the order
-/// error messages list them.
+/// occupies space besides: obstacles, columns, beams; from version 4, ramps, kept last: a
+/// version 2 or 3 file may hold every class but the last), in the order error messages list
+/// them.
 /// The other classes of [`EntityClass`] (`unknown`, `furniture`, `robot`) are point labels or
 /// simulation bodies, never map entities.
 pub const MAP_CLASSES: [EntityClass; 11] = [
@@ -105,21 +106,6 @@ pub const MAP_CLASSES: [EntityClass; 11] = [
     EntityClass::Column,
     EntityClass::Beam,
     EntityClass::Ramp,
-];
-
-/// The classes a version 2 or 3 map file may hold (the first ten of [`MAP_CLASSES`]: no
-/// ramps).
-pub const MAP_CLASSES_V3: [EntityClass; 10] = [
-    EntityClass::Wall,
-    EntityClass::WallAboveDoor,
-    EntityClass::Floor,
-    EntityClass::Ceiling,
-    EntityClass::Door,
-    EntityClass::FreeSpaceForDoor,
-    EntityClass::Stairs,
-    EntityClass::Obstacle,
-    EntityClass::Column,
-    EntityClass::Beam,
 ];
 
 /// The classes a version 1 map file may hold (the first seven of [`MAP_CLASSES`]).

@@ -20,6 +20,23 @@ pub struct ImageFrame {
 }
 
 impl ImageFrame {
+    /// The same area at `cell_m` cells, or this frame itself if that would exceed
+    /// `max_pixels` (the obstacles' and ramps' grids).
+    pub(crate) fn at_cell(&self, cell_m: f64, max_pixels: u64) -> ImageFrame {
+        let scale = self.resolution_m / cell_m;
+        let own = ImageFrame {
+            origin_m: self.origin_m,
+            resolution_m: cell_m,
+            width_px: (self.width_px as f64 * scale).ceil().max(1.0) as u32,
+            height_px: (self.height_px as f64 * scale).ceil().max(1.0) as u32,
+        };
+        if (own.len() as u64) <= max_pixels {
+            own
+        } else {
+            *self
+        }
+    }
+
     /// The pixel containing map point `(x, y)`, if inside the image.
     pub fn pixel_of(&self, x: f64, y: f64) -> Option<(u32, u32)> {
         let c = ((x - self.origin_m[0]) / self.resolution_m).floor();

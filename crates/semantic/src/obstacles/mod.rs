@@ -132,20 +132,8 @@ pub(crate) fn find_obstacles(
     c: &ObstacleConfig,
     max_pixels: u64,
 ) -> Vec<DetectedObstacle> {
-    // The grid covers the projection image's area at `cell_m` (or at the image's own
-    // resolution if that would exceed the pixel cap).
-    let scale = sc.image.resolution_m / c.cell_m;
-    let own = ImageFrame {
-        origin_m: sc.image.origin_m,
-        resolution_m: c.cell_m,
-        width_px: (sc.image.width_px as f64 * scale).ceil().max(1.0) as u32,
-        height_px: (sc.image.height_px as f64 * scale).ceil().max(1.0) as u32,
-    };
-    let frame = if (own.len() as u64) <= max_pixels {
-        own
-    } else {
-        *sc.image
-    };
+    // The grid covers the projection image's area at `cell_m`.
+    let frame = sc.image.at_cell(c.cell_m, max_pixels);
     // 1. The unexplained points of each band, by cell.
     let mut excluded = wall_cells(&frame, sc.walls, c.wall_margin_m);
     exclude_boxes(&frame, sc.keep_out, c.wall_margin_m, &mut excluded);

@@ -1,7 +1,7 @@
-//! Whether a cluster is a ramp: along one of its footprint's axes, its upper profile rises in
-//! a straight line from near the floor (the ramp's top, or its side face's top edge where the
-//! top was not seen), steep enough for a ramp and no steeper; the plane through that line,
-//! level across, is the ramp's top.
+//! Whether a cluster is a ramp: uphill (or along an axis of its footprint), its upper profile
+//! rises in a straight line from near the floor (the ramp's top, or its side face's top edge
+//! where the top was not seen), steep enough for a ramp and no steeper; the plane through that
+//! line, level across, is the ramp's top.
 
 use super::profile::{fit_line, upper_profile};
 use super::RampConfig;
@@ -9,14 +9,13 @@ use crate::obstacles::{convex_hull, min_area_rect};
 use glam::DVec2;
 
 /// A ramp's plane and footprint: `z = floor + slope · (u - u_range.0)` along `dir` (uphill),
-/// level across it; the footprint is `origin + u·dir + v·perp` over the ranges.
+/// level across it; the footprint is `u·dir + v·perp` over the ranges (map XY).
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct RampPlane {
     /// Uphill unit direction (XY).
     pub dir: DVec2,
-    pub origin: DVec2,
-    /// From the foot (where the plane meets the floor) to the highest return along `dir`, and
-    /// the returns' extent across.
+    /// From the foot (where the plane meets the floor) to the end of the last profile bin on
+    /// the line, and the extent across of the returns on or under the plane.
     pub u_range: (f64, f64),
     pub v_range: (f64, f64),
     /// Rise per metre along `dir`.
@@ -31,13 +30,7 @@ pub(crate) struct RampPlane {
 impl RampPlane {
     /// The plane's height at `p`.
     pub fn z_at(&self, p: DVec2) -> f64 {
-        self.floor + self.slope * ((p - self.origin).dot(self.dir) - self.u_range.0).max(0.0)
-    }
-
-    /// The footprint coordinates `(u, v)` of `p`.
-    pub fn uv(&self, p: DVec2) -> (f64, f64) {
-        let r = p - self.origin;
-        (r.dot(self.dir), r.dot(self.dir.perp()))
+        self.floor + self.slope * (p.dot(self.dir) - self.u_range.0).max(0.0)
     }
 
     /// The head's height above the floor.
@@ -53,11 +46,10 @@ impl RampPlane {
 
 /// The ramp a cluster's returns (XY, z; `cells` its occupied cells' centres and tops) are, if
 /// any. Uphill on the plane through most cells' tops, or else along an axis of the footprint's
-/// rectangle, the upper profile's line must be as steep as a ramp
-/// and no steeper, hold `min_inliers` of the bins within `max_rms_m`, start within
-/// `max_foot_height_m` of the floor and meet it no farther before the stretch on the line than
-/// that stretch is long; and the ramp must be long, wide and high enough. The first direction
-/// that passes is the ramp's.
+/// rectangle, the upper profile's line must be as steep as a ramp and no steeper, hold
+/// `min_inliers` of the bins within `max_rms_m`, start within `max_foot_height_m` of the floor
+/// and meet it no farther before the stretch on the line than that stretch is long; and the
+/// ramp must be long, wide and high enough. The first direction that passes is the ramp's.
 pub(crate) fn ramp_plane(
     points: &[(DVec2, f64)],
     cells: &[(DVec2, f64)],
@@ -126,7 +118,6 @@ fn along(points: &[(DVec2, f64)], dir: DVec2, floor: f64, c: &RampConfig) -> Opt
     }
     let plane = RampPlane {
         dir,
-        origin: DVec2::ZERO,
         u_range: (foot_u, head_u),
         v_range: (v0, v1),
         slope: line.slope,

@@ -7,8 +7,9 @@
 //!    apart whose tops differ by at most `max_top_step_m` plus the steepest ramp's rise over
 //!    the distance form a cluster (a laser's lines on a shallow slope seen from its foot are
 //!    decimetres apart).
-//! 2. A cluster is a ramp ([`fit::ramp_plane`]) if, along an axis of its footprint's rectangle,
-//!    its upper profile ([`profile`]: the highest return per bin) rises in a straight line
+//! 2. A cluster is a ramp ([`fit::ramp_plane`]) if, uphill on the plane through most of its
+//!    cells' tops (RANSAC; snapped onto its footprint rectangle's nearest axis within 10
+//!    degrees) or else along one of those axes, its upper profile ([`profile`]: the highest return per bin) rises in a straight line
 //!    from near the floor: the ramp's top, or where the top was seen too obliquely to return
 //!    (a laser low over a shallow ramp), the top edge of its side face. The line holds most
 //!    bins (what stands on the ramp lifts some off it), is as steep as ramps are and no
@@ -76,7 +77,7 @@ pub(crate) struct RampScene<'a> {
 
 /// Finds the ramps (see the module docs).
 pub(crate) fn find_ramps(sc: &RampScene, c: &RampConfig, max_pixels: u64) -> Vec<DetectedRamp> {
-    let frame = grid_frame(sc.image, c.cell_m, max_pixels);
+    let frame = sc.image.at_cell(c.cell_m, max_pixels);
     // 1. The unexplained points of the band, by cell, and their clusters.
     let (z_lo, z_hi) = (
         (sc.floor + c.min_above_floor_m) as f32,
@@ -142,23 +143,6 @@ pub(crate) fn find_ramps(sc: &RampScene, c: &RampConfig, max_pixels: u64) -> Vec
     out
 }
 
-/// The grid's frame: the image's area at `cell_m`, or at the image's own resolution if that
-/// would exceed the pixel cap.
-fn grid_frame(image: &ImageFrame, cell_m: f64, max_pixels: u64) -> ImageFrame {
-    let scale = image.resolution_m / cell_m;
-    let own = ImageFrame {
-        origin_m: image.origin_m,
-        resolution_m: cell_m,
-        width_px: (image.width_px as f64 * scale).ceil().max(1.0) as u32,
-        height_px: (image.height_px as f64 * scale).ceil().max(1.0) as u32,
-    };
-    if (own.len() as u64) <= max_pixels {
-        own
-    } else {
-        *image
-    }
-}
-
 /// The ramp of a plane: its box, and the cluster's points (`ids`, at `pts`) on or under it.
 fn ramp_of(p: &RampPlane, ids: &[u32], pts: &[(DVec2, f64)], c: &RampConfig) -> DetectedRamp {
     let (u0, u1) = p.u_range;
@@ -169,9 +153,7 @@ fn ramp_of(p: &RampPlane, ids: &[u32], pts: &[(DVec2, f64)], c: &RampConfig) -> 
         .filter(|(_, (q, z))| *z <= p.z_at(*q) + c.surface_tolerance_m)
         .map(|(&i, _)| i)
         .collect();
-    let center = p.origin + p.dir * ((u0 + u1) / 2.0) + p.dir.perp() * ((v0 + v1) / 2.0);
-    let (_, v) = p.uv(center);
-    debug_assert!((v - (v0 + v1) / 2.0).abs() < 1e-6);
+    let center = p.dir * ((u0 + u1) / 2.0) + p.dir.perp() * ((v0 + v1) / 2.0);
     DetectedRamp {
         center,
         dir: p.dir,

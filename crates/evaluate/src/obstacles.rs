@@ -262,11 +262,13 @@ fn grown(b: &OrientedBox, by: f64) -> OrientedBox {
     }
 }
 
-fn corners(b: &OrientedBox) -> [DVec2; 4] {
+/// The footprint corners of a box (counter-clockwise).
+pub(crate) fn corners(b: &OrientedBox) -> [DVec2; 4] {
     b.corners_xy().map(DVec2::from_array)
 }
 
-fn area(p: &[DVec2]) -> f64 {
+/// The area of a polygon.
+pub(crate) fn area(p: &[DVec2]) -> f64 {
     (0..p.len())
         .map(|k| p[k].perp_dot(p[(k + 1) % p.len()]))
         .sum::<f64>()

@@ -5,6 +5,7 @@
 //! and the map's ramp rises the same way (its uphill direction within 45 degrees of the
 //! true one). The matches record the footprint IoU and the pitch and rise errors.
 
+use crate::obstacles::{area, corners};
 use crate::score::ClassScore;
 use crate::truth::Truth;
 use crate::{EvalConfig, Evaluation};
@@ -111,16 +112,4 @@ pub(crate) fn evaluate_ramps(
             .map(|(r, _)| r.name.clone()),
     );
     ev.ramps = ClassScore::new(truth.len(), found.len(), ev.ramp_matches.len());
-}
-
-fn corners(b: &OrientedBox) -> [DVec2; 4] {
-    b.corners_xy().map(DVec2::from_array)
-}
-
-fn area(p: &[DVec2; 4]) -> f64 {
-    let mut a = 0.0;
-    for k in 0..4 {
-        a += p[k].perp_dot(p[(k + 1) % 4]);
-    }
-    a.abs() / 2.0
 }

@@ -37,6 +37,14 @@ pub enum EventKind {
     StairsClimbingFinished,
     /// A climbing robot is back on the floor without having finished.
     StairsClimbingAborted,
+    /// A robot stands on a ramp with a wheel, its centre past the foot.
+    RampClimbingStarted,
+    /// A robot stands on a ramp's upper end with all its touching wheels (`height_m`: the
+    /// ramp's rise).
+    RampClimbingFinished,
+    /// A climbing robot is back on the floor without having reached the ramp's upper end
+    /// (`height_m`: how high up the slope its centre got).
+    RampClimbingAborted,
     /// A door hinge or an arm joint broke.
     JointBroken,
     /// A robot's roll or pitch exceeded the limit.
@@ -62,6 +70,9 @@ impl EventKind {
             EventKind::StairsStepReached => "stairs_step_reached",
             EventKind::StairsClimbingFinished => "stairs_climbing_finished",
             EventKind::StairsClimbingAborted => "stairs_climbing_aborted",
+            EventKind::RampClimbingStarted => "ramp_climbing_started",
+            EventKind::RampClimbingFinished => "ramp_climbing_finished",
+            EventKind::RampClimbingAborted => "ramp_climbing_aborted",
             EventKind::JointBroken => "joint_broken",
             EventKind::RobotTipped => "robot_tipped",
             EventKind::RobotStuck => "robot_stuck",
@@ -208,6 +219,10 @@ pub struct EventConfig {
     pub tread_normal_z: f64,
     /// A climb is aborted when all touching wheels have been on the floor this long (s).
     pub stairs_abort_s: f64,
+    /// A ramp is climbed when the robot's centre is within this of its head, along the slope,
+    /// with every touching wheel on the ramp (m): a robot stops a body length or so short of a
+    /// head that ends in a drop.
+    pub ramp_top_within_m: f64,
 }
 
 impl Default for EventConfig {
@@ -224,6 +239,9 @@ impl Default for EventConfig {
             stuck_after_s: 3.0,
             tread_normal_z: 0.7,
             stairs_abort_s: 1.0,
+            // Twice the Pioneer 3-AT's length: its planned stop is its half length plus a
+            // margin short of the head.
+            ramp_top_within_m: 1.0,
         }
     }
 }
@@ -311,6 +329,14 @@ impl EventConfig {
             0.0,
             1.0,
             "0 to 1",
+        )?;
+        check_range(
+            el,
+            "ramp_top_within_m",
+            self.ramp_top_within_m,
+            0.0,
+            100.0,
+            "0 to 100 m",
         )?;
         Ok(())
     }

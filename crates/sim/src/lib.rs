@@ -74,6 +74,7 @@ mod live;
 mod model;
 mod operator;
 mod plan;
+mod ramps;
 mod report;
 mod resolve;
 mod scenario;

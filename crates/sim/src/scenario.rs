@@ -101,7 +101,7 @@ pub struct ReachGoal {
 
 /// The rules; entities are named by id, machine name (`walls[4].doors[2]`) or unique label.
 /// Goals (`pass_through_door`, `pass_through_doors`, `reach_top_of_stairs`,
-/// `reach_top_of_stairs_all`, `open_door`, `reach`) pass when achieved and fail at the end
+/// `reach_top_of_stairs_all`, `reach_top_of_ramps`, `open_door`, `reach`) pass when achieved and fail at the end
 /// otherwise; constraints (`max_wall_contact_s`, `no_broken_joint`,
 /// `no_tipping`, `no_stuck`) fail when violated and pass at the end otherwise.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -120,6 +120,11 @@ pub struct Rules {
     /// empty.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub reach_top_of_stairs_all: Vec<String>,
+    /// Ramps to drive up, each to its upper end (a "ramp climbing finished" event: every
+    /// touching wheel on the ramp, the robot's centre within `events.ramp_top_within_m` of its
+    /// head). Not written when empty.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub reach_top_of_ramps: Vec<String>,
     /// The robot opens this door: a "door opened" event, or the door opened at least
     /// `open_door_by_deg` wider than it started.
     pub open_door: Option<String>,
@@ -144,6 +149,7 @@ impl Default for Rules {
             pass_through_doors: Vec::new(),
             reach_top_of_stairs: None,
             reach_top_of_stairs_all: Vec::new(),
+            reach_top_of_ramps: Vec::new(),
             open_door: None,
             open_door_by_deg: 20.0,
             reach: None,

@@ -6,6 +6,7 @@ use crate::detect::contacts::{self, ContactDetector};
 use crate::detect::doors::{DoorDetector, FreeSpaceDetector};
 use crate::detect::joints;
 use crate::detect::motion::MotionDetector;
+use crate::detect::ramps::RampDetector;
 use crate::detect::stairs::StairsDetector;
 use crate::error::Result;
 use crate::events::{Emitter, Event};
@@ -78,6 +79,9 @@ pub struct Simulation {
     pub(crate) doors: DoorDetector,
     pub(crate) free_spaces: FreeSpaceDetector,
     pub(crate) stairs: StairsDetector,
+    /// The ramps and their climbs (empty in checkpoints from before ramps were detected).
+    #[serde(default)]
+    pub(crate) ramps: RampDetector,
     pub(crate) motion: MotionDetector,
     pub(crate) judge: Judge,
     pub(crate) events: Vec<Event>,
@@ -117,6 +121,7 @@ impl Simulation {
             doors,
             free_spaces: FreeSpaceDetector::default(),
             stairs: StairsDetector::default(),
+            ramps: RampDetector::new(spec),
             motion: MotionDetector::default(),
             judge,
             events: vec![],
@@ -160,6 +165,7 @@ impl Simulation {
         self.doors.update(world, cfg, &mut out);
         self.free_spaces.update(world, &mut out);
         self.stairs.update(world, &scan, cfg, &mut out);
+        self.ramps.update(world, &scan, cfg, &mut out);
         self.motion.update(world, cfg, &mut out);
         let door_angles: Vec<(u32, f64)> = world
             .doors

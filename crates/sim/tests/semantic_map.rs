@@ -4,7 +4,7 @@ mod common;
 
 use common::{has, timeline};
 use sim::EventKind::*;
-use sim::{SimError, WorldSpec};
+use sim::{EventKind, SimError, WorldSpec};
 
 /// An east wall at x = 6 with a closed 0.9 m door (y -0.5 .. 0.4) opening away from x < 6.
 fn map_json(relations: &str) -> String {
@@ -135,9 +135,15 @@ fn the_robot_drives_up_a_mapped_ramp() {
         tolerance_m = 0.15
         [rules]
         no_tipping = true
+        reach_top_of_ramps = ["2"]
         "#,
     );
     let t = timeline(&o);
+    // The climb is an event, and the wheels on the ramp are no collision with it.
+    let on_ramp = |kind: EventKind| o.events.iter().any(|e| e.kind == kind && e.involves(2));
+    assert!(on_ramp(EventKind::RampClimbingStarted), "{t}");
+    assert!(on_ramp(EventKind::RampClimbingFinished), "{t}");
+    assert!(!on_ramp(EventKind::CollisionStarted), "{t}");
     let (first, last) = (o.trajectory[0].pose, o.trajectory.last().unwrap().pose);
     assert!(last.x_m > 7.0, "drove up: {last:?}\n{t}");
     // At x = 7.4 the ramp's top is 0.45 m up: the robot stands that much higher.

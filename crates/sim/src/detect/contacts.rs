@@ -5,7 +5,9 @@
 //!
 //! Wheel-vs-floor contacts are never collisions (wheels always touch the floor); a chassis or
 //! arm touching the floor (after tipping over) is one. Wheel contacts with stair steps drive the
-//! climbing events instead; chassis and arm contacts with steps are collisions.
+//! climbing events instead; chassis and arm contacts with steps are collisions. Wheels on a
+//! ramp are no collision either (the ramp is driven on like the floor); they drive the ramp
+//! climbing events.
 
 use crate::events::{Emitter, EventConfig, EventKind};
 use crate::world::tags::{Part, Tag};
@@ -34,6 +36,8 @@ pub(crate) struct ContactScan {
     pub wheels_on_stairs: Vec<Vec<WheelOnStairs>>,
     /// Per robot: the wheels touching the floor.
     pub wheels_on_floor: Vec<BTreeSet<u16>>,
+    /// Per robot: (ramp entity, wheel) for each wheel touching a ramp.
+    pub wheels_on_ramps: Vec<BTreeSet<(u32, u16)>>,
 }
 
 pub(crate) fn scan(world: &World) -> ContactScan {
@@ -43,6 +47,7 @@ pub(crate) fn scan(world: &World) -> ContactScan {
     for (ri, robot) in world.robots.iter().enumerate() {
         let mut on_stairs = vec![];
         let mut on_floor = BTreeSet::new();
+        let mut on_ramps = BTreeSet::new();
         for c in robot.colliders() {
             let Some(me) = world.tag(c) else { continue };
             for pair in np.contact_pairs_with(c) {
@@ -82,6 +87,9 @@ pub(crate) fn scan(world: &World) -> ContactScan {
                         (EntityClass::Floor, Part::Wheel) => {
                             on_floor.insert(me.index);
                         }
+                        (EntityClass::Ramp, Part::Wheel) => {
+                            on_ramps.insert((tag.entity, me.index));
+                        }
                         (EntityClass::Stairs, Part::Wheel) => on_stairs.push(WheelOnStairs {
                             wheel: me.index,
                             stairs: tag.entity,
@@ -97,6 +105,7 @@ pub(crate) fn scan(world: &World) -> ContactScan {
         }
         out.wheels_on_stairs.push(on_stairs);
         out.wheels_on_floor.push(on_floor);
+        out.wheels_on_ramps.push(on_ramps);
     }
     out
 }

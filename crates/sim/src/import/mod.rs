@@ -4,7 +4,7 @@
 //! models from URDF files ([`RobotModel::load_urdf`](crate::RobotModel::load_urdf)).
 
 mod building;
-mod ramp;
+pub(crate) mod ramp;
 #[cfg(feature = "semantic")]
 mod semantic_map;
 mod urdf;

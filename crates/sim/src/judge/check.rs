@@ -1,7 +1,8 @@
 //! What the judge watches for each rule, and the rules that name an entity resolved against the
-//! world (a door or its free space to pass through, a staircase to climb).
+//! world (a door or its free space to pass through, a staircase or a ramp to climb).
 
 use crate::error::{Result, SimError};
+use crate::ramps::ramps_of;
 use crate::scenario::ReachGoal;
 use crate::spec::WorldSpec;
 use cloud::EntityClass;
@@ -18,6 +19,12 @@ pub(super) enum Check {
         stairs: u32,
         steps: u32,
         highest: i64,
+    },
+    RampTop {
+        ramp: u32,
+        rise_m: f64,
+        /// How high up the slope the robot got in its best aborted climb (m), if it started.
+        highest_m: Option<f64>,
     },
     OpenDoor {
         door: u32,
@@ -76,6 +83,27 @@ pub(super) fn reach_top(spec: &WorldSpec, key: &str, r: &str) -> Result<Check> {
         stairs: e.id,
         steps,
         highest: -1,
+    })
+}
+
+/// The check of driving up the ramp named `r` under `key`.
+pub(super) fn ramp_top(spec: &WorldSpec, key: &str, r: &str) -> Result<Check> {
+    let el = format!("rules.{key}");
+    let e = spec.resolve(r, &el)?;
+    if e.class != EntityClass::Ramp {
+        return Err(wrong(&el, r, e.class, "ramp"));
+    }
+    let ramp = ramps_of(spec)
+        .into_iter()
+        .find(|g| g.entity == e.id)
+        .ok_or_else(|| SimError::Invalid {
+            element: el.clone(),
+            msg: format!("ramp {} has no slope to drive up", e.name),
+        })?;
+    Ok(Check::RampTop {
+        ramp: e.id,
+        rise_m: ramp.rise_m,
+        highest_m: None,
     })
 }
 

@@ -7,7 +7,7 @@ use crate::scenario::Rules;
 use crate::spec::WorldSpec;
 use crate::verdict::{RuleResult, Verdict};
 use crate::world::robot::RobotPose;
-use check::{pass_through, reach_top, wrong, Check};
+use check::{pass_through, ramp_top, reach_top, wrong, Check};
 use serde::{Deserialize, Serialize};
 
 mod check;
@@ -25,6 +25,7 @@ impl Tracked {
             self.check,
             Check::PassThrough { .. }
                 | Check::ReachTop { .. }
+                | Check::RampTop { .. }
                 | Check::OpenDoor { .. }
                 | Check::Reach { .. }
         )
@@ -80,6 +81,10 @@ impl Judge {
             .map(|r| ("reach_top_of_stairs_all", r));
         for (key, r) in stairs.chain(more_stairs) {
             push(format!("{key} = {r}"), reach_top(spec, key, r)?);
+        }
+        for r in &rules.reach_top_of_ramps {
+            let key = "reach_top_of_ramps";
+            push(format!("{key} = {r}"), ramp_top(spec, key, r)?);
         }
         if let Some(r) = &rules.open_door {
             let el = "rules.open_door";
@@ -180,6 +185,35 @@ impl Judge {
                                 true,
                                 format!(
                                     "stood on the top ({steps} treads incl. landing) at {} s",
+                                    fmt_f(e.time_s)
+                                ),
+                            );
+                            break;
+                        }
+                    }
+                }
+                Check::RampTop {
+                    ramp,
+                    rise_m,
+                    highest_m,
+                } => {
+                    for e in o
+                        .events
+                        .iter()
+                        .filter(|e| e.involves(*ramp) && e.involves(o.robot_entity))
+                    {
+                        if e.kind == EventKind::RampClimbingStarted {
+                            highest_m.get_or_insert(0.0);
+                        }
+                        if e.kind == EventKind::RampClimbingAborted {
+                            let h = e.value("height_m").unwrap_or(0.0);
+                            *highest_m = Some(highest_m.unwrap_or(0.0).max(h));
+                        }
+                        if e.kind == EventKind::RampClimbingFinished {
+                            decide(
+                                true,
+                                format!(
+                                    "drove up to the top ({rise_m:.2} m up) at {} s",
                                     fmt_f(e.time_s)
                                 ),
                             );
@@ -299,6 +333,13 @@ impl Judge {
                     }
                     Check::ReachTop { highest, steps, .. } => {
                         (false, format!("got as far as tread {} of {steps} but not fully onto the top", highest + 1))
+                    }
+                    Check::RampTop { highest_m: None, .. } => {
+                        (false, "never drove onto the ramp".into())
+                    }
+                    Check::RampTop { highest_m: Some(h), rise_m, .. } => {
+                        let off = if *h > 0.0 { format!(" (at most {h:.2} m up before it drove back off)") } else { String::new() };
+                        (false, format!("drove onto the ramp but never stood at its top, {rise_m:.2} m up{off}"))
                     }
                     Check::OpenDoor { initial_deg, widest_deg, .. } => {
                         (false, format!("the door opened at most {widest_deg:.1} degrees (from {initial_deg:.1})"))

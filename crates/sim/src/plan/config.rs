@@ -27,6 +27,9 @@ pub struct PlanConfig {
     pub time_extra_s: f64,
     /// Waypoints stay within this of the searched path (m) when the path is simplified.
     pub simplify_tolerance_m: f64,
+    /// The steepest ramp the tour drives up (degrees); steeper ones are listed as not
+    /// reachable.
+    pub max_ramp_pitch_deg: f64,
 }
 
 impl Default for PlanConfig {
@@ -45,6 +48,10 @@ impl Default for PlanConfig {
             time_slack: 2.0,
             time_extra_s: 15.0,
             simplify_tolerance_m: 0.1,
+            // The Pioneer 3-AT's datasheet grade is 35 % (19 degrees), on a dry surface with
+            // its tyres; 15 takes every car-park (at most 11) and wheelchair ramp (5) with a
+            // margin for the simulated contact friction.
+            max_ramp_pitch_deg: 15.0,
         }
     }
 }
@@ -95,6 +102,14 @@ impl PlanConfig {
             0.0,
             10.0,
             "0 to 10 m",
+        )?;
+        check_range(
+            el,
+            "max_ramp_pitch_deg",
+            self.max_ramp_pitch_deg,
+            0.0,
+            45.0,
+            "0 to 45 degrees",
         )?;
         Ok(())
     }

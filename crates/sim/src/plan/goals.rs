@@ -1,11 +1,14 @@
 //! The goals a tour can include, each with its legs: a door opening the robot fits through
 //! (a straight leg along its normal from an approach point on one side to a point past its free
 //! space on the other, as far towards the latch as the robot fits), a staircase it can climb
-//! (from a run-up before its foot to the middle of its landing); or why it cannot.
+//! (from a run-up before its foot to the middle of its landing), a ramp it can drive up (from a
+//! run-up before its foot to its upper end, the robot's length short of its head); or why it
+//! cannot.
 
 use super::footprint::Footprint;
 use super::grid::FreeGrid;
 use super::{Goal, PlanConfig, Unreachable};
+use crate::ramps::RampGeometry;
 use crate::spec::{BoxSpec, FreeSpaceSpec, StairsSpec, WorldSpec};
 
 /// The run-up before a staircase's foot (m), so the robot arrives facing up the stairs.
@@ -51,9 +54,9 @@ impl DoorLeg {
     }
 }
 
-/// A staircase the robot can climb.
-pub(crate) struct StairsLeg {
-    pub name: String,
+/// A staircase or ramp the robot can climb: up from `run_up` through `foot` to `top`.
+pub(crate) struct ClimbLeg {
+    pub goal: Goal,
     pub run_up: [f64; 2],
     pub foot: [f64; 2],
     pub top: [f64; 2],
@@ -229,7 +232,7 @@ pub(crate) fn stairs_leg(
     robot_name: &str,
     cfg: &PlanConfig,
     s: &StairsSpec,
-) -> Result<StairsLeg, Unreachable> {
+) -> Result<ClimbLeg, Unreachable> {
     let fail = |reason: String| Unreachable {
         goal: Goal::Stairs(s.name.clone()),
         reason,
@@ -291,10 +294,85 @@ pub(crate) fn stairs_leg(
             "no room for the robot before the foot of the stairs".into(),
         ));
     }
-    Ok(StairsLeg {
-        name: s.name.clone(),
+    Ok(ClimbLeg {
+        goal: Goal::Stairs(s.name.clone()),
         run_up,
         foot,
         top: [top_box.center_m[0], top_box.center_m[1]],
+    })
+}
+
+/// Whether `p` lies over one of the world's floor boxes.
+fn on_floor(world: &WorldSpec, p: [f64; 2]) -> bool {
+    world
+        .fixed
+        .iter()
+        .filter(|f| f.class == cloud::EntityClass::Floor)
+        .any(|f| {
+            let b = &f.geometry;
+            let (s, c) = b.yaw_deg.to_radians().sin_cos();
+            let d = [p[0] - b.center_m[0], p[1] - b.center_m[1]];
+            (d[0] * c + d[1] * s).abs() <= b.half_extents_m[0]
+                && (-d[0] * s + d[1] * c).abs() <= b.half_extents_m[1]
+        })
+}
+
+/// The drive up a ramp, or why the robot cannot drive up it: too steep for the plan, too
+/// narrow or too short to take the robot, or no room before its foot. The top is the robot's
+/// half length and the margin short of the head (a ramp's head may end in a drop).
+pub(crate) fn ramp_leg(
+    world: &WorldSpec,
+    grid: &FreeGrid,
+    fp: &Footprint,
+    cfg: &PlanConfig,
+    r: &RampGeometry,
+) -> Result<ClimbLeg, Unreachable> {
+    let fail = |reason: String| Unreachable {
+        goal: Goal::Ramp(r.name.clone()),
+        reason,
+    };
+    let pitch = r.pitch_deg();
+    if pitch > cfg.max_ramp_pitch_deg + 1e-9 {
+        return Err(fail(format!(
+            "the ramp climbs {pitch:.1} degrees, steeper than the plan's max_ramp_pitch_deg \
+             ({:.1})",
+            cfg.max_ramp_pitch_deg
+        )));
+    }
+    let needed = 2.0 * (fp.half_width_m + cfg.margin_m);
+    if r.width_m < needed {
+        return Err(fail(format!(
+            "the ramp is {:.2} m wide, the robot needs {needed:.2} m",
+            r.width_m
+        )));
+    }
+    let long = 2.0 * fp.half_length_m + cfg.margin_m;
+    if r.length_m < long {
+        return Err(fail(format!(
+            "the ramp is {:.2} m long, the robot needs {long:.2} m to stand on it",
+            r.length_m
+        )));
+    }
+    let foot = add(r.foot_m, r.uphill, -(fp.half_length_m + cfg.margin_m));
+    // A car-park ramp often starts near a wall, entered from the side: the run-up shortens
+    // to nothing there (the robot turns at the foot to face up the slope).
+    let run_up = [RUN_UP_M, RUN_UP_M / 2.0, 0.0]
+        .into_iter()
+        .map(|d| add(foot, r.uphill, -d))
+        .find(|&p| grid.free_at(foot) && grid.segment_free(p, foot))
+        .ok_or_else(|| {
+            fail(if on_floor(world, foot) {
+                "no room for the robot before the foot of the ramp".into()
+            } else {
+                "no floor in the world before the foot of the ramp (a map has floor only \
+                 where its scans saw it)"
+                    .into()
+            })
+        })?;
+    Ok(ClimbLeg {
+        goal: Goal::Ramp(r.name.clone()),
+        run_up,
+        foot,
+        top: r.centre_at(r.length_m - fp.half_length_m - cfg.margin_m),
     })
 }

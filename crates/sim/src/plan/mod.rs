@@ -1,9 +1,9 @@
 //! A scenario for any world: when no scenario is given, plan one from the world itself. A tour
-//! from the start through every reachable door opening and up every staircase the robot can
-//! climb, on a 2D free-space grid inflated by the robot's footprint ([`grid`]), found by
+//! from the start through every reachable door opening and up every staircase and ramp the
+//! robot can climb, on a 2D free-space grid inflated by the robot's footprint ([`grid`]), found by
 //! Dijkstra searches from where the robot stands, greedy nearest goal next ([`tour`]); the
 //! rules follow from the tour (pass through each door on it, reach the top of each staircase
-//! on it, no wall contact over 0.5 s, no tipping). What cannot be reached is listed with the
+//! and ramp on it, no wall contact over 0.5 s, no tipping). What cannot be reached is listed with the
 //! reason, never an error; a world with no free space for the robot is one.
 //!
 //! Door leaves do not block the grid: the robot may push a closed or ajar leaf (hinges turn
@@ -12,8 +12,9 @@
 //! leaf, as the map has it, already leaves the robot a way past its free edge (a leaf ajar
 //! towards the robot is pushed shut by it, which is what happens on real scans, where most
 //! leaves are seen ajar). Where both sides are reachable, the tour enters from the push side.
-//! Staircases are climbed last (the tour ends on a landing; with several, the robot drives
-//! back down to each foot before the next). A tour with nothing to pass or climb sweeps the
+//! Staircases and ramps are climbed last (the tour ends on a landing or a ramp's upper end;
+//! with several, the robot drives back down to each foot before the next). A ramp is climbed
+//! only up to `max_ramp_pitch_deg`; its upper end is the robot's half length short of its head. A tour with nothing to pass or climb sweeps the
 //! start's free region (its two farthest points), with a `reach` rule at the point farthest from
 //! the start.
 //!
@@ -52,13 +53,15 @@ pub enum Goal {
     Door(String),
     /// Climb to the top of this staircase.
     Stairs(String),
+    /// Drive up this ramp to its upper end.
+    Ramp(String),
 }
 
 impl Goal {
     /// The entity's name.
     pub fn name(&self) -> &str {
         match self {
-            Goal::Door(n) | Goal::Stairs(n) => n,
+            Goal::Door(n) | Goal::Stairs(n) | Goal::Ramp(n) => n,
         }
     }
 }
@@ -107,11 +110,30 @@ impl PlannedScenario {
             .count()
     }
 
+    /// Ramps on the tour.
+    pub fn ramps(&self) -> usize {
+        self.tour
+            .iter()
+            .filter(|g| matches!(g, Goal::Ramp(_)))
+            .count()
+    }
+
     /// One line: `planned tour: 3 doors, 1 stairs, 2 unreachable, 41.2 m` (`..., 0
-    /// unreachable, 12.5 m sweep` for a tour without goals that sweeps its free region).
+    /// unreachable, 12.5 m sweep` for a tour without goals that sweeps its free region;
+    /// `1 stairs, 1 ramps, ...` where ramps are on the tour or left out).
     pub fn summary(&self) -> String {
+        let any_ramp = self.ramps() > 0
+            || self
+                .unreachable
+                .iter()
+                .any(|u| matches!(u.goal, Goal::Ramp(_)));
+        let ramps = if any_ramp {
+            format!(", {} ramps", self.ramps())
+        } else {
+            String::new()
+        };
         format!(
-            "planned tour: {} doors, {} stairs, {} unreachable, {:.1} m{}",
+            "planned tour: {} doors, {} stairs{ramps}, {} unreachable, {:.1} m{}",
             self.doors(),
             self.stairs(),
             self.unreachable.len(),
@@ -132,7 +154,7 @@ impl PlannedScenario {
         })?;
         let mut s = String::from(
             "# Planned by semsim from the world (no scenario was given): a tour through every\n\
-             # reachable door opening and up every staircase the robot can climb.\n",
+             # reachable door opening and up every staircase and ramp the robot can climb.\n",
         );
         let _ = writeln!(
             s,
@@ -160,8 +182,8 @@ impl PlannedScenario {
         });
         let intro = match (self.tour.is_empty(), self.unreachable.is_empty()) {
             (true, true) if sweep.is_some() => format!(
-                "The scenario was planned from the world, which has no door opening or \
-                 staircase: {}.",
+                "The scenario was planned from the world, which has no door opening, \
+                 staircase or ramp: {}.",
                 sweep.unwrap_or_default()
             ),
             (true, false) if sweep.is_some() => format!(
@@ -170,14 +192,14 @@ impl PlannedScenario {
                 sweep.unwrap_or_default()
             ),
             (true, true) => format!(
-                "The scenario was planned from the world, which has no door opening or \
-                 staircase: {stand}."
+                "The scenario was planned from the world, which has no door opening, \
+                 staircase or ramp: {stand}."
             ),
             (true, false) => format!(
                 "The scenario was planned from the world, and nothing was reachable: {stand}."
             ),
             (false, true) => {
-                "Every door opening and staircase of the world is on the planned tour.".into()
+                "Every door opening, staircase and ramp of the world is on the planned tour.".into()
             }
             (false, false) => "The planned tour leaves out:".into(),
         };
@@ -190,6 +212,7 @@ impl PlannedScenario {
             let kind = match u.goal {
                 Goal::Door(_) => "door",
                 Goal::Stairs(_) => "stairs",
+                Goal::Ramp(_) => "ramp",
             };
             let _ = writeln!(
                 s,
@@ -282,7 +305,7 @@ fn scenario_of(
         .iter()
         .filter_map(|g| match g {
             Goal::Door(n) => Some(n.clone()),
-            Goal::Stairs(_) => None,
+            Goal::Stairs(_) | Goal::Ramp(_) => None,
         })
         .collect();
     let stairs: Vec<String> = t
@@ -290,7 +313,15 @@ fn scenario_of(
         .iter()
         .filter_map(|g| match g {
             Goal::Stairs(n) => Some(n.clone()),
-            Goal::Door(_) => None,
+            Goal::Door(_) | Goal::Ramp(_) => None,
+        })
+        .collect();
+    let ramps: Vec<String> = t
+        .goals
+        .iter()
+        .filter_map(|g| match g {
+            Goal::Ramp(n) => Some(n.clone()),
+            Goal::Door(_) | Goal::Stairs(_) => None,
         })
         .collect();
     // A sweep's end is a goal: the robot must get there (within a robot's length).
@@ -302,6 +333,7 @@ fn scenario_of(
     let rules = Rules {
         pass_through_doors: doors,
         reach_top_of_stairs_all: stairs,
+        reach_top_of_ramps: ramps,
         reach,
         // The issue's constraints: at most half a second against walls, never tipped.
         max_wall_contact_s: Some(0.5),
@@ -324,10 +356,11 @@ fn scenario_of(
     s.name = name;
     s.robot = cfg.robot.clone();
     s.description = format!(
-        "Planned from the world for {}: {} doors, {} stairs on the tour",
+        "Planned from the world for {}: {} doors, {} stairs, {} ramps on the tour",
         robot.name,
         rules.pass_through_doors.len(),
-        rules.reach_top_of_stairs_all.len()
+        rules.reach_top_of_stairs_all.len(),
+        rules.reach_top_of_ramps.len()
     );
     s.start = start;
     s.waypoints = waypoints;

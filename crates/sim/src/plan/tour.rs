@@ -1,24 +1,27 @@
 //! The tour: from the start, repeatedly the nearest reachable goal next (a Dijkstra search
-//! from where the robot stands), doors first, staircases last. A door is passed as a straight
-//! leg from an approach point on one side of its free space to a point on the other side where
-//! the robot has left it; a staircase as a leg from a point before its foot, facing up the
-//! stairs, to the middle of its landing (or top step). Paths between goals are simplified into
+//! from where the robot stands), doors first, staircases and ramps last. A door is passed as a
+//! straight leg from an approach point on one side of its free space to a point on the other
+//! side where the robot has left it; a staircase as a leg from a point before its foot, facing
+//! up the stairs, to the middle of its landing (or top step); a ramp likewise, to its upper
+//! end. Paths between goals are simplified into
 //! waypoints. A tour with no door or staircase to pass sweeps the start's free region instead
 //! (to its farthest point, then to the point farthest from there: a corridor's two ends, a
 //! room's far corners), so that the robot drives the space the map holds rather than stand.
 
 use super::footprint::Footprint;
-use super::goals::{door_leg, stairs_leg, DoorLeg, StairsLeg};
+use super::goals::{door_leg, ramp_leg, stairs_leg, ClimbLeg, DoorLeg};
 use super::grid::FreeGrid;
 use super::search::{length_m, simplify, Reach};
 use super::{Goal, PlanConfig, Unreachable};
 use crate::controller::Waypoint;
+use crate::ramps::ramps_of;
 use crate::spec::WorldSpec;
 
 /// Entering an opening from the side its leaf swings towards (pulling) counts as this much
 /// longer a path (m): pushing a leaf open is what the robot can do, pulling it is not.
 const PULL_PENALTY_M: f64 = 10.0;
-/// Waypoint tolerance at a staircase's top (m): the middle of the landing, not its edge.
+/// Waypoint tolerance at a staircase's top (m): the middle of the landing, not its edge (and
+/// at a ramp's upper end, not past it).
 const TOP_TOLERANCE_M: f64 = 0.1;
 /// A sweep leg shorter than this (m, weighted path length) is not driven: a free region no
 /// longer than a robot or two is a place to stand, not a space to cover.
@@ -168,7 +171,8 @@ pub(crate) fn plan_tour(
 ) -> Tour {
     let mut unreachable = vec![];
     // 1. The goals the robot fits: door openings wide enough with room on a side, staircases
-    //    with steps it climbs and treads wide enough.
+    //    with steps it climbs and treads wide enough, ramps not too steep, wide and long
+    //    enough.
     let mut all_doors: Vec<DoorLeg> = vec![];
     for fs in &world.free_spaces {
         match door_leg(world, grid, fp, cfg, fs) {
@@ -177,10 +181,16 @@ pub(crate) fn plan_tour(
         }
     }
     let mut doors: Vec<usize> = (0..all_doors.len()).collect();
-    let mut stairs: Vec<StairsLeg> = vec![];
+    let mut climbs: Vec<ClimbLeg> = vec![];
     for s in &world.stairs {
         match stairs_leg(grid, fp, robot_name, cfg, s) {
-            Ok(l) => stairs.push(l),
+            Ok(l) => climbs.push(l),
+            Err(u) => unreachable.push(u),
+        }
+    }
+    for r in ramps_of(world) {
+        match ramp_leg(world, grid, fp, cfg, &r) {
+            Ok(l) => climbs.push(l),
             Err(u) => unreachable.push(u),
         }
     }
@@ -234,41 +244,45 @@ pub(crate) fn plan_tour(
             reason,
         });
     }
-    // 3. Staircases, nearest first; between two, the robot drives back down to the foot of
-    //    the one it climbed (the tour goes on from its run-up point).
+    // 3. Staircases and ramps, nearest first; between two, the robot drives back down to the
+    //    foot of the one it climbed (the tour goes on from its run-up point).
     let mut from = b.pos;
-    let mut climbed: Option<StairsLeg> = None;
+    let mut climbed: Option<ClimbLeg> = None;
     loop {
         let reach = Reach::from(grid, from, b.comfort_m);
-        let best = stairs
+        let best = climbs
             .iter()
             .enumerate()
             .filter_map(|(i, s)| Some((reach.cost(grid.cell_of(s.run_up)?), i)))
             .filter(|(c, _)| c.is_finite())
             .min_by(|x, y| x.0.total_cmp(&y.0));
         let Some((_, i)) = best else { break };
-        let Some(cell) = grid.cell_of(stairs[i].run_up) else {
+        let Some(cell) = grid.cell_of(climbs[i].run_up) else {
             break;
         };
         if let Some(prev) = climbed.take() {
             b.leg(prev.foot, None);
             b.leg(prev.run_up, None);
         }
-        let s = stairs.remove(i);
+        let s = climbs.remove(i);
         if !b.drive_to(&reach, s.run_up) {
-            stairs.push(s);
+            climbs.push(s);
             break;
         }
         b.leg(s.foot, None);
         b.leg(s.top, Some(TOP_TOLERANCE_M));
-        b.tour.goals.push(Goal::Stairs(s.name.clone()));
+        b.tour.goals.push(s.goal.clone());
         from = cell;
         climbed = Some(s);
     }
-    for s in stairs {
+    for s in climbs {
+        let what = match s.goal {
+            Goal::Ramp(_) => "ramp",
+            _ => "stairs",
+        };
         unreachable.push(Unreachable {
-            goal: Goal::Stairs(s.name),
-            reason: "no free path from the start to the foot of the stairs".into(),
+            goal: s.goal,
+            reason: format!("no free path from the start to the foot of the {what}"),
         });
     }
     // 4. Nothing to pass or climb: sweep the start's free region, to its farthest point, then

@@ -18,8 +18,8 @@ pub struct RunArgs {
     odometry: Option<PathBuf>,
     /// The scenario (TOML). Its coordinates are in the registered world (scan 0's frame,
     /// levelled). Without one, a scenario is planned in the map's world from where scan 0's
-    /// sensor stood: a tour through every reachable door opening and up every staircase the
-    /// robot (`[plan] robot` of --config, default pioneer3at) can climb, with no wall contact
+    /// sensor stood: a tour through every reachable door opening and up every staircase and
+    /// ramp the robot (`[plan] robot` of --config, default pioneer3at) can climb, with no wall contact
     /// over 0.5 s and no tipping; it is written as simulation/scenario.toml, and what the
     /// tour cannot reach is listed in report.md.
     #[arg(long, value_name = "FILE")]

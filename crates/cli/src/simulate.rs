@@ -11,8 +11,8 @@ use std::path::PathBuf;
 #[derive(Args)]
 pub struct SimulateArgs {
     /// The scenario (TOML). Without one: with --map, a scenario is planned in the map's world
-    /// (a tour through every reachable door opening and up every staircase the robot, `[plan]
-    /// robot` of --config, can climb; it starts at the free spot nearest the middle of the
+    /// (a tour through every reachable door opening and up every staircase and ramp the
+    /// robot, `[plan] robot` of --config, can climb; it starts at the free spot nearest the middle of the
     /// largest free region); otherwise the built-in default scenario (it names the default
     /// building's door and stairs).
     #[arg(long, value_name = "FILE")]

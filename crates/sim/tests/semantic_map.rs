@@ -151,3 +151,50 @@ fn the_robot_drives_up_a_mapped_ramp() {
     assert!((climbed - 0.45).abs() < 0.05, "climbed {climbed} m\n{t}");
     assert!(o.verdict.passed, "{:?}\n{t}", o.verdict);
 }
+
+/// A map's floor is where the scans saw it, and a low laser rarely sees the floor at a ramp's
+/// foot: here the seen floor ends 1 m before the ramp (x 2..8). The world's floor runs under
+/// the ramp and `ramp_apron_m` (1 m) before its foot, so the planned tour reaches the foot and
+/// drives up; without the apron the ramp is listed with the reason.
+#[test]
+fn the_floor_runs_under_a_mapped_ramp_and_before_its_foot() {
+    let identity = "[1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0]";
+    let b =
+        |c: [f64; 3], s: [f64; 3]| format!(r#"{{"center_m":{c:?},"size_m":{s:?},"yaw_deg":0.0}}"#);
+    let floor = format!(
+        r#"{{"id":1,"class":"floor","geometry":{},"support_points":1000,"confidence":0.9,"rules":["test"],"floor":{{"parts":[{}],"coverage":1.0}}}}"#,
+        b([-1.0, 0.0, -0.1], [4.0, 4.0, 0.2]),
+        b([-1.0, 0.0, -0.1], [4.0, 4.0, 0.2]),
+    );
+    let ramp = format!(
+        r#"{{"id":2,"class":"ramp","geometry":{},"support_points":1000,"confidence":0.9,"rules":["test"]}}"#,
+        b([5.0, 0.0, 0.25], [6.0, 2.0, 0.5])
+    );
+    let text = format!(
+        r#"{{"format":"semsim.semantic_map","version":4,"input_from_map":{identity},"entities":[{floor},{ramp}],"relations":[]}}"#
+    );
+    let map =
+        semantic::SemanticMap::from_json_str(&text, std::path::Path::new("map.json")).unwrap();
+    let model = sim::RobotModel::builtin("pioneer3at").unwrap();
+    let plan = sim::PlanConfig::default();
+    let spec = WorldSpec::from_semantic_map(&map).unwrap();
+    let p = sim::plan_scenario(&spec, &model, None, &plan).unwrap();
+    assert_eq!(p.tour, vec![sim::Goal::Ramp("ramp_2".into())], "{p:?}");
+    let o = sim::run_scenario(&spec, &p.scenario, &model).unwrap();
+    assert!(o.verdict.passed, "{:#?}\n{}", o.verdict.rules, timeline(&o));
+    // Without the apron the seen floor (x -3..1) stops 1 m short of the foot.
+    let cfg = sim::ImportConfig {
+        ramp_apron_m: 0.0,
+        ..sim::ImportConfig::default()
+    };
+    let bare = WorldSpec::from_semantic_map_with(&map, &cfg).unwrap();
+    let p = sim::plan_scenario(&bare, &model, None, &plan).unwrap();
+    assert!(p.tour.is_empty(), "{p:?}");
+    assert!(
+        p.unreachable[0]
+            .reason
+            .starts_with("no floor in the world before the foot"),
+        "{:?}",
+        p.unreachable
+    );
+}

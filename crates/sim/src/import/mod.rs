@@ -28,6 +28,10 @@ pub struct ImportConfig {
     pub door_max_deg: f64,
     /// How far the free space reaches out of the wall on each side (m).
     pub free_space_margin_m: f64,
+    /// A semantic map's ramp stands on the floor and is entered at its foot: the world's floor
+    /// runs under it and this far beyond its foot (m), seen or not (the floor is built from
+    /// where the scans saw it, and a low laser rarely sees the floor at a ramp's foot).
+    pub ramp_apron_m: f64,
 }
 
 impl Default for ImportConfig {
@@ -39,6 +43,8 @@ impl Default for ImportConfig {
             door_break_force_n: 800.0,
             door_max_deg: 100.0,
             free_space_margin_m: 0.4,
+            // A robot's length and a run-up: room to line up with the slope.
+            ramp_apron_m: 1.0,
         }
     }
 }
@@ -67,6 +73,14 @@ impl ImportConfig {
             el,
             "free_space_margin_m",
             self.free_space_margin_m,
+            0.0,
+            10.0,
+            "0 to 10 m",
+        )?;
+        check_range(
+            el,
+            "ramp_apron_m",
+            self.ramp_apron_m,
             0.0,
             10.0,
             "0 to 10 m",

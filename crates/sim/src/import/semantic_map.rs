@@ -1,6 +1,7 @@
 //! Building a [`WorldSpec`] from a semantic map (`semantic::SemanticMap`, the map built from
-//! scans): walls from their solid boxes, the floor from the parts where it was seen, lintels
-//! and ceiling as fixed boxes; each door
+//! scans): walls from their solid boxes, the floor from the parts where it was seen (and under
+//! each ramp and an apron before its foot), lintels and ceiling as fixed boxes; ramps as blocks
+//! following their slope; each door
 //! leaf hinged to the wall it is `connected_via_joint` to; free spaces linked to their door and
 //! wall through `available_inside`; stairs from their step and landing boxes.
 //!
@@ -28,6 +29,26 @@ fn box_of(b: &OrientedBox) -> BoxSpec {
         center_m: b.center_m,
         half_extents_m: b.size_m.map(|s| s / 2.0),
         yaw_deg: b.yaw_deg,
+    }
+}
+
+/// The floor under a ramp (rising along its box's x axis) and `apron_m` beyond its foot: a
+/// slab 0.2 m thick whose top is at `top_z_m` (the floor's).
+fn ramp_apron(ramp: &BoxSpec, top_z_m: f64, apron_m: f64) -> BoxSpec {
+    let (s, c) = ramp.yaw_deg.to_radians().sin_cos();
+    let thickness = 0.2;
+    BoxSpec {
+        center_m: [
+            ramp.center_m[0] - c * apron_m / 2.0,
+            ramp.center_m[1] - s * apron_m / 2.0,
+            top_z_m - thickness / 2.0,
+        ],
+        half_extents_m: [
+            ramp.half_extents_m[0] + apron_m / 2.0,
+            ramp.half_extents_m[1],
+            thickness / 2.0,
+        ],
+        yaw_deg: ramp.yaw_deg,
     }
 }
 
@@ -89,12 +110,25 @@ impl WorldSpec {
                 | EntityClass::Obstacle
                 | EntityClass::Column
                 | EntityClass::Beam => spec.fixed.push(fixed(e.class, &e.geometry)),
-                // A ramp rises along its box's x axis: blocks following its slope.
+                // A ramp rises along its box's x axis: blocks following its slope, on the
+                // floor, which runs under it and `ramp_apron_m` beyond its foot.
                 EntityClass::Ramp => {
-                    for geometry in wedge_blocks(&box_of(&e.geometry)) {
+                    let ramp = box_of(&e.geometry);
+                    for geometry in wedge_blocks(&ramp) {
                         spec.fixed.push(FixedBox {
                             geometry,
                             ..fixed(EntityClass::Ramp, &e.geometry)
+                        });
+                    }
+                    if let Some(floor) = map.entities.iter().find(|f| f.class == EntityClass::Floor)
+                    {
+                        let top = floor.geometry.center_m[2] + floor.geometry.size_m[2] / 2.0;
+                        spec.fixed.push(FixedBox {
+                            entity: floor.id,
+                            class: EntityClass::Floor,
+                            name: semantic_name(EntityClass::Floor, floor.id),
+                            label: String::new(),
+                            geometry: ramp_apron(&ramp, top, cfg.ramp_apron_m),
                         });
                     }
                 }

@@ -13,8 +13,8 @@ pub struct SimulateArgs {
     /// The scenario (TOML). Without one: with --map, a scenario is planned in the map's world
     /// (a tour through every reachable door opening and up every staircase and ramp the
     /// robot, `[plan] robot` of --config, can climb; it starts at the free spot nearest the middle of the
-    /// largest free region); otherwise the built-in default scenario (it names the default
-    /// building's door and stairs).
+    /// largest free region); likewise with --building; with neither, the built-in default
+    /// scenario in the built-in building (it names that building's door and stairs).
     #[arg(long, value_name = "FILE")]
     scenario: Option<PathBuf>,
     /// The building to simulate (TOML/JSON); default: the scenario's `building` ("default" = built-in).

@@ -1,5 +1,6 @@
-//! `semsim simulate --map` with no scenario plans one in the map's world; a map with no free
-//! space for the robot is bad input (exit 2) with a message naming the map.
+//! `semsim simulate --map` (or `--building`) with no scenario plans one in the map's (or the
+//! building's) world; a map with no free space for the robot is bad input (exit 2) with a
+//! message naming the map.
 
 mod util;
 
@@ -41,4 +42,33 @@ fn simulate_map_with_no_free_space_is_bad_input_naming_the_map() {
     dir.write("tiny.json", floor_only_map(0.3));
     dir.run(&["simulate", "--map", "tiny.json", "--out", "sim"])
         .bad_input(&["no free space for the robot in tiny.json"]);
+}
+
+/// A building file and no scenario: the built-in scenario names places in the built-in
+/// building only, so a tour is planned in this one's world, up its ramp.
+#[test]
+fn simulate_building_without_a_scenario_plans_a_tour_up_its_ramp() {
+    let dir = Dir::new();
+    dir.write(
+        "ramp_room.toml",
+        &fixtures::RoomToml::new([0.0, -2.0], [6.0, 2.0], 2.5).toml(
+            "[[ramps]]\nstart_m = [1.5, 0.0]\ndirection_deg = 0.0\nlength_m = 3.5\n\
+             width_m = 1.5\nrise_m = 0.35\n",
+        ),
+    );
+    let out = dir
+        .run(&["simulate", "--building", "ramp_room.toml", "--out", "sim"])
+        .ok();
+    assert!(
+        out.contains("planned tour: 0 doors, 0 stairs, 1 ramps, 0 unreachable"),
+        "{out}"
+    );
+    let scenario = sim::Scenario::load(&dir.join("sim/scenario.toml")).expect("parses");
+    assert_eq!(
+        scenario.rules.reach_top_of_ramps,
+        vec!["ramps[0]".to_string()]
+    );
+    assert_eq!(scenario.building, "ramp_room.toml");
+    let events = std::fs::read_to_string(dir.join("sim/events.jsonl")).expect("events");
+    assert!(events.contains("\"ramp_climbing_finished\""), "{events}");
 }

@@ -176,27 +176,36 @@ impl ScenarioSource {
 /// map (`map`), its world (named by the file when the scenario is planned, so that "no free
 /// space for the robot in `<map>`" names it) and the `scenario` file's scenario or, without one, a
 /// scenario planned there with `plan` (its robot resolved from the current folder); without a
-/// map, the `scenario` file's scenario (the built-in one for `None`) in the `building` given or
-/// else the one the scenario names.
+/// map, the `scenario` file's scenario in the `building` given or else the one the scenario
+/// names; with a `building` and no scenario, a scenario planned in its world likewise (the
+/// built-in scenario names places in the built-in building only); with neither, the built-in
+/// scenario in the built-in building.
 pub fn world_and_scenario(
     map: Option<&Path>,
     scenario: Option<&Path>,
     building: Option<&Path>,
     plan: &PlanConfig,
 ) -> Result<(WorldSpec, ScenarioSource)> {
-    Ok(match (map, scenario) {
-        (Some(m), None) => {
+    Ok(match (map, scenario, building) {
+        (Some(m), None, _) => {
             let mut world = WorldSpec::from_semantic_map_file(m)?;
             world.name = m.display().to_string();
             let robot = RobotModel::resolve(&plan.robot, Path::new("."))?;
             let source = ScenarioSource::plan(&world, &robot, None, plan)?;
             (world, source)
         }
-        (Some(m), Some(_)) => (
+        (Some(m), Some(_), _) => (
             WorldSpec::from_semantic_map_file(m)?,
             ScenarioSource::load(scenario)?,
         ),
-        (None, _) => {
+        (None, None, Some(file)) => {
+            let mut world = WorldSpec::from_building(&Building::load(file)?)?;
+            world.name = file.display().to_string();
+            let robot = RobotModel::resolve(&plan.robot, Path::new("."))?;
+            let source = ScenarioSource::plan(&world, &robot, None, plan)?;
+            (world, source)
+        }
+        (None, _, _) => {
             let source = ScenarioSource::load(scenario)?;
             let world = WorldSpec::from_building(&source.building(building)?)?;
             (world, source)

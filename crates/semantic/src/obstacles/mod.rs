@@ -278,7 +278,12 @@ pub(crate) fn find_obstacles(
 
 /// The grid cells within a wall's slab grown by `margin` (its points are the wall's).
 /// Marks the cells whose centres lie in a box's footprint grown by `margin`.
-fn exclude_boxes(frame: &ImageFrame, boxes: &[OrientedBox], margin: f64, excluded: &mut [bool]) {
+pub(crate) fn exclude_boxes(
+    frame: &ImageFrame,
+    boxes: &[OrientedBox],
+    margin: f64,
+    excluded: &mut [bool],
+) {
     let w = frame.width_px as usize;
     for b in boxes {
         let (s, co) = b.yaw_deg.to_radians().sin_cos();
@@ -299,7 +304,7 @@ fn exclude_boxes(frame: &ImageFrame, boxes: &[OrientedBox], margin: f64, exclude
     }
 }
 
-fn wall_cells(frame: &ImageFrame, walls: &[WallFit], margin: f64) -> Vec<bool> {
+pub(crate) fn wall_cells(frame: &ImageFrame, walls: &[WallFit], margin: f64) -> Vec<bool> {
     let w = frame.width_px as usize;
     let mut excluded = vec![false; frame.len()];
     for wall in walls {

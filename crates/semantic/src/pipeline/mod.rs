@@ -143,19 +143,6 @@ pub fn build_semantic_map(cloud: &PointCloud, config: &SemanticConfig) -> Result
     //    occupy; added to the net (with their relations) and to the labels.
     let mut explained: Vec<bool> = map_labels.iter().map(|l| l.entity != 0).collect();
     let (floor_z, ceiling_z) = (det.levels.floor_ref_m, det.levels.ceiling_ref_m);
-    let ramp_scene = RampScene {
-        points: &mp.points,
-        explained: &explained,
-        floor: floor_z,
-        image: &loc.frame,
-    };
-    let ramps = find_ramps(&ramp_scene, &config.ramps, pc.max_pixels);
-    for r in &ramps {
-        for &i in &r.points {
-            explained[i as usize] = true;
-        }
-    }
-    clock.lap("ramps");
     let keep_out: Vec<_> = map
         .entities
         .iter()
@@ -165,6 +152,21 @@ pub fn build_semantic_map(cloud: &PointCloud, config: &SemanticConfig) -> Result
             _ => None,
         })
         .collect();
+    let ramp_scene = RampScene {
+        points: &mp.points,
+        explained: &explained,
+        floor: floor_z,
+        image: &loc.frame,
+        walls: &det.walls,
+        keep_out: &keep_out,
+    };
+    let ramps = find_ramps(&ramp_scene, &config.ramps, pc.max_pixels);
+    for r in &ramps {
+        for &i in &r.points {
+            explained[i as usize] = true;
+        }
+    }
+    clock.lap("ramps");
     let obstacle_scene = ObstacleScene {
         points: &mp.points,
         explained: &explained,

@@ -53,6 +53,10 @@ pub struct RampConfig {
     pub min_rise_m: f64,
     /// Returns under the ramp's plane or at most this above it are the ramp's (m).
     pub surface_tolerance_m: f64,
+    /// Cells within this of a wall's slab, a door leaf's swing or a staircase's box are left
+    /// out (m), as the obstacles' `wall_margin_m`: a wall face's noise beside a ramp along
+    /// the wall stands over the ramp's line and would cut its head short.
+    pub wall_margin_m: f64,
 }
 
 impl Default for RampConfig {
@@ -74,6 +78,7 @@ impl Default for RampConfig {
             min_width_m: 0.7,
             min_rise_m: 0.15,
             surface_tolerance_m: 0.08,
+            wall_margin_m: 0.1,
         }
     }
 }
@@ -92,6 +97,7 @@ impl RampConfig {
             ("ramps.min_width_m", self.min_width_m),
             ("ramps.min_rise_m", self.min_rise_m),
             ("ramps.surface_tolerance_m", self.surface_tolerance_m),
+            ("ramps.wall_margin_m", self.wall_margin_m),
         ] {
             check_range(name, v, 0.0, 100.0, "within 0..100 m")?;
         }

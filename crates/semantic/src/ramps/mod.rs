@@ -3,7 +3,9 @@
 //! robot, not something in its way; a slope must be neither an obstacle nor a staircase).
 //!
 //! 1. The unexplained points between `min_above_floor_m` and `head_height_m` above the floor,
-//!    in an XY grid of `cell_m` cells; occupied cells (`min_cell_points`) up to `reach_cells`
+//!    off the walls' slabs, door leaves' swings and staircases' boxes (grown by
+//!    `wall_margin_m`: a wall face's noise beside a ramp along it stands over the ramp's
+//!    line), in an XY grid of `cell_m` cells; occupied cells (`min_cell_points`) up to `reach_cells`
 //!    apart whose tops differ by at most `max_top_step_m` plus the steepest ramp's rise over
 //!    the distance form a cluster (a laser's lines on a shallow slope seen from its foot are
 //!    decimetres apart).
@@ -17,8 +19,9 @@
 //!    line, a car's profile bends, a table's starts high.
 //! 3. The ramp's plane runs through that line, level across; its footprint from the floor line
 //!    to its highest bin, across the returns on or under the plane. Its points are the
-//!    cluster's on or under the plane (within `surface_tolerance_m`); what stands on it is
-//!    left to the obstacles.
+//!    cluster's on or under the plane (within `surface_tolerance_m`) over its footprint (a bin
+//!    beyond its head: the head's face); what stands on it, and what the cluster holds beyond
+//!    it, is left to the obstacles.
 
 mod config;
 mod fit;
@@ -28,7 +31,11 @@ pub use config::RampConfig;
 use fit::{ramp_plane, RampPlane};
 
 use crate::image_frame::{pixel_center, ImageFrame};
-use crate::obstacles::{components, rect_corners, BandGrid, DetectedObstacle};
+use crate::map::OrientedBox;
+use crate::obstacles::{
+    components, exclude_boxes, rect_corners, wall_cells, BandGrid, DetectedObstacle,
+};
+use crate::walls::WallFit;
 use cloud::EntityClass;
 use glam::{DVec2, Vec3};
 
@@ -73,6 +80,9 @@ pub(crate) struct RampScene<'a> {
     pub explained: &'a [bool],
     pub floor: f64,
     pub image: &'a ImageFrame,
+    pub walls: &'a [WallFit],
+    /// Boxes of entities that are no ramp: door leaves' swings and staircases.
+    pub keep_out: &'a [OrientedBox],
 }
 
 /// Finds the ramps (see the module docs).
@@ -83,6 +93,8 @@ pub(crate) fn find_ramps(sc: &RampScene, c: &RampConfig, max_pixels: u64) -> Vec
         (sc.floor + c.min_above_floor_m) as f32,
         (sc.floor + c.head_height_m) as f32,
     );
+    let mut excluded = wall_cells(&frame, sc.walls, c.wall_margin_m);
+    exclude_boxes(&frame, sc.keep_out, c.wall_margin_m, &mut excluded);
     let mut cell_of = vec![u32::MAX; sc.points.len()];
     let mut members = Vec::new();
     for (i, p) in sc.points.iter().enumerate() {
@@ -90,7 +102,11 @@ pub(crate) fn find_ramps(sc: &RampScene, c: &RampConfig, max_pixels: u64) -> Vec
             continue;
         }
         if let Some((col, row)) = frame.pixel_of(p.x as f64, p.y as f64) {
-            cell_of[i] = row * frame.width_px + col;
+            let k = row * frame.width_px + col;
+            if excluded[k as usize] {
+                continue;
+            }
+            cell_of[i] = k;
             members.push(i as u32);
         }
     }
@@ -147,10 +163,16 @@ pub(crate) fn find_ramps(sc: &RampScene, c: &RampConfig, max_pixels: u64) -> Vec
 fn ramp_of(p: &RampPlane, ids: &[u32], pts: &[(DVec2, f64)], c: &RampConfig) -> DetectedRamp {
     let (u0, u1) = p.u_range;
     let (v0, v1) = p.v_range;
+    // On or under the plane, and over the footprint (grown by a bin along the slope: the
+    // head's face stands at the last bin's end).
+    let over = |q: DVec2| {
+        let (u, v) = (q.dot(p.dir), q.dot(p.dir.perp()));
+        u >= u0 - c.cell_m && u <= u1 + c.cell_m && v >= v0 && v <= v1
+    };
     let points: Vec<u32> = ids
         .iter()
         .zip(pts)
-        .filter(|(_, (q, z))| *z <= p.z_at(*q) + c.surface_tolerance_m)
+        .filter(|(_, (q, z))| *z <= p.z_at(*q) + c.surface_tolerance_m && over(*q))
         .map(|(&i, _)| i)
         .collect();
     let center = p.dir * ((u0 + u1) / 2.0) + p.dir.perp() * ((v0 + v1) / 2.0);
@@ -178,6 +200,11 @@ mod tests {
 
     /// The scene of `points` over a 20 x 12 m image, nothing explained, the floor at 0.
     fn ramps_of(points: &[Vec3]) -> Vec<DetectedRamp> {
+        ramps_beside(points, &[])
+    }
+
+    /// [`ramps_of`] with `walls`.
+    fn ramps_beside(points: &[Vec3], walls: &[WallFit]) -> Vec<DetectedRamp> {
         let explained = vec![false; points.len()];
         let image = ImageFrame {
             origin_m: [-2.0, 10.0],
@@ -190,6 +217,8 @@ mod tests {
             explained: &explained,
             floor: 0.0,
             image: &image,
+            walls,
+            keep_out: &[],
         };
         find_ramps(&scene, &RampConfig::default(), 1 << 24)
     }
@@ -244,6 +273,49 @@ mod tests {
             .points
             .iter()
             .all(|&i| pts[i as usize].z as f64 <= rise(pts[i as usize].y as f64) + 0.1));
+    }
+
+    /// Regression (garage-2 of the styles bench): a wall face's noise (returns 4-6 cm off
+    /// the face) beside a ramp along the wall joined the ramp's cluster and stood over its
+    /// line near the head: there the head was cut 0.3 m short and the ramp widened to the
+    /// wall; here, without the wall's margin, no ramp is found at all. Cells within
+    /// `wall_margin_m` of a wall's slab are no part of a ramp.
+    #[test]
+    fn a_wall_faces_noise_beside_a_ramp_does_not_cut_its_head_short() {
+        let rise = |y: f64| 0.1 * y;
+        let mut pts = face(DVec2::new(4.0, 0.0), DVec2::new(4.0, 8.0), |s| {
+            rise(8.0 * s)
+        });
+        pts.extend(face(DVec2::new(4.0, 8.0), DVec2::new(7.0, 8.0), |_| 0.8));
+        for y in [1.0, 1.4, 1.8] {
+            for k in 0..100 {
+                let x = 4.0 + 0.03 * k as f64;
+                pts.push(Vec3::new(x as f32, y as f32, rise(y) as f32));
+            }
+        }
+        // The wall: its face at x = 7.3, 0.3 m east of the ramp; its noise 4-6 cm off it
+        // along the ramp's upper 1.5 m and past its head, every 5 cm along, 8-16 cm over the
+        // ramp's line (so that its cells join the head's).
+        for k in 0..40 {
+            let y = 6.5 + 0.05 * k as f64;
+            let (x, z) = (
+                7.24 + 0.01 * (k % 3) as f64,
+                rise(y) + 0.08 + 0.04 * (k % 3) as f64,
+            );
+            pts.push(Vec3::new(x as f32, y as f32, z as f32));
+        }
+        let wall = WallFit {
+            thickness: 0.2,
+            z_range: (0.0, 2.5),
+            ..WallFit::one_sided(DVec2::new(7.4, -1.0), DVec2::new(7.4, 10.0), -1.0)
+        };
+        let ramps = ramps_beside(&pts, &[wall]);
+        assert_eq!(ramps.len(), 1, "{ramps:#?}");
+        let r = &ramps[0];
+        let head = r.center.y + r.size[0] / 2.0;
+        assert!((head - 8.0).abs() < 0.15, "head at {head}: {r:#?}");
+        assert!((r.z_range.1 - 0.8).abs() < 0.04, "{r:#?}");
+        assert!(r.size[1] < 3.15, "{r:#?}");
     }
 
     /// A flight of stairs' side face (0.17 m risers, 0.28 m treads), a car's side (bumper,

@@ -51,7 +51,7 @@ fn simulate_building_without_a_scenario_plans_a_tour_up_its_ramp() {
     let dir = Dir::new();
     dir.write(
         "ramp_room.toml",
-        &fixtures::RoomToml::new([0.0, -2.0], [6.0, 2.0], 2.5).toml(
+        fixtures::RoomToml::new([0.0, -2.0], [6.0, 2.0], 2.5).toml(
             "[[ramps]]\nstart_m = [1.5, 0.0]\ndirection_deg = 0.0\nlength_m = 3.5\n\
              width_m = 1.5\nrise_m = 0.35\n",
         ),

@@ -37,7 +37,7 @@ pub enum EventKind {
     StairsClimbingFinished,
     /// A climbing robot is back on the floor without having finished.
     StairsClimbingAborted,
-    /// A robot stands on a ramp with a wheel, its centre past the foot.
+    /// A robot stands on a ramp with a wheel, its centre `ramp_start_height_m` up the slope.
     RampClimbingStarted,
     /// A robot stands on a ramp's upper end with all its touching wheels (`height_m`: the
     /// ramp's rise).
@@ -223,6 +223,9 @@ pub struct EventConfig {
     /// with every touching wheel on the ramp (m): a robot stops a body length or so short of a
     /// head that ends in a drop.
     pub ramp_top_within_m: f64,
+    /// A ramp climb starts when the robot's centre is this high up the slope (m): below it
+    /// the ramp's foot is a kerb the robot drives over.
+    pub ramp_start_height_m: f64,
 }
 
 impl Default for EventConfig {
@@ -242,6 +245,7 @@ impl Default for EventConfig {
             // Twice the Pioneer 3-AT's length: its planned stop is its half length plus a
             // margin short of the head.
             ramp_top_within_m: 1.0,
+            ramp_start_height_m: 0.05,
         }
     }
 }
@@ -337,6 +341,14 @@ impl EventConfig {
             0.0,
             100.0,
             "0 to 100 m",
+        )?;
+        check_range(
+            el,
+            "ramp_start_height_m",
+            self.ramp_start_height_m,
+            0.0,
+            10.0,
+            "0 to 10 m",
         )?;
         Ok(())
     }

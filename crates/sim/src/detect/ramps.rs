@@ -1,6 +1,6 @@
 //! Ramp climbing, from the wheels' contacts with a ramp's blocks and the robot's place on its
-//! slope: climbing starts when a wheel stands on the ramp with the robot's centre past its
-//! foot; it finishes when every
+//! slope: climbing starts when a wheel stands on the ramp with the robot's centre
+//! `ramp_start_height_m` up the slope; it finishes when every
 //! touching wheel stands on the ramp and the robot's centre is within `ramp_top_within_m` of
 //! the head along the slope (a ramp's head may end in a drop: the robot stops short of it);
 //! it is aborted when all touching wheels are back on the floor first (for `stairs_abort_s`),
@@ -61,9 +61,11 @@ impl RampDetector {
                 let height_m = ramp.rise_m * (t / ramp.length_m.max(1e-9)).clamp(0.0, 1.0);
                 let climb = self.climbs.entry((ri, ramp.entity)).or_default();
                 let ids = [robot.entity, ramp.entity];
-                // Started once the robot's centre is past the foot (a wheel grazing the
-                // foot's edge while the robot turns before it is no climb).
-                if !climb.climbing && !climb.finished && mine > 0 && t >= 0.0 {
+                // Started once the robot's centre is `ramp_start_height_m` up the slope (a
+                // wheel grazing the foot's edge, or a path across its lowest centimetres, is
+                // no climb).
+                let up = height_m >= cfg.ramp_start_height_m && t <= ramp.length_m;
+                if !climb.climbing && !climb.finished && mine > 0 && up {
                     climb.climbing = true;
                     climb.highest_m = 0.0;
                     climb.off_since_s = None;

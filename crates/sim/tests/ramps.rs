@@ -136,3 +136,35 @@ fn ramps_too_steep_or_too_narrow_are_listed_with_the_reason() {
         p.unreachable
     );
 }
+
+#[test]
+fn a_crate_on_the_ramp_or_a_beam_low_over_it_keeps_the_tour_off_it() {
+    let (model, cfg) = pioneer();
+    let with = |extra: &str| {
+        let text = format!("{}{extra}", ramp_room(0.35, 1.5));
+        let p = plan_scenario(&world(&text), &model, None, &cfg).expect("planned");
+        assert_eq!(p.ramps(), 0, "{:?}", p.tour);
+        p.unreachable[0].reason.clone()
+    };
+    // A crate standing on the slope half way up (x = 3.25, the slope 0.175 m up there).
+    let on = with(
+        "[[boxes]]\nname = \"crate\"\ncenter_m = [3.25, 0.0, 0.4]\nsize_m = [0.4, 0.4, 0.5]\n",
+    );
+    assert_eq!(on, "boxes[0] stands on the ramp in the robot's way");
+    // A beam across the ramp 0.45 m up at x = 4 (the slope 0.25 m up): 0.2 m over it, less
+    // than the Pioneer's height and margin.
+    let low = with(
+        "[[boxes]]\nclass = \"beam\"\ncenter_m = [4.0, 0.0, 0.55]\nsize_m = [0.2, 4.4, 0.2]\n",
+    );
+    assert!(
+        low.starts_with("boxes[0] is 0.19 m over the slope, the robot needs"),
+        "{low}"
+    );
+    // The same beam 1 m higher is no obstacle: the tour goes up.
+    let text = format!(
+        "{}[[boxes]]\nclass = \"beam\"\ncenter_m = [4.0, 0.0, 1.55]\nsize_m = [0.2, 4.4, 0.2]\n",
+        ramp_room(0.35, 1.5)
+    );
+    let p = plan_scenario(&world(&text), &model, None, &cfg).expect("planned");
+    assert_eq!(p.ramps(), 1, "{:?}", p.unreachable);
+}

@@ -1,18 +1,16 @@
 //! The goals a tour can include, each with its legs: a door opening the robot fits through
 //! (a straight leg along its normal from an approach point on one side to a point past its free
 //! space on the other, as far towards the latch as the robot fits), a staircase it can climb
-//! (from a run-up before its foot to the middle of its landing), a ramp it can drive up (from a
-//! run-up before its foot to its upper end, the robot's length short of its head); or why it
-//! cannot.
+//! (from a run-up before its foot to the middle of its landing); or why it cannot. Ramps are
+//! in [`super::ramp_leg`].
 
 use super::footprint::Footprint;
 use super::grid::FreeGrid;
 use super::{Goal, PlanConfig, Unreachable};
-use crate::ramps::RampGeometry;
 use crate::spec::{BoxSpec, FreeSpaceSpec, StairsSpec, WorldSpec};
 
 /// The run-up before a staircase's foot (m), so the robot arrives facing up the stairs.
-const RUN_UP_M: f64 = 0.5;
+pub(crate) const RUN_UP_M: f64 = 0.5;
 
 /// A door opening the robot fits through: its two sides.
 pub(crate) struct DoorLeg {
@@ -67,7 +65,7 @@ fn unit(v: [f64; 2]) -> Option<[f64; 2]> {
     (n > 1e-9).then(|| [v[0] / n, v[1] / n])
 }
 
-fn add(p: [f64; 2], d: [f64; 2], s: f64) -> [f64; 2] {
+pub(crate) fn add(p: [f64; 2], d: [f64; 2], s: f64) -> [f64; 2] {
     [p[0] + d[0] * s, p[1] + d[1] * s]
 }
 
@@ -299,80 +297,5 @@ pub(crate) fn stairs_leg(
         run_up,
         foot,
         top: [top_box.center_m[0], top_box.center_m[1]],
-    })
-}
-
-/// Whether `p` lies over one of the world's floor boxes.
-fn on_floor(world: &WorldSpec, p: [f64; 2]) -> bool {
-    world
-        .fixed
-        .iter()
-        .filter(|f| f.class == cloud::EntityClass::Floor)
-        .any(|f| {
-            let b = &f.geometry;
-            let (s, c) = b.yaw_deg.to_radians().sin_cos();
-            let d = [p[0] - b.center_m[0], p[1] - b.center_m[1]];
-            (d[0] * c + d[1] * s).abs() <= b.half_extents_m[0]
-                && (-d[0] * s + d[1] * c).abs() <= b.half_extents_m[1]
-        })
-}
-
-/// The drive up a ramp, or why the robot cannot drive up it: too steep for the plan, too
-/// narrow or too short to take the robot, or no room before its foot. The top is the robot's
-/// half length and the margin short of the head (a ramp's head may end in a drop).
-pub(crate) fn ramp_leg(
-    world: &WorldSpec,
-    grid: &FreeGrid,
-    fp: &Footprint,
-    cfg: &PlanConfig,
-    r: &RampGeometry,
-) -> Result<ClimbLeg, Unreachable> {
-    let fail = |reason: String| Unreachable {
-        goal: Goal::Ramp(r.name.clone()),
-        reason,
-    };
-    let pitch = r.pitch_deg();
-    if pitch > cfg.max_ramp_pitch_deg + 1e-9 {
-        return Err(fail(format!(
-            "the ramp climbs {pitch:.1} degrees, steeper than the plan's max_ramp_pitch_deg \
-             ({:.1})",
-            cfg.max_ramp_pitch_deg
-        )));
-    }
-    let needed = 2.0 * (fp.half_width_m + cfg.margin_m);
-    if r.width_m < needed {
-        return Err(fail(format!(
-            "the ramp is {:.2} m wide, the robot needs {needed:.2} m",
-            r.width_m
-        )));
-    }
-    let long = 2.0 * fp.half_length_m + cfg.margin_m;
-    if r.length_m < long {
-        return Err(fail(format!(
-            "the ramp is {:.2} m long, the robot needs {long:.2} m to stand on it",
-            r.length_m
-        )));
-    }
-    let foot = add(r.foot_m, r.uphill, -(fp.half_length_m + cfg.margin_m));
-    // A car-park ramp often starts near a wall, entered from the side: the run-up shortens
-    // to nothing there (the robot turns at the foot to face up the slope).
-    let run_up = [RUN_UP_M, RUN_UP_M / 2.0, 0.0]
-        .into_iter()
-        .map(|d| add(foot, r.uphill, -d))
-        .find(|&p| grid.free_at(foot) && grid.segment_free(p, foot))
-        .ok_or_else(|| {
-            fail(if on_floor(world, foot) {
-                "no room for the robot before the foot of the ramp".into()
-            } else {
-                "no floor in the world before the foot of the ramp (a map has floor only \
-                 where its scans saw it)"
-                    .into()
-            })
-        })?;
-    Ok(ClimbLeg {
-        goal: Goal::Ramp(r.name.clone()),
-        run_up,
-        foot,
-        top: r.centre_at(r.length_m - fp.half_length_m - cfg.margin_m),
     })
 }

@@ -16,7 +16,7 @@ use cloud::EntityClass;
 
 /// Boxes whose bottom is this far above the robot's top do not block (m): sensor masts and
 /// the sway of a tall chassis on a bump.
-const HEAD_MARGIN_M: f64 = 0.1;
+pub(crate) const HEAD_MARGIN_M: f64 = 0.1;
 /// The grid reaches this far beyond the world's boxes (m).
 const BORDER_M: f64 = 0.5;
 

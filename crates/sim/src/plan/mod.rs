@@ -26,6 +26,7 @@ mod distance;
 mod footprint;
 mod goals;
 mod grid;
+mod ramp_leg;
 mod search;
 mod tour;
 

@@ -9,8 +9,9 @@
 //! room's far corners), so that the robot drives the space the map holds rather than stand.
 
 use super::footprint::Footprint;
-use super::goals::{door_leg, ramp_leg, stairs_leg, ClimbLeg, DoorLeg};
+use super::goals::{door_leg, stairs_leg, ClimbLeg, DoorLeg};
 use super::grid::FreeGrid;
+use super::ramp_leg::ramp_leg;
 use super::search::{length_m, simplify, Reach};
 use super::{Goal, PlanConfig, Unreachable};
 use crate::controller::Waypoint;

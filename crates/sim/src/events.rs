@@ -310,14 +310,29 @@ impl EventConfig {
             self.tip_limit_deg,
             "0 to tip_limit_deg",
         )?;
-        check_range(
-            el,
-            "stuck_distance_m",
-            self.stuck_distance_m,
-            0.0,
-            100.0,
-            "0 to 100 m",
-        )?;
+        for (name, v, hi, range) in [
+            (
+                "stuck_distance_m",
+                self.stuck_distance_m,
+                100.0,
+                "0 to 100 m",
+            ),
+            ("tread_normal_z", self.tread_normal_z, 1.0, "0 to 1"),
+            (
+                "ramp_top_within_m",
+                self.ramp_top_within_m,
+                100.0,
+                "0 to 100 m",
+            ),
+            (
+                "ramp_start_height_m",
+                self.ramp_start_height_m,
+                10.0,
+                "0 to 10 m",
+            ),
+        ] {
+            check_range(el, name, v, 0.0, hi, range)?;
+        }
         check_range(
             el,
             "stuck_after_s",
@@ -325,30 +340,6 @@ impl EventConfig {
             0.1,
             1.0e6,
             "0.1 s to 1e6 s",
-        )?;
-        check_range(
-            el,
-            "tread_normal_z",
-            self.tread_normal_z,
-            0.0,
-            1.0,
-            "0 to 1",
-        )?;
-        check_range(
-            el,
-            "ramp_top_within_m",
-            self.ramp_top_within_m,
-            0.0,
-            100.0,
-            "0 to 100 m",
-        )?;
-        check_range(
-            el,
-            "ramp_start_height_m",
-            self.ramp_start_height_m,
-            0.0,
-            10.0,
-            "0 to 10 m",
         )?;
         Ok(())
     }

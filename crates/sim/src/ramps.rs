@@ -54,7 +54,7 @@ fn top(b: &BoxSpec) -> f64 {
 }
 
 /// The corners of a box's footprint.
-fn corners(b: &BoxSpec) -> [[f64; 2]; 4] {
+pub(crate) fn corners(b: &BoxSpec) -> [[f64; 2]; 4] {
     let (s, c) = b.yaw_deg.to_radians().sin_cos();
     let [hx, hy, _] = b.half_extents_m;
     [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(i, j)| {

@@ -239,22 +239,26 @@ mod tests {
         out
     }
 
-    /// A ramp rising 0.8 m northwards over 8 m, 3 m wide, seen as a low laser sees it: its
-    /// west side face and its head's face, its top only in a few rows near its foot, with a
-    /// crate standing on it.
-    #[test]
-    fn a_ramp_seen_as_its_side_and_head_faces_is_one_ramp_rising_its_way() {
-        let rise = |y: f64| 0.1 * y;
-        let mut pts = face(DVec2::new(4.0, 0.0), DVec2::new(4.0, 8.0), |s| {
-            rise(8.0 * s)
-        });
+    /// A ramp rising 0.8 m northwards (`0.1 y`) over 8 m from y = 0, 3 m wide (x 4..7), seen
+    /// as a low laser sees it: its west side face and its head's face, its top only in a few
+    /// rows near its foot.
+    fn seen_ramp() -> Vec<Vec3> {
+        let mut pts = face(DVec2::new(4.0, 0.0), DVec2::new(4.0, 8.0), |s| 0.8 * s);
         pts.extend(face(DVec2::new(4.0, 8.0), DVec2::new(7.0, 8.0), |_| 0.8));
         for y in [1.0, 1.4, 1.8] {
             for k in 0..100 {
                 let x = 4.0 + 0.03 * k as f64;
-                pts.push(Vec3::new(x as f32, y as f32, rise(y) as f32));
+                pts.push(Vec3::new(x as f32, y as f32, (0.1 * y) as f32));
             }
         }
+        pts
+    }
+
+    /// [`seen_ramp`] with a crate standing on it.
+    #[test]
+    fn a_ramp_seen_as_its_side_and_head_faces_is_one_ramp_rising_its_way() {
+        let rise = |y: f64| 0.1 * y;
+        let mut pts = seen_ramp();
         let crate_top = |_: f64| rise(5.0) + 0.5;
         pts.extend(face(DVec2::new(5.0, 5.0), DVec2::new(5.5, 5.0), crate_top));
         let ramps = ramps_of(&pts);
@@ -283,16 +287,7 @@ mod tests {
     #[test]
     fn a_wall_faces_noise_beside_a_ramp_does_not_cut_its_head_short() {
         let rise = |y: f64| 0.1 * y;
-        let mut pts = face(DVec2::new(4.0, 0.0), DVec2::new(4.0, 8.0), |s| {
-            rise(8.0 * s)
-        });
-        pts.extend(face(DVec2::new(4.0, 8.0), DVec2::new(7.0, 8.0), |_| 0.8));
-        for y in [1.0, 1.4, 1.8] {
-            for k in 0..100 {
-                let x = 4.0 + 0.03 * k as f64;
-                pts.push(Vec3::new(x as f32, y as f32, rise(y) as f32));
-            }
-        }
+        let mut pts = seen_ramp();
         // The wall: its face at x = 7.3, 0.3 m east of the ramp; its noise 4-6 cm off it
         // along the ramp's upper 1.5 m and past its head, every 5 cm along, 8-16 cm over the
         // ramp's line (so that its cells join the head's).

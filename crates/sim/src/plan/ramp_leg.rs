@@ -7,8 +7,8 @@ use super::footprint::Footprint;
 use super::goals::{add, ClimbLeg, RUN_UP_M};
 use super::grid::{FreeGrid, HEAD_MARGIN_M};
 use super::{Goal, PlanConfig, Unreachable};
-use crate::ramps::RampGeometry;
-use crate::spec::{BoxSpec, WorldSpec};
+use crate::ramps::{corners, RampGeometry};
+use crate::spec::WorldSpec;
 use cloud::EntityClass;
 
 /// Whether `p` lies over one of the world's floor boxes.
@@ -181,17 +181,5 @@ fn overlaps(q: &[[f64; 2]; 4], t: [f64; 2], half_lane: f64) -> bool {
         };
         let ((l1, h1), (l2, h2)) = (span(q), span(&lane));
         h1 >= l2 && h2 >= l1
-    })
-}
-
-/// The corners of a box's footprint.
-fn corners(b: &BoxSpec) -> [[f64; 2]; 4] {
-    let (s, c) = b.yaw_deg.to_radians().sin_cos();
-    let [hx, hy, _] = b.half_extents_m;
-    [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(i, j)| {
-        [
-            b.center_m[0] + c * hx * i - s * hy * j,
-            b.center_m[1] + s * hx * i + c * hy * j,
-        ]
     })
 }

@@ -13,7 +13,7 @@ use crate::spec::WorldSpec;
 use crate::world::robot::robot_pose;
 use crate::world::{entity_refs, World};
 use serde::{Deserialize, Serialize};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// One robot on one ramp.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
@@ -49,9 +49,11 @@ impl RampDetector {
         cfg: &EventConfig,
         out: &mut Emitter,
     ) {
+        let (no_ramps, no_floor) = (BTreeSet::new(), BTreeSet::new());
         for (ri, robot) in world.robots.iter().enumerate() {
-            let on_ramps = scan.wheels_on_ramps.get(ri).cloned().unwrap_or_default();
-            let on_floor = scan.wheels_on_floor.get(ri).cloned().unwrap_or_default();
+            // (borrowed: this runs every physics step)
+            let on_ramps = scan.wheels_on_ramps.get(ri).unwrap_or(&no_ramps);
+            let on_floor = scan.wheels_on_floor.get(ri).unwrap_or(&no_floor);
             let on_stairs = scan.wheels_on_stairs.get(ri).map_or(0, Vec::len);
             let pose = robot_pose(&world.physics, robot);
             for ramp in &self.ramps {

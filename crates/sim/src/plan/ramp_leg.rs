@@ -123,22 +123,19 @@ fn in_the_way(
             if !overlaps(&local, [t0, t1], half_lane) {
                 return None;
             }
-            let (lo, hi) = local.iter().fold(
-                ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
-                |(lo, hi), q| {
-                    (
-                        [lo[0].min(q[0]), lo[1].min(q[1])],
-                        [hi[0].max(q[0]), hi[1].max(q[1])],
-                    )
-                },
-            );
-            let surface = slope_at(hi[0].min(t1));
+            // The box's extent along the slope.
+            let (lo, hi) = local
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| {
+                    (l.min(q[0]), h.max(q[0]))
+                });
+            let surface = slope_at(hi.min(t1));
             let (bottom, top) = (
                 b.center_m[2] - b.half_extents_m[2],
                 b.center_m[2] + b.half_extents_m[2],
             );
             let needed = fp.height_m + HEAD_MARGIN_M;
-            if top <= slope_at(lo[0].max(t0)) + 1e-6 || bottom >= surface + needed {
+            if top <= slope_at(lo.max(t0)) + 1e-6 || bottom >= surface + needed {
                 return None;
             }
             // Within the head margin of the slope is standing on it (a map's slope is

@@ -48,6 +48,7 @@ use crate::image_frame::ImageFrame;
 mod config;
 mod envelope;
 mod extend;
+mod fit;
 mod flights;
 mod levels;
 mod parts;

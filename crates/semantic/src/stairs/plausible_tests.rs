@@ -68,6 +68,7 @@ fn a_desk_beside_a_flight_does_not_widen_it() {
         steps: 4,
         found: 4,
         score: 4.0,
+        fit_score: 0.0,
     };
     let stairs = finish(&blob, p, &sc, &StairsConfig::default()).expect("a staircase");
     assert!((stairs.width - 1.0).abs() < 0.05, "width {}", stairs.width);
@@ -160,6 +161,7 @@ fn one_thin_step_is_allowed_with_all_levels_seen_but_one() {
         steps,
         found,
         score: f64::from(found),
+        fit_score: 0.0,
     };
     assert!(finish(&side, profile(steps - 1), &sc, &c).is_some());
     assert!(finish(&side, profile(steps - 2), &sc, &c).is_none());
@@ -184,6 +186,7 @@ fn steps_on_no_one_plane_are_no_side_face() {
         steps,
         found: steps,
         score: f64::from(steps),
+        fit_score: 0.0,
     };
     // The side face itself is a staircase; along a direction 3 degrees off the face (its
     // steps' returns drifting across it step by step) still.

@@ -2,13 +2,12 @@
 //! and the staircase built from the best one (see the `stairs` module).
 
 use super::envelope::{envelope, of_flight};
+use super::fit::{fit_steps, Fit, COARSE, FINE};
 use super::levels::level_grid;
 use super::risers::{RiserBands, RISER_WEIGHT};
 use super::StairsConfig;
 use crate::points::quantile;
 use glam::DVec2;
-use rayon::prelude::*;
-use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Returns up to this far above the grid's top level still lie on it (the levels' tolerance).
 const ABOVE_TOP_M: f64 = 0.035;
@@ -23,6 +22,8 @@ pub(crate) struct Profile {
     pub steps: u32,
     pub found: u32,
     pub score: f64,
+    /// The fit's `support - 3 violations + risers` (see [`profile`]).
+    pub fit_score: f64,
 }
 
 /// Fits a staircase profile to points `(xy, height above floor)` climbing along `dir` (see the
@@ -63,6 +64,47 @@ pub(crate) fn profile_near(
     dir: DVec2,
     c: &StairsConfig,
     rise_hint: Option<f64>,
+) -> Option<Profile> {
+    fit_profile(pts, all, dir, c, rise_hint, None)
+}
+
+/// A fit of another step count than [`profile`]'s along `dir` that scores more than its fit
+/// there (`found`, [`Profile::fit_score`]): every count whose rise is in `rise_m`, up to the top height and up to the
+/// top level's plateau, is fitted (`None`: none beats it).
+///
+/// [`profile`] fits the counts that its grid of levels and its top height point to. On a
+/// flight seen from its side only, both can be off: the grid locks onto whatever spacing the
+/// side face's sparse top edge and the returns under it pile up at (bench mixed-38: 0.137 m
+/// for a 0.165 m rise, five sixths of it, where the counts for a grid at a half, two thirds
+/// or the whole rise are fitted), and the top height (the second highest bin) can stand a few
+/// centimetres over the top level's plateau (mixed pixels at its far edge; bench garage-36:
+/// 1.501 m for 1.447 m, 9 steps of 0.161 m). None of the counts fitted is then the flight's,
+/// and a count of smaller or larger steps, supported by the side face's noise, wins. Fitting
+/// every count doubled the stairs stage's time when done for every direction of every part,
+/// so it is done for the direction a search has chosen only (see `search`), each count first
+/// on a coarse grid.
+pub(crate) fn profile_other_count(
+    pts: &[(DVec2, f64)],
+    all: &[(DVec2, f64)],
+    dir: DVec2,
+    found: f64,
+    c: &StairsConfig,
+) -> Option<Profile> {
+    fit_profile(pts, all, dir, c, None, Some(found))
+}
+
+/// A coarse fit this far under the score to beat may still beat it on the fine grid.
+const COARSE_SLACK: f64 = 5.0;
+
+/// The profile along `dir` (see [`profile`], [`profile_near`]; with `beat`, only counts other
+/// than [`profile`]'s that score more than it, see [`profile_other_count`]).
+fn fit_profile(
+    pts: &[(DVec2, f64)],
+    all: &[(DVec2, f64)],
+    dir: DVec2,
+    c: &StairsConfig,
+    rise_hint: Option<f64>,
+    beat: Option<f64>,
 ) -> Option<Profile> {
     let bin = 0.01;
     let mut s: Vec<f64> = all.iter().map(|(q, _)| q.dot(dir)).collect();
@@ -154,28 +196,64 @@ pub(crate) fn profile_near(
         seen.push(key);
         new
     });
-    let fit_all = |counts: Vec<Count>| -> Vec<Fit> {
+    let fit_all = |counts: Vec<Count>, floor: f64| -> Vec<Fit> {
         counts
             .into_iter()
             .filter(|&(n, _, env)| n >= c.min_steps as f64 && n <= 64.0 && !env.is_empty())
             .filter(|&(n, top, _)| (c.rise_m[0]..=c.rise_m[1]).contains(&(top / n)))
             .filter_map(|(n, top, env)| {
                 let risers = RiserBands::new(pts, dir, n as u32, top / n);
-                fit_steps(env, &risers, n as u32, top / n, c)
+                // (a count that cannot come near `floor` on the coarse grid is not searched)
+                if floor > f64::NEG_INFINITY {
+                    let coarse = fit_steps(
+                        env,
+                        &risers,
+                        n as u32,
+                        top / n,
+                        c,
+                        COARSE,
+                        floor - COARSE_SLACK,
+                    );
+                    coarse.filter(|f| f.best >= floor - COARSE_SLACK)?;
+                }
+                fit_steps(env, &risers, n as u32, top / n, c, FINE, floor)
             })
             // (of the fits with a bin on most levels: a count too high by a step or two leaves
             // its upper levels empty)
-            .filter(|f| f.found as f64 >= 0.6 * f.n as f64 && f.best > 0.0)
+            .filter(|f| f.found as f64 >= 0.6 * f.n as f64 && f.best > 0.0 && f.best > floor)
             .collect()
     };
-    let mut fits = fit_all(counts);
+    let mut fits = match beat {
+        None => fit_all(counts, f64::NEG_INFINITY),
+        Some(floor) => {
+            // Every other count in the range of rises, up to either top.
+            let mut others: Vec<Count> = Vec::new();
+            for top in [top_height, plateau_mode(env, top_height, rise0)] {
+                let fewest = (top / c.rise_m[1]).ceil().max(1.0);
+                let most = (top / c.rise_m[0]).floor().min(64.0);
+                let mut n = fewest;
+                while n <= most {
+                    let key = (n, top, std::ptr::from_ref::<[(f64, f64)]>(fit_env));
+                    if !seen.contains(&key) {
+                        seen.push(key);
+                        others.push((n, top, fit_env));
+                    }
+                    n += 1.0;
+                }
+            }
+            return fit_all(others, floor)
+                .into_iter()
+                .reduce(|a, b| if b.best > a.best { b } else { a })
+                .map(|f| Profile::of(dir, f));
+        }
+    };
     // Where no count fits, a few returns over the top level (mixed pixels at a landing's far
     // edge) may have set the top height a few centimetres high, and the rise with it: every
     // level of a long flight then misses its bins. The top level's plateau sets it then.
     if fits.is_empty() {
         let top_mode = plateau_mode(env, top_height, rise0);
         let n_mode = ((top_mode - offset) / rise0).round();
-        fits = fit_all(vec![(n_mode, top_mode, fit_env)]);
+        fits = fit_all(vec![(n_mode, top_mode, fit_env)], f64::NEG_INFINITY);
     }
     let off = |f: &Fit, r: f64| (f.rise - r).abs() / r;
     let near = rise_hint.and_then(|r| {
@@ -189,24 +267,31 @@ pub(crate) fn profile_near(
                 .reduce(|a, b| if b.best > a.best { b } else { a })
         })?
         .clone();
-    let Fit {
-        n,
-        rise,
-        run,
-        s0,
-        found,
-        best,
-    } = fit;
-    let nf = n as f64;
-    Some(Profile {
-        dir,
-        rise,
-        run,
-        front1: s0,
-        steps: n,
-        found,
-        score: found as f64 + best / ((5.0 + RISER_WEIGHT) * nf + 1.0),
-    })
+    Some(Profile::of(dir, fit))
+}
+
+impl Profile {
+    /// The profile of a fit along `dir`.
+    fn of(dir: DVec2, fit: Fit) -> Profile {
+        let Fit {
+            n,
+            rise,
+            run,
+            s0,
+            found,
+            best,
+        } = fit;
+        Profile {
+            dir,
+            rise,
+            run,
+            front1: s0,
+            steps: n,
+            found,
+            score: found as f64 + best / ((5.0 + RISER_WEIGHT) * n as f64 + 1.0),
+            fit_score: best,
+        }
+    }
 }
 
 /// The most frequent height (1 cm bins) of the envelope's bins within half a rise under the top
@@ -254,154 +339,6 @@ fn end_plateau(env: &[(f64, f64)], along_m: f64, rise: f64) -> Option<f64> {
 
 /// A step count to fit, the top height it climbs to and the envelope it is fitted to.
 type Count<'a> = (f64, f64, &'a [(f64, f64)]);
-
-/// The stair model fitted to the envelope for one step count.
-#[derive(Clone)]
-struct Fit {
-    n: u32,
-    rise: f64,
-    run: f64,
-    s0: f64,
-    /// Levels with a bin on them.
-    found: u32,
-    /// `support - 3 violations + risers` (see `profile`).
-    best: f64,
-}
-
-/// Scores within this of the best are optima (and averaged); a pass is cut short only when it
-/// falls below the best by more.
-const PRUNE_MARGIN: f64 = 1e-9;
-
-/// Raises the best score seen `known` (an `f64`'s bits) to `v` if that is higher.
-fn raise(known: &AtomicU64, v: f64) {
-    let mut seen = known.load(Ordering::Relaxed);
-    while v > f64::from_bits(seen) {
-        match known.compare_exchange_weak(seen, v.to_bits(), Ordering::Relaxed, Ordering::Relaxed) {
-            Ok(_) => break,
-            Err(now) => seen = now,
-        }
-    }
-}
-
-/// The run and start of `n` steps of `rise` that explain the envelope `(along, highest)` best
-/// (see `profile`).
-fn fit_steps(
-    env: &[(f64, f64)],
-    risers: &RiserBands,
-    n: u32,
-    rise: f64,
-    c: &StairsConfig,
-) -> Option<Fit> {
-    let nf = n as f64;
-    let level = |s: f64, run: f64, s0: f64| {
-        if s < s0 {
-            0.0
-        } else {
-            (((s - s0) / run).floor() + 1.0).min(nf)
-        }
-    };
-    // The envelope is in order along the direction, so the levels at `s` and at `s + 1.5 cm`
-    // only climb: each is advanced past the front edges `s0 + k run` it has crossed.
-    // A score is the violations (never positive), the support (at most 5 on each of the
-    // `n` levels, final for the levels the pass has left behind) and the risers' bands: once
-    // the violations and the support so far leave it short of the best already scored
-    // (`known`), even with 5 on every level still ahead, the point can be no optimum and its
-    // pass ends (scored -inf).
-    let most_support = |k: u32, behind: f64| {
-        if n > 64 {
-            5.0 * 64.0
-        } else {
-            behind + 5.0 * f64::from(n + 1 - k.max(1))
-        }
-    };
-    let score = |run: f64, s0: f64, known: f64| -> f64 {
-        let bands = risers.score(run, s0);
-        let mut v = 0.0;
-        let mut support = [0u8; 65];
-        let mut behind = 0.0;
-        let (mut k, mut k_ahead) = (0u32, 0u32);
-        for &(s, z) in env {
-            let k_was = k;
-            while k < n && s >= s0 + f64::from(k) * run {
-                if k > 0 {
-                    behind += f64::from(support[(k as usize).min(64)].min(5));
-                }
-                k += 1;
-            }
-            while k_ahead < n && s + 0.015 >= s0 + f64::from(k_ahead) * run {
-                k_ahead += 1;
-            }
-            let above = z - (rise * f64::from(k_ahead) + 0.025);
-            if above > rise {
-                // (over the flight: see above)
-            } else if above > 0.0 {
-                v -= 3.0;
-            } else if k > 0 && z >= rise * f64::from(k) - 0.035 {
-                let slot = &mut support[(k as usize).min(64)];
-                *slot = slot.saturating_add(1);
-            }
-            if (k != k_was || above > 0.0 && above <= rise)
-                && v + most_support(k, behind) + bands < known - PRUNE_MARGIN
-            {
-                return f64::NEG_INFINITY;
-            }
-        }
-        v + support.iter().map(|&n| f64::from(n.min(5))).sum::<f64>() + bands
-    };
-    // The first step starts at most a run before the first point (its front may be unseen)
-    // and before the first point half a rise up.
-    let first = env.iter().find(|e| e.1 >= 0.5 * rise)?.0;
-    let s_start = env.first()?.0 - c.run_m[1];
-    let runs = ((c.run_m[1] - c.run_m[0]) / 0.002 + 1e-6).floor() as usize + 1;
-    let starts = ((first + 0.05 - s_start) / 0.005 + 1e-6).floor().max(0.0) as usize + 1;
-    // Every (run, start) on the grid scored, the runs in parallel (a grid of a few 10^4
-    // points, each a pass over the envelope), each pass cut short by the best score any
-    // thread has seen (which points are cut varies with the threads; the optima do not).
-    let known = AtomicU64::new(f64::NEG_INFINITY.to_bits());
-    let scored: Vec<(f64, f64, f64)> = (0..runs)
-        .into_par_iter()
-        .flat_map_iter(|i| {
-            let run = c.run_m[0] + i as f64 * 0.002;
-            let known = &known;
-            (0..starts).map(move |j| {
-                let s0 = s_start + j as f64 * 0.005;
-                let v = score(run, s0, f64::from_bits(known.load(Ordering::Relaxed)));
-                raise(known, v);
-                (run, s0, v)
-            })
-        })
-        .collect();
-    let best = scored.iter().map(|o| o.2).fold(f64::NEG_INFINITY, f64::max);
-    let optimal: Vec<(f64, f64)> = scored
-        .iter()
-        .filter(|o| (o.2 - best).abs() <= PRUNE_MARGIN)
-        .map(|o| (o.0, o.1))
-        .collect();
-    if optimal.is_empty() {
-        return None;
-    }
-    let m = optimal.len() as f64;
-    let run = optimal.iter().map(|o| o.0).sum::<f64>() / m;
-    let s0 = optimal.iter().map(|o| o.1).sum::<f64>() / m;
-    let mut ks: Vec<u32> = env
-        .iter()
-        .filter(|e| {
-            let top = rise * level(e.0, run, s0);
-            top > 0.0 && e.1 >= top - 0.035 && e.1 <= top + 0.025
-        })
-        .map(|e| level(e.0, run, s0) as u32)
-        .collect();
-    ks.sort_unstable();
-    ks.dedup();
-    Some(Fit {
-        n,
-        rise,
-        run,
-        s0,
-        found: ks.len() as u32,
-        best,
-    })
-}
 
 #[cfg(test)]
 #[path = "profile_tests.rs"]

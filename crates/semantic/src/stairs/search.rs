@@ -3,7 +3,7 @@
 //! best along each of its straight faces in plan, each on its own (see `side_faces`).
 
 use super::plausible::finish;
-use super::profile::profile;
+use super::profile::{profile, profile_other_count};
 use super::{flights, side_faces, DetectedStairs, StairsConfig};
 use crate::scene::Scene;
 use glam::DVec2;
@@ -102,9 +102,15 @@ impl Search<'_> {
                 .then(wb.cmp(wa))
                 .then(b.score.total_cmp(&a.score))
         });
-        let one = profs
-            .into_iter()
-            .find_map(|(on_wall, p)| finish(self.pts, p, self.sc, self.c).map(|r| (on_wall, r)));
+        let one = profs.into_iter().find_map(|(on_wall, p)| {
+            // (another step count, fitted along the chosen direction only, wins where it fits
+            // better and still makes a staircase: see `profile_other_count`)
+            let (dir, fit_score) = (p.dir, p.fit_score);
+            let one = finish(self.pts, p, self.sc, self.c)?;
+            let other = profile_other_count(self.pts, self.all, dir, fit_score, self.c)
+                .and_then(|o| finish(self.pts, o, self.sc, self.c));
+            Some((on_wall, other.unwrap_or(one)))
+        });
         // The lone flight wins if it is along a wall's direction or the one flight is not,
         // and it found as large a share of its levels (on a tie: a staircase with a mid
         // landing read as one flight misses a level).

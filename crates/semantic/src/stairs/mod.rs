@@ -25,7 +25,11 @@
 //!   `min_width_m`, only a side face was seen and `default_width_m` is assumed, away from the
 //!   side with floor in front of the face; landing: the top level's depth beyond one run.
 //!
-//! The direction with the most levels supported (then the best fit) wins. A staircase must then
+//! The direction with the most levels supported (then the best fit) wins; along a direction of
+//! the part's own (no wall's), only where every level is seen (a staircase is built square to
+//! the walls around it; furniture of assorted heights steps up along some direction with a
+//! level missing). Along the direction chosen, every other step count in the range of rises is
+//! fitted too, and wins where it fits better (see `profile::profile_other_count`). A staircase must then
 //! be one people could climb (clutter of boxes of assorted heights steps up and down too):
 //! rise and run in the ranges of building codes, at least `min_steps` steps on the one rise,
 //! every step supported by `min_step_points` points on its tread, riser or side face (and by a

@@ -103,6 +103,13 @@ impl Search<'_> {
                 .then(b.score.total_cmp(&a.score))
         });
         let one = profs.into_iter().find_map(|(on_wall, p)| {
+            // A staircase is built square to the walls around it. Along a direction of the
+            // part's own, every level must be seen: furniture of assorted heights (a desk, a
+            // chair's seat and back, a box beside them: fresh office-44) shows levels at
+            // multiples of some rise along some direction, with one or more missing.
+            if !on_wall && p.found < p.steps {
+                return None;
+            }
             // (another step count, fitted along the chosen direction only, wins where it fits
             // better and still makes a staircase: see `profile_other_count`)
             let (dir, fit_score) = (p.dir, p.fit_score);

@@ -192,6 +192,18 @@ fn a_person_beside_the_upper_flight_is_no_part_of_it() {
 /// from the returns on surfaces, its edges from all of them), along and across X, over a floor
 /// seen everywhere but under the staircase (from the origin to `hidden`).
 fn search_as_mapped(part: &[(DVec2, f64)], hidden: DVec2) -> Option<Vec<DetectedStairs>> {
+    search_as_mapped_on(part, (DVec2::new(-1.5, -2.0), (160, 100)), hidden, false)
+}
+
+/// [`search_as_mapped`] over a floor sampled from `floor.0` on `floor.1` cells of 4 cm, with the
+/// part's own axes as candidate directions too (after the walls') where `own_axes`, as
+/// `find_stairs` tries them.
+fn search_as_mapped_on(
+    part: &[(DVec2, f64)],
+    floor: (DVec2, (usize, usize)),
+    hidden: DVec2,
+    own_axes: bool,
+) -> Option<Vec<DetectedStairs>> {
     let c = StairsConfig::default();
     let as_points: Vec<Vec3> = part
         .iter()
@@ -206,15 +218,21 @@ fn search_as_mapped(part: &[(DVec2, f64)], hidden: DVec2) -> Option<Vec<Detected
         3.0 * c.cell_m,
     );
     let surface: Vec<(DVec2, f64)> = on.iter().map(|&i| part[i]).collect();
-    let points = over_floor(part, DVec2::new(-1.5, -2.0), (160, 100), hidden);
+    let points = over_floor(part, floor.0, floor.1, hidden);
     let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(6.0), 0.25);
     let sc = Scene::with_one_index(&points, &index, 0.0, 2.6);
-    let cands = [DVec2::X, DVec2::Y, -DVec2::X, -DVec2::Y];
+    let mut cands = vec![DVec2::X, DVec2::Y, -DVec2::X, -DVec2::Y];
+    let walls_cands = cands.len();
+    if own_axes {
+        let xy: Vec<DVec2> = part.iter().map(|p| p.0).collect();
+        let (_, d) = crate::points::fit_line(&xy).expect("a line through the part");
+        cands.extend([d, d.perp(), -d, -d.perp()]);
+    }
     Search {
         pts: &surface,
         all: part,
         cands: &cands,
-        walls_cands: cands.len(),
+        walls_cands,
         sc: &sc,
         c: &c,
     }
@@ -246,4 +264,21 @@ fn a_landing_topped_by_higher_returns_keeps_its_count() {
     assert_eq!(part.len(), 2329);
     let found = search_as_mapped(&part, DVec2::new(3.4, 1.0)).expect("a staircase");
     assert_flight(Some(found), (0.161, 0.257, 9));
+}
+
+/// Regression: fresh office-44's desk (top 0.72 m), the chair at it (seat 0.45 m, backrest to
+/// 0.87 m) and a box beside them (0.68 m) read as a 4-step flight (rise 0.212 m, run 0.222 m)
+/// climbing 24 degrees off the walls, with 3 of its 4 levels seen. Along a direction of the
+/// part's own (no wall's), a flight must show every level. (The part's returns, from the
+/// bench's map.)
+#[test]
+fn furniture_stepping_up_along_no_walls_direction_is_no_staircase() {
+    let part = returns(include_str!("../../tests/data/office44_desk_and_chair.txt"));
+    assert_eq!(part.len(), 1101);
+    // (the floor hidden under the furniture's extent, as under a flight)
+    let floor = (DVec2::new(-0.5, -0.5), (100, 90));
+    assert_eq!(
+        search_as_mapped_on(&part, floor, DVec2::new(2.8, 2.3), true),
+        None
+    );
 }

@@ -17,6 +17,10 @@
 //! - neither: the face seen above head height with something standing beside it below head
 //!   height (clutter, parked cars in front of it hid it), or nothing at all (not seen).
 //!
+//! A face seen below head height only under 1.5 m with something standing right beside it
+//! (a parked car's flank on a beam's face line) is not counted standing: that thing's own side
+//! can be the face.
+//!
 //! A candidate is dropped if more of its length is open or bare than standing (a door is open
 //! or bare too, but a wall holds fewer and narrower doors than wall), or if no bin stands (it
 //! rests on no points of its own). Occlusion by clutter makes bins neither standing nor open
@@ -39,6 +43,11 @@ const THIN_BODY_FRACTION: f64 = 0.25;
 /// Something standing this high above the floor (a car, a cabinet, a person) beside a face
 /// may hide the face below head height; lower returns are the floor and its noise.
 const CLUTTER_MIN_HEIGHT_M: f64 = 0.1;
+/// Face points from this high up to head height show a wall's face above what commonly stands
+/// beside one (parked cars, 1.4-1.6 m; desks, chairs, crates). A face seen only lower, with
+/// something standing right beside it, may be that thing's own side: a parked car's flank along
+/// a beam line reads as a face from the floor to 1.3 m under the beam's face (fresh garage-44).
+const UPPER_FACE_M: f64 = 1.5;
 
 const STANDING: u8 = 1;
 const LEFT: u8 = 2;
@@ -46,6 +55,7 @@ const RIGHT: u8 = 4;
 const BETWEEN: u8 = 8;
 const ABOVE_HEAD: u8 = 16;
 const CLUTTER: u8 = 32;
+const STANDING_HIGH: u8 = 64;
 
 /// Per bin: standing, seen left of the face, right of it, between two faces, the face seen
 /// above head height, something standing beside the face below head height.
@@ -85,6 +95,9 @@ impl SupportProfile {
             if above_floor > 0.05 {
                 *bin |= STANDING;
             }
+            if above_floor >= UPPER_FACE_M {
+                *bin |= STANDING_HIGH;
+            }
             return;
         }
         if above_floor < -0.05 {
@@ -109,14 +122,16 @@ impl SupportProfile {
         }
     }
 
-    /// (standing, open, bare) fractions of the length.
+    /// (standing, open, bare) fractions of the length. A bin whose face is seen only under
+    /// [`UPPER_FACE_M`] with something standing beside it is not counted standing (nor open or
+    /// bare: the face may be hidden there).
     pub fn fractions(&self) -> (f64, f64, f64) {
         let n = self.bins.len() as f64;
         let share = |f: &dyn Fn(u8) -> bool| self.bins.iter().filter(|&&b| f(b)).count() as f64 / n;
         let open =
             |b: u8| b & STANDING == 0 && (b & BETWEEN != 0 || b & (LEFT | RIGHT) == LEFT | RIGHT);
         (
-            share(&|b| b & STANDING != 0),
+            share(&|b| b & STANDING != 0 && (b & STANDING_HIGH != 0 || b & CLUTTER == 0)),
             share(&open),
             share(&|b| b & (STANDING | CLUTTER) == 0 && b & ABOVE_HEAD != 0 && !open(b)),
         )
@@ -181,5 +196,33 @@ mod tests {
         assert_eq!((s, o), (0.0, 0.0));
         assert!(b > 0.99, "{b}");
         assert_eq!(hidden.fractions(), (0.0, 0.0, 0.0));
+    }
+
+    /// Regression: fresh garage-44's parked car along a beam line (its flank on the beam's
+    /// face line, up to 1.3 m, its body beside it, the beam's face above head height) stood as
+    /// a 7.7 m wall. A face seen only that low beside something standing is no evidence of a
+    /// wall; a wall seen above the car beside it still stands.
+    #[test]
+    fn a_cars_flank_under_a_beam_is_no_standing_face_and_a_wall_above_a_car_is() {
+        let mut beam = SupportProfile::new(100, &[0.0], 0.0);
+        let mut wall = SupportProfile::new(100, &[0.0], 0.0);
+        for k in 0..100 {
+            for p in [&mut beam, &mut wall] {
+                p.add(k, 0.0, 2.5, true); // the beam's (or the wall's) face up high
+                p.add(k, 0.0, 0.4, true); // the car's flank on the face line
+                p.add(k, 0.1, 0.8, false); // the car's body beside it
+            }
+            wall.add(k, 0.0, 1.7, true); // the wall's face over the car
+        }
+        assert_eq!(beam.fractions().0, 0.0);
+        assert_eq!(wall.fractions(), (1.0, 0.0, 0.0));
+        // With nothing beside it, a face seen low only still stands (a wall's face seen
+        // sparsely, under a ribbon window).
+        let mut low = SupportProfile::new(100, &[0.0], 0.0);
+        for k in 0..100 {
+            low.add(k, 0.0, 2.5, true);
+            low.add(k, 0.0, 0.4, true);
+        }
+        assert_eq!(low.fractions().0, 1.0);
     }
 }

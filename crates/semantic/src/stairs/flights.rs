@@ -11,7 +11,8 @@
 //! Either flight may be hidden or only glimpsed (a survey that saw the staircase from above,
 //! or its side face past a wall). Where the lower one is no plausible staircase, the upper one
 //! is still a flight, on the landing, if the landing stands a whole number of its risers up (at
-//! least `min_steps`: a staircase's risers are uniform); where the upper one is none, the lower
+//! least `min_steps`: a staircase's risers are uniform) and the floor before the landing, where
+//! the hidden flight would stand, is not seen; where the upper one is none, the lower
 //! one is a flight ending on its landing. The upper flight ends at the far edge of its own top
 //! landing where something stands beyond it.
 //!
@@ -19,7 +20,7 @@
 //! straight flight: then the two flights fitted meet, the upper one's first riser within a
 //! tread's depth of the lower one's top front edge, and their points are one flight.
 use super::envelope::{envelope, of_flight, BIN_M};
-use super::plausible::finish;
+use super::plausible::{finish, floor_density};
 use super::profile::{profile, profile_near};
 use super::{DetectedStairs, StairsConfig};
 use crate::scene::Scene;
@@ -47,7 +48,7 @@ pub(super) fn two_flights(
 ) -> Option<Vec<DetectedStairs>> {
     // 1. The landing: the running maximum of the profile level for more than a tread, with
     //    at least `min_steps` of the lowest rise below it and a climb beyond it.
-    let (landing_end, landing_height) = mid_landing(pts, dir, c)?;
+    let (landing_start, landing_end, landing_height) = mid_landing(pts, dir, c)?;
     // 2. The lower flight: the points before the landing's far edge.
     let (lower, lower_all) = (before(pts, dir, landing_end), before(all, dir, landing_end));
     let first = profile(&lower, &lower_all, dir, c).and_then(|p| finish(&lower, p, sc, c));
@@ -81,7 +82,7 @@ pub(super) fn two_flights(
             .collect()
     };
     let (mut upper, mut upper_all) = (above(pts), above(all));
-    let upper_end = mid_landing(&upper, dir, c).map_or(f64::INFINITY, |(end, _)| end);
+    let upper_end = mid_landing(&upper, dir, c).map_or(f64::INFINITY, |(_, end, _)| end);
     upper.retain(|(q, _)| q.dot(dir) < upper_end);
     upper_all.retain(|(q, _)| q.dot(dir) < upper_end);
     let rise = first.as_ref().map(|f| f.rise);
@@ -112,6 +113,13 @@ pub(super) fn two_flights(
             // at least a flight's worth.
             let risers = base / second.rise;
             if risers.round() < f64::from(c.min_steps) || (risers - risers.round()).abs() > 0.25 {
+                return None;
+            }
+            // And it hid the floor it stands on, before the landing: a parked car's body top
+            // read as a landing, with its cabin's front as a flight on it (fresh garage-43),
+            // has open floor before it.
+            let hidden_length = (risers.round() - 1.0) * c.run_m[0];
+            if floor_seen_before(&second, landing_start, hidden_length, sc, c) {
                 return None;
             }
             second.base = base;
@@ -163,11 +171,44 @@ fn before(pts: &[(DVec2, f64)], dir: DVec2, end: f64) -> Vec<(DVec2, f64)> {
         .collect()
 }
 
-/// The far edge (along `dir`) and height of a mid landing in the profile of `pts` (its
-/// envelope, see `envelope`): a level stretch at least a flight's worth of the lowest rise up,
-/// with something climbing beyond it (the next flight, or what stands beyond a flight's top
-/// landing: `two_flights` keeps the lower flight alone then).
-fn mid_landing(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<(f64, f64)> {
+/// True if the floor is seen, at the density of the floor around, over the middle half of
+/// `upper`'s width along the `length` before `landing_start` (along its direction): where a
+/// flight hidden under a landing would stand.
+fn floor_seen_before(
+    upper: &DetectedStairs,
+    landing_start: f64,
+    length: f64,
+    sc: &Scene,
+    c: &StairsConfig,
+) -> bool {
+    let dir = upper.dir;
+    let t = dir.perp_dot(upper.start);
+    let (t0, t1) = (t - upper.width / 2.0, t + upper.width / 2.0);
+    let s = (landing_start - length, landing_start);
+    let density = floor_density(sc, dir, s, (t0, t1));
+    let line = crate::points::Line2 {
+        origin: dir * (s.0 + s.1) / 2.0 + dir.perp() * t,
+        dir,
+    };
+    let mut floor_seen = 0usize;
+    sc.index.for_each_near_line(
+        &line,
+        -length / 2.0,
+        length / 2.0,
+        upper.width / 4.0,
+        |_, _, _, z| {
+            floor_seen += usize::from((z - sc.floor).abs() <= 0.03);
+        },
+    );
+    let open = 0.5 * density * length * upper.width / 2.0;
+    floor_seen > c.min_step_points && floor_seen as f64 > open
+}
+
+/// The near and far edges (along `dir`) and height of a mid landing in the profile of `pts`
+/// (its envelope, see `envelope`): a level stretch at least a flight's worth of the lowest rise
+/// up, with something climbing beyond it (the next flight, or what stands beyond a flight's
+/// top landing: `two_flights` keeps the lower flight alone then).
+fn mid_landing(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<(f64, f64, f64)> {
     let along: Vec<f64> = pts.iter().map(|(q, _)| q.dot(dir)).collect();
     let lo = along.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = along.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -200,7 +241,7 @@ fn mid_landing(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<(f6
             let is_landing =
                 running.is_finite() && s - since >= min_landing_m(c) && level >= least && climbs;
             if is_landing {
-                return Some((s - BIN_M / 2.0, level));
+                return Some((since - BIN_M / 2.0, s - BIN_M / 2.0, level));
             }
             since = s;
             since_height = running.max(z);

@@ -292,7 +292,7 @@ fn densest_run(mut t: Vec<f64>) -> Vec<f64> {
 /// Points per m² of the floor seen in a ring 0.3-1.3 m around a footprint (`s` along `dir`,
 /// `t` across it): the local density of the scans, counted over the 10 cm cells where the
 /// floor was seen.
-fn floor_density(sc: &Scene, dir: DVec2, s: (f64, f64), t: (f64, f64)) -> f64 {
+pub(super) fn floor_density(sc: &Scene, dir: DVec2, s: (f64, f64), t: (f64, f64)) -> f64 {
     let (inner, outer) = (0.3, 1.3);
     let line = crate::points::Line2 {
         origin: dir.perp() * ((t.0 + t.1) / 2.0),

@@ -57,7 +57,9 @@ const SAME_RISE: f64 = 0.15;
 /// staircase whose lower flight was found: a staircase's risers are uniform). Its step count
 /// from the top height over that rise is fitted too, and of the fits within [`SAME_RISE`] of it
 /// the one nearest to it wins: seen from the floor below, an upper flight shows only its risers
-/// and side face, and a count one higher or lower can fit them about as well.
+/// and side face, and a count one higher or lower can fit them about as well. Where no fit is
+/// within [`SAME_RISE`], the count at `rise_hint` up to the top level's plateau is fitted too
+/// (returns over the top landing can set the top height high: fresh office-43).
 pub(crate) fn profile_near(
     pts: &[(DVec2, f64)],
     all: &[(DVec2, f64)],
@@ -256,6 +258,16 @@ fn fit_profile(
         fits = fit_all(vec![(n_mode, top_mode, fit_env)], f64::NEG_INFINITY);
     }
     let off = |f: &Fit, r: f64| (f.rise - r).abs() / r;
+    // An upper flight none of whose fits has the lower flight's rise: its count at that rise
+    // up to the top level's plateau as well (returns over its top landing, a person's or
+    // mixed pixels', can set the top height high).
+    if let Some(r) = rise_hint {
+        if !fits.iter().any(|f| off(f, r) <= SAME_RISE) {
+            let top_mode = plateau_mode(env, top_height, rise0);
+            let n = (top_mode / r).round();
+            fits.extend(fit_all(vec![(n, top_mode, fit_env)], f64::NEG_INFINITY));
+        }
+    }
     let near = rise_hint.and_then(|r| {
         fits.iter()
             .filter(|f| off(f, r) <= SAME_RISE)

@@ -307,3 +307,22 @@ fn a_parked_cars_body_is_no_landing_of_a_hidden_flight() {
         .expect("a flight on a landing");
     assert!(found.iter().any(|f| f.base > 0.9), "{found:?}");
 }
+
+/// Regression: fresh office-43's staircase with a mid landing (two flights of 3 steps, rise
+/// 0.160 m) read its upper flight as 5 steps of 0.111 m: returns over its top landing set the
+/// top height at 0.56 m over the landing, 6 cm over the top level's plateau, and no count up to
+/// it had the lower flight's rise. The upper flight's count at that rise up to the plateau is
+/// fitted too. (The returns over the staircase, from the bench's map.)
+#[test]
+fn an_upper_flights_count_at_the_lower_ones_rise_reaches_its_landings_plateau() {
+    let part = returns(include_str!("../../tests/data/office43_two_flights.txt"));
+    assert_eq!(part.len(), 3037);
+    let found = search_as_mapped(&part, DVec2::new(4.0, 1.1)).expect("a staircase");
+    assert_eq!(found.len(), 2, "both flights");
+    assert!(
+        found
+            .iter()
+            .all(|f| f.steps == 3 && f.dir.dot(DVec2::X) > 0.99 && (f.rise - 0.16).abs() < 0.01),
+        "{found:?}"
+    );
+}

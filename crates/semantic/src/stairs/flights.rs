@@ -20,7 +20,7 @@
 //! straight flight: then the two flights fitted meet, the upper one's first riser within a
 //! tread's depth of the lower one's top front edge, and their points are one flight.
 use super::envelope::{envelope, of_flight, BIN_M};
-use super::plausible::{finish, floor_density};
+use super::plausible::{finish, floor_density, floor_in_strip};
 use super::profile::{profile, profile_near};
 use super::{DetectedStairs, StairsConfig};
 use crate::scene::Scene;
@@ -186,19 +186,11 @@ fn floor_seen_before(
     let (t0, t1) = (t - upper.width / 2.0, t + upper.width / 2.0);
     let s = (landing_start - length, landing_start);
     let density = floor_density(sc, dir, s, (t0, t1));
-    let line = crate::points::Line2 {
-        origin: dir * (s.0 + s.1) / 2.0 + dir.perp() * t,
+    let floor_seen = floor_in_strip(
+        sc,
         dir,
-    };
-    let mut floor_seen = 0usize;
-    sc.index.for_each_near_line(
-        &line,
-        -length / 2.0,
-        length / 2.0,
-        upper.width / 4.0,
-        |_, _, _, z| {
-            floor_seen += usize::from((z - sc.floor).abs() <= 0.03);
-        },
+        ((s.0 + s.1) / 2.0, t),
+        (length / 2.0, upper.width / 4.0),
     );
     let open = 0.5 * density * length * upper.width / 2.0;
     floor_seen > c.min_step_points && floor_seen as f64 > open

@@ -134,19 +134,11 @@ pub(crate) fn finish(
     // widen it over floor that is seen.
     if !side_only {
         let length = p.run * (p.steps as f64 - 1.0) - 0.05;
-        let line = crate::points::Line2 {
-            origin: dir * (p.front1 + p.run + length / 2.0) + dir.perp() * ((t0 + t1) / 2.0),
+        let floor_seen = floor_in_strip(
+            sc,
             dir,
-        };
-        let mut floor_seen = 0usize;
-        sc.index.for_each_near_line(
-            &line,
-            -length / 2.0,
-            length / 2.0,
-            (t1 - t0) / 4.0,
-            |_, _, _, z| {
-                floor_seen += usize::from((z - sc.floor).abs() <= 0.03);
-            },
+            (p.front1 + p.run + length / 2.0, (t0 + t1) / 2.0),
+            (length / 2.0, (t1 - t0) / 4.0),
         );
         // Seen at the density of the floor around it (less what its top shadows from far
         // scanners), the floor is under legs; the footprint's strip may still overlap floor
@@ -287,6 +279,25 @@ fn densest_run(mut t: Vec<f64>) -> Vec<f64> {
         }
     }
     t[best].to_vec()
+}
+
+/// Floor returns within `half.0` along `dir` and `half.1` across it of `centre` (along, across).
+pub(super) fn floor_in_strip(
+    sc: &Scene,
+    dir: DVec2,
+    centre: (f64, f64),
+    half: (f64, f64),
+) -> usize {
+    let line = crate::points::Line2 {
+        origin: dir * centre.0 + dir.perp() * centre.1,
+        dir,
+    };
+    let mut n = 0usize;
+    sc.index
+        .for_each_near_line(&line, -half.0, half.0, half.1, |_, _, _, z| {
+            n += usize::from((z - sc.floor).abs() <= 0.03);
+        });
+    n
 }
 
 /// Points per m² of the floor seen in a ring 0.3-1.3 m around a footprint (`s` along `dir`,

@@ -71,8 +71,8 @@ pub(crate) fn profile_near(
 }
 
 /// A fit of another step count than [`profile`]'s along `dir` that scores more than its fit
-/// there (`found`, [`Profile::fit_score`]): every count whose rise is in `rise_m`, up to the top height and up to the
-/// top level's plateau, is fitted (`None`: none beats it).
+/// there (`found`, [`Profile::fit_score`]): every count whose rise is in `rise_m`, up to the top
+/// height and up to the top level's plateau, is fitted (`None`: none beats it).
 ///
 /// [`profile`] fits the counts that its grid of levels and its top height point to. On a
 /// flight seen from its side only, both can be off: the grid locks onto whatever spacing the
@@ -225,12 +225,14 @@ fn fit_profile(
             .filter(|f| f.found as f64 >= 0.6 * f.n as f64 && f.best > 0.0 && f.best > floor)
             .collect()
     };
+    // (the top level's plateau: a second top for the counts below)
+    let top_mode = plateau_mode(env, top_height, rise0);
     let mut fits = match beat {
         None => fit_all(counts, f64::NEG_INFINITY),
         Some(floor) => {
             // Every other count in the range of rises, up to either top.
             let mut others: Vec<Count> = Vec::new();
-            for top in [top_height, plateau_mode(env, top_height, rise0)] {
+            for top in [top_height, top_mode] {
                 let fewest = (top / c.rise_m[1]).ceil().max(1.0);
                 let most = (top / c.rise_m[0]).floor().min(64.0);
                 let mut n = fewest;
@@ -253,7 +255,6 @@ fn fit_profile(
     // edge) may have set the top height a few centimetres high, and the rise with it: every
     // level of a long flight then misses its bins. The top level's plateau sets it then.
     if fits.is_empty() {
-        let top_mode = plateau_mode(env, top_height, rise0);
         let n_mode = ((top_mode - offset) / rise0).round();
         fits = fit_all(vec![(n_mode, top_mode, fit_env)], f64::NEG_INFINITY);
     }
@@ -263,7 +264,6 @@ fn fit_profile(
     // mixed pixels', can set the top height high).
     if let Some(r) = rise_hint {
         if !fits.iter().any(|f| off(f, r) <= SAME_RISE) {
-            let top_mode = plateau_mode(env, top_height, rise0);
             let n = (top_mode / r).round();
             fits.extend(fit_all(vec![(n, top_mode, fit_env)], f64::NEG_INFINITY));
         }

@@ -189,6 +189,7 @@ mod tests {
             fill: 1.0,
             support: 500,
             overhead: false,
+            beside_top: false,
             rules: Vec::new(),
         }
     }

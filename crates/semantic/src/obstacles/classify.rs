@@ -43,6 +43,7 @@ pub(super) fn fit_cluster(
         fill,
         support: members.len() as u64,
         overhead,
+        beside_top: false,
         rules: vec![
             format!(
                 "{} points explained by no floor, ceiling, wall, door or stairs, {} occupied {:.2} m cells {}",

@@ -16,6 +16,11 @@ const FACE_MAX_ACROSS_M: f64 = 0.3;
 /// 0.45 m, its two edges' thickness and the smear; two cabinets' fronts across an aisle span
 /// more).
 const FACES_MAX_DEPTH_M: f64 = 0.75;
+/// A backrest rises at most this over its seat (0.3-0.5 m; an office chair's up to 0.6 m).
+const BACKREST_MAX_RISE_M: f64 = 0.6;
+/// A seat's top is at least this high over the floor (chairs 0.4-0.5 m, stools up to 0.8 m;
+/// lower is a crate or a footrest).
+const MIN_SEAT_HEIGHT_M: f64 = 0.3;
 
 /// The clusters, pairs of faces of one thing (see the module docs) joined into one box: their
 /// footprints (hulls, not boxes: the box of a blob 0.2 m thick may lie at any angle) overlapping
@@ -78,7 +83,21 @@ fn faces_of_one_thing(a: &DetectedObstacle, b: &DetectedObstacle, max_step_m: f6
     overlap >= 0.5 * (a1 - a0).min(b1 - b0)
         && depth <= FACES_MAX_DEPTH_M
         && (a.z_range.0 - b.z_range.0).abs() <= max_step_m
-        && (a.z_range.1 - b.z_range.1).abs() <= max_step_m
+        && ((a.z_range.1 - b.z_range.1).abs() <= max_step_m || backrest_and_seat(a, b, max_step_m))
+}
+
+/// Whether one of `a` and `b` is a backrest cut off a desk's edge ([`super::tops`]) and the
+/// other, lower, a seat in front of it: the seat's top at a seat's height over the floor, the
+/// backrest rising over it by a step to [`BACKREST_MAX_RISE_M`].
+fn backrest_and_seat(a: &DetectedObstacle, b: &DetectedObstacle, max_step_m: f64) -> bool {
+    let (back, seat) = match (a.beside_top, b.beside_top) {
+        (true, false) => (a, b),
+        (false, true) => (b, a),
+        _ => return false,
+    };
+    let rise = back.z_range.1 - seat.z_range.1;
+    let seat_height = seat.z_range.1 - seat.z_range.0;
+    rise > max_step_m && rise <= BACKREST_MAX_RISE_M && seat_height >= MIN_SEAT_HEIGHT_M
 }
 
 #[cfg(test)]
@@ -104,6 +123,28 @@ mod tests {
         back.dir = DVec2::from_angle(24f64.to_radians());
         let out = join_faces(vec![front, back], &ObstacleConfig::default());
         assert_eq!(out.len(), 1, "{out:#?}");
+    }
+
+    #[test]
+    fn a_backrest_cut_off_a_desk_and_the_seat_before_it_are_one_chair() {
+        // The backrest (to 0.83 m) cut off the desk's edge, the seat's far edge (0.42 m) 0.3 m
+        // in front of it.
+        let mut back = cluster([0.0, 0.0], DVec2::X, [0.45, 0.1], (0.0, 0.83), false);
+        let seat = cluster([0.02, 0.3], DVec2::X, [0.5, 0.15], (0.0, 0.42), false);
+        let c = ObstacleConfig::default();
+        // Not cut off a top: a desk's edge and a seat, two things.
+        assert_eq!(join_faces(vec![back.clone(), seat.clone()], &c).len(), 2);
+        back.beside_top = true;
+        let out = join_faces(vec![back.clone(), seat.clone()], &c);
+        assert_eq!(out.len(), 1, "{out:#?}");
+        assert!((out[0].z_range.1 - 0.83).abs() < 1e-9);
+        assert!(out[0].size[1] > 0.4, "{:?}", out[0].size);
+        // A crate's lid (0.25 m) is no seat; a cabinet (1.9 m) is no backrest.
+        let lid = cluster([0.02, 0.3], DVec2::X, [0.5, 0.15], (0.0, 0.25), false);
+        assert_eq!(join_faces(vec![back.clone(), lid], &c).len(), 2);
+        let mut tall = back;
+        tall.z_range.1 = 1.9;
+        assert_eq!(join_faces(vec![tall, seat], &c).len(), 2);
     }
 
     #[test]

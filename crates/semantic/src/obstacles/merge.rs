@@ -74,7 +74,15 @@ pub(super) fn absorb_parts(
                 && k.size[1] > c.sliver_max_across_m
                 && o.size[1] <= c.sliver_max_across_m
                 && intersection_area(&part, &rect_corners(k.center, k.dir, k.size)) / own < 0.5;
-            if inside >= 0.5 && on_footprint && !thin_beside && host.is_none_or(|h| inside > h.0) {
+            // What was cut off the edge of a raised top (`tops`) stays apart from it.
+            let cut_off = o.beside_top
+                && intersection_area(&part, &rect_corners(k.center, k.dir, k.size)) / own < 0.5;
+            if inside >= 0.5
+                && on_footprint
+                && !thin_beside
+                && !cut_off
+                && host.is_none_or(|h| inside > h.0)
+            {
                 host = Some((inside, n));
             }
         }
@@ -278,6 +286,20 @@ mod tests {
         let panel = cluster([0.0, 0.0], DVec2::X, [1.72, 0.14], (0.0, 0.9), false);
         let strip = cluster([0.0, 0.13], DVec2::X, [0.9, 0.1], (0.0, 0.9), false);
         assert_eq!(absorb_parts(vec![panel, strip], 0.1, &config(0.1)).len(), 1);
+    }
+
+    #[test]
+    fn what_was_cut_off_a_desks_top_stays_out_of_its_box() {
+        // A backrest 0.12 m over the desk's top (more than the thin-beside rule allows), lying
+        // beside the desk's box within the margin.
+        let desk = cluster([0.0, 0.0], DVec2::X, [1.3, 0.86], (0.0, 0.72), false);
+        let mut back = cluster([0.0, 0.48], DVec2::X, [0.45, 0.1], (0.0, 0.84), false);
+        assert_eq!(
+            absorb_parts(vec![desk.clone(), back.clone()], 0.1, &config(0.1)).len(),
+            1
+        );
+        back.beside_top = true;
+        assert_eq!(absorb_parts(vec![desk, back], 0.1, &config(0.1)).len(), 2);
     }
 
     #[test]

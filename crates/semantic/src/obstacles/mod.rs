@@ -18,6 +18,9 @@
 //!    seat by a desk, two cabinets) are split where their levels meet along a short junction
 //!    ([`levels`]). Specks strung onto a cluster by the mixed pixels between it and a neighbour
 //!    are dropped from it ([`fringe`]), so that its box does not reach over the neighbour.
+//!    What stands at the edge of a raised top, its top at the top's height (a chair's backrest
+//!    against a desk's edge), is cut off the top where its cells' returns reach down to the
+//!    floor and the top's hang in a slab ([`tops`]).
 //! 3. A low cluster's top climbs through the points above head height in its cells while they
 //!    follow each other within `max_vertical_gap_m` (a shelf taller than head height, a column
 //!    up to the ceiling; not the beam over a car). The high points it climbed through are its
@@ -38,7 +41,8 @@
 //!    continuing each other along one line across gaps up to `column_max_across_m` (a duct cut
 //!    where beams cross it) are one; thin clusters along a wall's face are its residue, dropped;
 //!    two thin clusters side by side a thing's depth apart, of one height, are its faces (a
-//!    seat seen along its front and back edges, [`faces`]); a standing cluster along a wall
+//!    seat seen along its front and back edges; or a backrest cut off a desk and the seat in
+//!    front of it, [`faces`]); a standing cluster along a wall
 //!    whose floor between it and the wall was never seen (a cabinet seen from the room as its
 //!    front face) reaches back to the wall ([`backing`]).
 //! 6. Classes ([`classify`]): a low cluster standing on the floor, reaching the ceiling and at
@@ -57,17 +61,20 @@ mod faces;
 mod fit;
 mod frames;
 mod fringe;
+mod keep_out;
 
 pub(crate) use cluster::{components, BandGrid};
 pub use fit::intersection_area as convex_intersection_area;
 pub(crate) use fit::{convex_hull, min_area_rect, rect_corners};
+pub(crate) use keep_out::{exclude_boxes, wall_cells};
 mod levels;
 mod merge;
 mod necks;
 mod partitions;
 mod pillar_rows;
+mod tops;
 
-use crate::image_frame::{pixel_center, pixel_range, ImageFrame};
+use crate::image_frame::ImageFrame;
 use crate::map::OrientedBox;
 use crate::points::quantile;
 use crate::walls::WallFit;
@@ -84,6 +91,7 @@ use merge::{absorb_parts, drop_wall_slivers, join_collinear};
 use necks::split_at_necks;
 use partitions::classify_partition;
 use pillar_rows::{may_be_a_pillar_row, split_pillar_row};
+use tops::split_beside_tops;
 
 /// A surface the laser saw of a thing is at least this large (m²): a seat 0.45 m square seen in
 /// part, the front of a cabinet 0.35 m deep along 0.2-0.3 m. Smaller groups of cells are edges,
@@ -110,6 +118,8 @@ pub(crate) struct DetectedObstacle {
     pub support: u64,
     /// Found in the band above head height.
     pub overhead: bool,
+    /// Cut off the edge of a raised top: something standing beside a table ([`tops`]).
+    pub beside_top: bool,
     pub rules: Vec<String>,
 }
 
@@ -163,6 +173,7 @@ pub(crate) fn find_obstacles(
             high.push(i as u32);
         }
     }
+    let wall_dirs: Vec<DVec2> = sc.walls.iter().map(|w| w.line.dir).collect();
     let low_grid = BandGrid::new(&frame, &low, &cell_of);
     let high_grid = BandGrid::new(&frame, &high, &cell_of);
     let (w, h) = (low_grid.width, low_grid.height);
@@ -177,7 +188,10 @@ pub(crate) fn find_obstacles(
         .into_iter()
         .flat_map(|cells| split_at_necks(cells, &frame))
         .flat_map(|cells| split_levels(cells, &tops, &frame, c.max_top_step_m))
-        .map(|cells| without_fringe(cells, w, frame.resolution_m));
+        .map(|cells| without_fringe(cells, w, frame.resolution_m))
+        .flat_map(|cells| {
+            split_beside_tops(cells, &low_grid, (z_of, sc.floor), &frame, &wall_dirs)
+        });
     let mut fit_low = |cells: &[usize]| -> Option<DetectedObstacle> {
         let members: Vec<u32> = cells
             .iter()
@@ -209,10 +223,12 @@ pub(crate) fn find_obstacles(
         let bottom = quantile(&mut zs, 0.01).unwrap_or(top);
         fit_cluster(sc, &members, cells.len(), (bottom, top), false, &frame, c)
     };
-    for cells in low_clusters {
-        let Some(o) = fit_low(&cells) else {
+    for part in low_clusters {
+        let cells = part.cells;
+        let Some(mut o) = fit_low(&cells) else {
             continue;
         };
+        o.beside_top = part.beside_top;
         // A row of pillars is its pillars (see `pillar_rows`), each fitted on its own.
         let pillars = may_be_a_pillar_row(&o, sc.floor, sc.ceiling, c)
             .then(|| split_pillar_row(cells, &low_grid, &frame))
@@ -276,58 +292,6 @@ pub(crate) fn find_obstacles(
     out
 }
 
-/// The grid cells within a wall's slab grown by `margin` (its points are the wall's).
-/// Marks the cells whose centres lie in a box's footprint grown by `margin`.
-pub(crate) fn exclude_boxes(
-    frame: &ImageFrame,
-    boxes: &[OrientedBox],
-    margin: f64,
-    excluded: &mut [bool],
-) {
-    let w = frame.width_px as usize;
-    for b in boxes {
-        let (s, co) = b.yaw_deg.to_radians().sin_cos();
-        let (axis, centre) = (DVec2::new(co, s), DVec2::new(b.center_m[0], b.center_m[1]));
-        let half = DVec2::new(b.size_m[0] / 2.0 + margin, b.size_m[1] / 2.0 + margin);
-        let reach = DVec2::splat(half.length());
-        let Some((c0, c1, r0, r1)) = pixel_range(frame, centre - reach, centre + reach) else {
-            continue;
-        };
-        for row in r0..=r1 {
-            for col in c0..=c1 {
-                let r = pixel_center(frame, col as f64, row as f64) - centre;
-                if r.dot(axis).abs() <= half.x && r.dot(axis.perp()).abs() <= half.y {
-                    excluded[row * w + col] = true;
-                }
-            }
-        }
-    }
-}
-
-pub(crate) fn wall_cells(frame: &ImageFrame, walls: &[WallFit], margin: f64) -> Vec<bool> {
-    let w = frame.width_px as usize;
-    let mut excluded = vec![false; frame.len()];
-    for wall in walls {
-        let half = wall.thickness / 2.0 + margin;
-        let (a, b) = (wall.start(), wall.end());
-        let lo = a.min(b) - DVec2::splat(half);
-        let hi = a.max(b) + DVec2::splat(half);
-        let Some((c0, c1, r0, r1)) = pixel_range(frame, lo, hi) else {
-            continue;
-        };
-        for row in r0..=r1 {
-            for col in c0..=c1 {
-                let q = pixel_center(frame, col as f64, row as f64);
-                let (s, d) = wall.line.coords(q);
-                if d.abs() <= half && s >= -margin && s <= wall.length + margin {
-                    excluded[row * w + col] = true;
-                }
-            }
-        }
-    }
-    excluded
-}
-
 /// A 10 x 6 m grid of 10 cm cells (the frames' and necks' tests).
 #[cfg(test)]
 pub(crate) fn test_grid() -> ImageFrame {
@@ -360,6 +324,7 @@ pub(crate) fn test_cluster(
         fill: 1.0,
         support: 100,
         overhead,
+        beside_top: false,
         rules: Vec::new(),
     }
 }

@@ -147,6 +147,7 @@ mod tests {
             fill: 1.0,
             support: 100,
             overhead,
+            beside_top: false,
             rules: Vec::new(),
         };
         let (floor, ceiling) = (0.0, 3.0);

@@ -68,6 +68,7 @@ impl DetectedRamp {
             fill: self.fill,
             support: self.points.len() as u64,
             overhead: false,
+            beside_top: false,
             rules: self.rules.clone(),
         }
     }

@@ -81,12 +81,14 @@ pub(super) fn split_beside_tops(
         (slab, standing)
     };
     let profiles: Vec<(bool, bool)> = cells.iter().map(|&k| profile(k)).collect();
-    let slab: Vec<usize> = cells
-        .iter()
-        .zip(&profiles)
-        .filter(|(_, p)| p.0)
-        .map(|(&k, _)| k)
-        .collect();
+    let cells_where = |of: fn(&(bool, bool)) -> bool| {
+        cells
+            .iter()
+            .zip(&profiles)
+            .filter(move |(_, p)| of(p))
+            .map(|(&k, _)| k)
+    };
+    let slab: Vec<usize> = cells_where(|p| p.0).collect();
     if slab.len() < min_core || 2 * slab.len() < cells.len() {
         return whole(cells);
     }
@@ -133,12 +135,7 @@ pub(super) fn split_beside_tops(
     if out_cells.is_empty() {
         return whole(cells);
     }
-    let standing: HashSet<usize> = cells
-        .iter()
-        .zip(&profiles)
-        .filter(|(_, p)| p.1)
-        .map(|(&k, _)| k)
-        .collect();
+    let standing: HashSet<usize> = cells_where(|p| p.1).collect();
     let (mut parts, mut specks) = (Vec::new(), Vec::new());
     let mut cut = HashSet::new();
     for group in components_of(&out_cells, frame.width_px as usize, 2) {
@@ -267,21 +264,11 @@ mod tests {
             .collect();
         let explained = vec![false; points.len()];
         // The room's south wall, 0.8 m off (the direction a box prefers).
-        let walls = [crate::walls::WallFit {
-            line: crate::points::Line2 {
-                origin: DVec2::new(-1.0, -0.8),
-                dir: DVec2::X,
-            },
-            length: 4.0,
-            thickness: 0.15,
-            measured: true,
-            faces: vec![0.075, -0.075],
-            free_side: 1.0,
-            z_range: (0.0, 2.8),
-            support: 1000,
-            coverage: 1.0,
-            rules: Vec::new(),
-        }];
+        let walls = [crate::walls::WallFit::one_sided(
+            DVec2::new(-1.0, -0.8),
+            DVec2::new(3.0, -0.8),
+            1.0,
+        )];
         let truth = |x: f64, y: f64, size: [f64; 2]| {
             let b = OrientedBox {
                 center_m: [x, y, 0.4],

@@ -5,6 +5,20 @@ use crate::points::XyIndex;
 use crate::stairs::tests::over_floor;
 use glam::Vec3;
 
+/// A profile along `dir` of `steps` steps of `rise` x `run` from 0, `found` of its levels seen.
+fn flight(dir: DVec2, (rise, run, steps): (f64, f64, u32), found: u32) -> Profile {
+    Profile {
+        dir,
+        rise,
+        run,
+        front1: 0.0,
+        steps,
+        found,
+        score: f64::from(found),
+        fit_score: 0.0,
+    }
+}
+
 /// Regression: office-6's upper flight (4 steps on a mid landing) was refused: a desk
 /// beside it, 0.9 m off, had parts at step heights, so the width across the points on the
 /// steps spanned both (3.1 m), and the floor seen under the desk read as floor under the
@@ -60,16 +74,7 @@ fn a_desk_beside_a_flight_does_not_widen_it() {
     );
     let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(4.0), 0.25);
     let sc = Scene::with_one_index(&points, &index, 0.0, 2.5);
-    let p = Profile {
-        dir: DVec2::X,
-        rise,
-        run,
-        front1: 0.0,
-        steps: 4,
-        found: 4,
-        score: 4.0,
-        fit_score: 0.0,
-    };
+    let p = flight(DVec2::X, (rise, run, 4), 4);
     let stairs = finish(&blob, p, &sc, &StairsConfig::default()).expect("a staircase");
     assert!((stairs.width - 1.0).abs() < 0.05, "width {}", stairs.width);
 }
@@ -153,16 +158,7 @@ fn one_thin_step_is_allowed_with_all_levels_seen_but_one() {
     let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(5.0), 0.25);
     let sc = Scene::with_one_index(&points, &index, 0.0, 2.6);
     let c = StairsConfig::default();
-    let profile = |found| Profile {
-        dir: DVec2::X,
-        rise,
-        run,
-        front1: 0.0,
-        steps,
-        found,
-        score: f64::from(found),
-        fit_score: 0.0,
-    };
+    let profile = |found| flight(DVec2::X, (rise, run, steps), found);
     assert!(finish(&side, profile(steps - 1), &sc, &c).is_some());
     assert!(finish(&side, profile(steps - 2), &sc, &c).is_none());
 }
@@ -178,16 +174,7 @@ fn steps_on_no_one_plane_are_no_side_face() {
     let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(5.0), 0.25);
     let sc = Scene::with_one_index(&points, &index, 0.0, 2.6);
     let c = StairsConfig::default();
-    let profile = |dir| Profile {
-        dir,
-        rise,
-        run,
-        front1: 0.0,
-        steps,
-        found: steps,
-        score: f64::from(steps),
-        fit_score: 0.0,
-    };
+    let profile = |dir| flight(dir, (rise, run, steps), steps);
     // The side face itself is a staircase; along a direction 3 degrees off the face (its
     // steps' returns drifting across it step by step) still.
     assert!(finish(&side, profile(DVec2::X), &sc, &c).is_some());
@@ -250,16 +237,7 @@ fn stray_returns_beyond_a_side_face_do_not_move_it() {
     let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(5.0), 0.25);
     let sc = Scene::with_one_index(&points, &index, 0.0, 2.6);
     let c = StairsConfig::default();
-    let p = Profile {
-        dir: DVec2::X,
-        rise,
-        run,
-        front1: 0.0,
-        steps,
-        found: steps,
-        score: f64::from(steps),
-        fit_score: 0.0,
-    };
+    let p = flight(DVec2::X, (rise, run, steps), steps);
     let stairs = finish(&side, p, &sc, &c).expect("a staircase");
     // Its width from the face (y = 0) away from the floor seen: centred 0.5 m in.
     assert!((stairs.start.y - 0.5).abs() < 0.03, "{:?}", stairs.start);

@@ -27,7 +27,7 @@ pub(super) fn fit_cluster(
         .collect();
     let hull = convex_hull(&xy);
     let preferred: Vec<DVec2> = sc.walls.iter().map(|w| w.line.dir).collect();
-    let (center, dir, mut size) = min_area_rect(&hull, &preferred)?;
+    let (center, dir, mut size) = min_area_rect(&hull, &xy, &preferred)?;
     // The points are samples of the surface: the box reaches half a cell beyond them at least.
     let pad = frame.resolution_m / 2.0;
     size = [size[0].max(pad), size[1].max(pad)];

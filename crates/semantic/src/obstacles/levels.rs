@@ -211,7 +211,7 @@ fn junction(
             .filter(|(&k, &o)| o == r && near_other(k, o))
             .map(|(&k, _)| k)
             .collect();
-        let (_, _, size) = min_area_rect(&convex_hull(&cell_centres(&meets, frame)), &[])?;
+        let (_, _, size) = min_area_rect(&convex_hull(&cell_centres(&meets, frame)), &[], &[])?;
         Some(size[0] + frame.resolution_m)
     };
     Some(side(a)?.min(side(b)?))

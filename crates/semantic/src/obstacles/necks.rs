@@ -60,7 +60,7 @@ fn split(
 ) {
     let pts = cell_centres(&cells, frame);
     let weights: Vec<usize> = cells.iter().map(|&k| (necks.weight)(k)).collect();
-    let axes = min_area_rect(&convex_hull(&pts), &[]).map(|(_, d, _)| [d, d.perp()]);
+    let axes = min_area_rect(&convex_hull(&pts), &[], &[]).map(|(_, d, _)| [d, d.perp()]);
     let cut = match axes {
         Some(axes) if depth < MAX_DEPTH => axes
             .iter()

@@ -114,8 +114,9 @@ pub(super) fn split_beside_tops(
     if surface.len() < min_core {
         return whole(cells);
     }
-    let hull = convex_hull(&cell_centres(&surface, frame));
-    let Some((centre, dir, size)) = min_area_rect(&hull, preferred) else {
+    let surface_xy = cell_centres(&surface, frame);
+    let hull = convex_hull(&surface_xy);
+    let Some((centre, dir, size)) = min_area_rect(&hull, &surface_xy, preferred) else {
         return whole(cells);
     };
     let half = DVec2::new(size[0], size[1]) / 2.0 + DVec2::splat(GROW_CELLS * frame.resolution_m);

@@ -57,7 +57,7 @@ pub(crate) fn ramp_plane(
     c: &RampConfig,
 ) -> Option<RampPlane> {
     let centres: Vec<DVec2> = cells.iter().map(|c| c.0).collect();
-    let (_, axis, _) = min_area_rect(&convex_hull(&centres), &[])?;
+    let (_, axis, _) = min_area_rect(&convex_hull(&centres), &[], &[])?;
     // Uphill: the gradient of the plane through the cells' tops, else the rectangle's axes.
     let uphill = uphill(cells, c.inlier_m);
     // The gradient (turned onto the rectangle's nearest axis if within `SNAP_DEG` of it: a

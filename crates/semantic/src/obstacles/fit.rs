@@ -216,7 +216,10 @@ mod tests {
         let (_, dir, size) = min_area_rect(&convex_hull(&pts), &pts, &[DVec2::X]).expect("rect");
         let turned = dir.dot(d).abs().max(dir.dot(n).abs());
         assert!(turned > 5f64.to_radians().cos(), "{dir} for {d}");
-        assert!((size[0] - 0.41).abs() < 0.03 && (size[1] - 0.37).abs() < 0.03, "{size:?}");
+        assert!(
+            (size[0] - 0.41).abs() < 0.03 && (size[1] - 0.37).abs() < 0.03,
+            "{size:?}"
+        );
     }
 
     /// A footprint seen filled (a top seen from above) 3 degrees off the walls lies as close to

@@ -168,7 +168,8 @@ fn from_foot(env: &[(f64, f64)], max_rise_m: f64) -> &[(f64, f64)] {
 
 /// The envelope without what stands on or across the flight over a short stretch: a bin more
 /// than `max_rise_m` (the highest a step may rise) over all of the envelope from `width_m` to
-/// twice that before it and after it (with some of it there on both sides) is a spike, and so
+/// twice that before it and after it (with some of it there on both sides; before the
+/// envelope's first bin, the floor: a person at a flight's foot) is a spike, and so
 /// is every bin within `width_m` of a spike that stands above that envelope (by the
 /// measurement's few centimetres). A person walking past a flight or standing on its landing,
 /// crossing a side face seen alone, is such a spike; a flight's profile rises or stays level
@@ -184,8 +185,14 @@ fn without_spikes(env: &[(f64, f64)], max_rise_m: f64, width_m: f64) -> Vec<(f64
             .fold(f64::NEG_INFINITY, f64::max)
     };
     let mut spike = vec![false; env.len()];
+    let first = env.first().map_or(f64::INFINITY, |e| e.0);
     for &(s, z) in env {
-        let before = highest(s - 2.0 * width_m, s - width_m);
+        // (before the envelope's first bin is the floor the flight stands on: its heights
+        // are over it, and the floor is in no part)
+        let before = match highest(s - 2.0 * width_m, s - width_m) {
+            h if h.is_finite() || s - width_m > first => h,
+            _ => 0.0,
+        };
         let after = highest(s + width_m, s + 2.0 * width_m);
         if before.is_finite() && after.is_finite() && before.max(after) < z - max_rise_m {
             let flanks = before.max(after) + SAME_SURFACE_M;
@@ -284,6 +291,39 @@ mod tests {
         let mut rising = env[..100].to_vec();
         rising.push((1.0, 0.9));
         assert_eq!(without_spikes(&rising, 0.23, 0.15), rising);
+    }
+
+    /// Regression (hall-49 of seeds 46-50): a person the transients filter left in part,
+    /// walking across a flight's foot in one scan, stands at the very start of the flight's
+    /// envelope (nothing of the part before it: the floor is in no part), 1.7 m high over 14
+    /// cm. It leaves the envelope as a person on a landing does; a box as tall standing there
+    /// over more than a spike's reach (0.45 m) stays.
+    #[test]
+    fn a_person_at_a_flights_foot_is_no_part_of_the_profile() {
+        let flight: Vec<(f64, f64)> = (0..84)
+            .map(|i| {
+                let s = 0.165 + 0.01 * i as f64;
+                (s, 0.17 * (((s - 0.16) / 0.28).floor() + 1.0))
+            })
+            .collect();
+        let person: Vec<(f64, f64)> = (0..15)
+            .map(|i| (0.005 + 0.01 * i as f64, 1.7 - 0.05 * (i % 3) as f64))
+            .collect();
+        let env: Vec<(f64, f64)> = person.iter().chain(&flight).copied().collect();
+        assert_eq!(without_spikes(&env, 0.23, 0.15), flight);
+        let boxed: Vec<(f64, f64)> = (0..45).map(|i| (0.005 + 0.01 * i as f64, 1.7)).collect();
+        let env: Vec<(f64, f64)> = boxed
+            .iter()
+            .chain(
+                flight
+                    .iter()
+                    .map(|e| (e.0 + 0.3, e.1))
+                    .collect::<Vec<_>>()
+                    .iter(),
+            )
+            .copied()
+            .collect();
+        assert_eq!(without_spikes(&env, 0.23, 0.15), env);
     }
 
     /// The envelope by its definition, point by point (quadratic in the points): for each bin,

@@ -293,11 +293,9 @@ mod tests {
         assert_eq!(without_spikes(&rising, 0.23, 0.15), rising);
     }
 
-    /// Regression (hall-49 of seeds 46-50): a person the transients filter left in part,
-    /// walking across a flight's foot in one scan, stands at the very start of the flight's
-    /// envelope (nothing of the part before it: the floor is in no part), 1.7 m high over 14
-    /// cm. It leaves the envelope as a person on a landing does; a box as tall standing there
-    /// over more than a spike's reach (0.45 m) stays.
+    /// Regression (hall-49 of seeds 46-50): a person left in part by the transients filter, at
+    /// the very start of a flight's envelope (the floor before it is in no part), 1.7 m high
+    /// over 14 cm, leaves it as one on a landing does; a box 0.45 m long there stays.
     #[test]
     fn a_person_at_a_flights_foot_is_no_part_of_the_profile() {
         let flight: Vec<(f64, f64)> = (0..84)

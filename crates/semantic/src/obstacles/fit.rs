@@ -71,10 +71,10 @@ pub(crate) fn min_area_rect(
     if dirs.is_empty() {
         dirs.push(DVec2::X);
     }
-    let smallest = rect_along(hull, &dirs)?.0;
-    let within = |dirs: &[DVec2]| -> Vec<(Rect, f64)> {
-        dirs.iter()
-            .filter_map(|d| rect_along(hull, &[*d]))
+    // Each rectangle with its points' closeness, of those within the factor of the smallest.
+    let scored = |rects: Vec<Rect>, smallest: f64| -> Vec<(Rect, f64)> {
+        rects
+            .into_iter()
             .filter(|r| r.0 <= AREA_FACTOR * smallest + 1e-12)
             .map(|r| {
                 let c = closeness(pts, &r);
@@ -82,10 +82,16 @@ pub(crate) fn min_area_rect(
             })
             .collect()
     };
+    let on_hull: Vec<Rect> = dirs.iter().filter_map(|&d| rect_along(hull, d)).collect();
+    let smallest = on_hull.iter().map(|r| r.0).fold(f64::INFINITY, f64::min);
+    let on_walls: Vec<Rect> = preferred
+        .iter()
+        .filter_map(|&d| rect_along(hull, d))
+        .collect();
     let by_closeness =
         |a: &(Rect, f64), b: &(Rect, f64)| a.1.total_cmp(&b.1).then(a.0 .0.total_cmp(&b.0 .0));
-    let free = within(&dirs).into_iter().min_by(by_closeness)?;
-    let along = within(preferred)
+    let free = scored(on_hull, smallest).into_iter().min_by(by_closeness)?;
+    let along = scored(on_walls, smallest)
         .into_iter()
         .filter(|p| p.1 <= PREFERRED_CLOSENESS_FACTOR * free.1 + CLOSENESS_SLACK_M)
         .min_by(|a, b| a.0 .0.total_cmp(&b.0 .0));
@@ -121,29 +127,21 @@ fn closeness(pts: &[DVec2], (_, c, d, s): &Rect) -> f64 {
     sum / pts.len() as f64
 }
 
-/// The smallest-area rectangle around `hull` with a side along one of `dirs`: area, centre,
-/// direction, size.
-fn rect_along(hull: &[DVec2], dirs: &[DVec2]) -> Option<Rect> {
+/// The rectangle around `hull` with a side along the unit direction `d` (`None` for no hull).
+fn rect_along(hull: &[DVec2], d: DVec2) -> Option<Rect> {
     let first = *hull.first()?;
-    let mut best: Option<Rect> = None;
-    for &d in dirs {
-        let n = d.perp();
-        let (mut u0, mut u1, mut v0, mut v1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-        for q in hull {
-            let r = *q - first;
-            let (u, v) = (r.dot(d), r.dot(n));
-            u0 = u0.min(u);
-            u1 = u1.max(u);
-            v0 = v0.min(v);
-            v1 = v1.max(v);
-        }
-        let area = (u1 - u0) * (v1 - v0);
-        if best.as_ref().is_none_or(|b| area < b.0 - 1e-12) {
-            let centre = first + d * ((u0 + u1) / 2.0) + n * ((v0 + v1) / 2.0);
-            best = Some((area, centre, d, [u1 - u0, v1 - v0]));
-        }
+    let n = d.perp();
+    let (mut u0, mut u1, mut v0, mut v1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for q in hull {
+        let r = *q - first;
+        let (u, v) = (r.dot(d), r.dot(n));
+        u0 = u0.min(u);
+        u1 = u1.max(u);
+        v0 = v0.min(v);
+        v1 = v1.max(v);
     }
-    best
+    let centre = first + d * ((u0 + u1) / 2.0) + n * ((v0 + v1) / 2.0);
+    Some(((u1 - u0) * (v1 - v0), centre, d, [u1 - u0, v1 - v0]))
 }
 
 #[cfg(test)]

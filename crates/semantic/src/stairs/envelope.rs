@@ -310,17 +310,8 @@ mod tests {
         let env: Vec<(f64, f64)> = person.iter().chain(&flight).copied().collect();
         assert_eq!(without_spikes(&env, 0.23, 0.15), flight);
         let boxed: Vec<(f64, f64)> = (0..45).map(|i| (0.005 + 0.01 * i as f64, 1.7)).collect();
-        let env: Vec<(f64, f64)> = boxed
-            .iter()
-            .chain(
-                flight
-                    .iter()
-                    .map(|e| (e.0 + 0.3, e.1))
-                    .collect::<Vec<_>>()
-                    .iter(),
-            )
-            .copied()
-            .collect();
+        let behind: Vec<(f64, f64)> = flight.iter().map(|e| (e.0 + 0.3, e.1)).collect();
+        let env: Vec<(f64, f64)> = boxed.iter().chain(&behind).copied().collect();
         assert_eq!(without_spikes(&env, 0.23, 0.15), env);
     }
 

@@ -333,3 +333,20 @@ fn an_upper_flights_count_at_the_lower_ones_rise_reaches_its_landings_plateau() 
     assert_eq!(part.len(), 3037);
     assert_two_flights(search_as_mapped(&part, DVec2::new(4.0, 1.1)), 3, Some(0.16));
 }
+
+/// Regression: fresh hall-49's staircase with a mid landing (two flights of 3 steps, rise
+/// 0.171 m) read as one flight of 5 steps: mixed pixels along one ray, 0.2-0.35 m over the
+/// landing for 0.23 m of it, lifted the profile's running maximum there, so the level stretch
+/// before them was shorter than a landing and the one after them stood 5 rises up. Something
+/// the profile falls back from within a landing's depth stands on the level; a riser does not.
+/// (The returns over the staircase, from the bench's map.)
+#[test]
+fn mixed_pixels_standing_on_a_mid_landing_leave_it_a_landing() {
+    let part = returns(include_str!("../../tests/data/hall49_mid_landing.txt"));
+    assert_eq!(part.len(), 2301);
+    let found = assert_two_flights(search_as_mapped(&part, DVec2::new(4.1, 1.0)), 3, None);
+    // The upper flight starts on the landing, 0.51 m up, its first riser 2.06 m along.
+    let upper = &found[1];
+    assert!((upper.base - 0.51).abs() < 0.05, "base {}", upper.base);
+    assert!((upper.start.x - 2.06).abs() < 0.06, "start {}", upper.start);
+}

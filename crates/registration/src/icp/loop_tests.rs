@@ -104,3 +104,34 @@ fn a_pose_creeping_one_way_on_the_final_gate_is_no_cycle() {
     assert!(!result.converged);
     assert_eq!(result.iterations.len(), c.max_iterations);
 }
+
+#[test]
+fn a_pose_going_round_three_on_the_final_gate_converges_early() {
+    let c = IcpConfig::default();
+    // The target pose by turns at three places a few translation epsilons apart (each pair a
+    // different distance apart, so that the RMSE never settles): a 3-cycle, which no 2-cycle
+    // rule sees (a generated office's scan through a doorway ran its 30 iterations so).
+    let e = c.translation_epsilon_m;
+    let places = [
+        DVec3::new(3.0 * e, 0.0, 0.0),
+        DVec3::new(0.0, 4.0 * e, 0.0),
+        DVec3::new(0.0, 0.0, 5.0 * e),
+    ];
+    let mut pairs = Scripted {
+        source: lattice(),
+        target_at: |k: usize| DAffine3::from_translation(places[k % 3]),
+        calls: 0,
+        extra: false,
+    };
+    let result = run_loop(&c, &lattice(), DAffine3::IDENTITY, &mut pairs).expect("the loop runs");
+    assert!(
+        result.converged,
+        "a 3-cycle on the final gate is convergence"
+    );
+    assert!(
+        result.iterations.len() < 8,
+        "stopped after {} iterations (of {})",
+        result.iterations.len(),
+        c.max_iterations
+    );
+}

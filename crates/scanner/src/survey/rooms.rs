@@ -7,8 +7,9 @@
 /// at a time. Where no such room is linked directly (its door is narrow or ajar, the poses
 /// outside stand too far or at the wrong angle), a surveyor first stands in front of the door,
 /// or in it: a stepping stone linked to a chosen pose, from which a pose in the room is linked;
-/// the room's pose sharing most with what was seen, then the stone doing so. Stops when no
-/// room without a pose can be reached that way.
+/// the room's pose sharing most with what was seen, then the stone doing so; where no one
+/// stone does, the shortest walk of stones (see [`walk_to_room`]). Stops when no room without a
+/// pose can be reached that way.
 pub(super) fn enter_rooms(
     chosen: &mut Vec<usize>,
     candidates: usize,
@@ -42,10 +43,62 @@ pub(super) fn enter_rooms(
                     .collect::<Vec<_>>()
             })
             .max_by_key(|&(s, k)| (shared(k), shared(s)));
-        let Some((s, k)) = stone else { break };
-        chosen.push(s);
-        chosen.push(k);
+        if let Some((s, k)) = stone {
+            chosen.extend([s, k]);
+            continue;
+        }
+        match walk_to_room(chosen, candidates, &in_room, &linked, &shared) {
+            Some(walk) => chosen.extend(walk),
+            None => break,
+        }
     }
+}
+
+/// Where no one stone reaches a room (the first pose stands deep in a room whose door, ajar,
+/// shows little of the corridor, with a desk between it and the door): the shortest walk of
+/// stones, each linked to the one before, from a chosen pose to a candidate in a room without
+/// a pose (`in_room`), breadth first; of the rooms' candidates reached in the fewest steps, the
+/// one sharing most with what was seen. Returns the stones and that candidate, in walking order.
+fn walk_to_room(
+    chosen: &[usize],
+    candidates: usize,
+    in_room: &[usize],
+    linked: &impl Fn(&[usize], usize) -> bool,
+    shared: &impl Fn(usize) -> usize,
+) -> Option<Vec<usize>> {
+    let mut from: Vec<Option<usize>> = vec![None; candidates];
+    let mut reached = vec![false; candidates];
+    chosen.iter().for_each(|&c| reached[c] = true);
+    let mut front: Vec<usize> = (0..candidates)
+        .filter(|&k| !reached[k] && linked(chosen, k))
+        .collect();
+    front.iter().for_each(|&k| reached[k] = true);
+    while !front.is_empty() {
+        if let Some(&k) = front
+            .iter()
+            .filter(|k| in_room.contains(k))
+            .max_by_key(|&&k| shared(k))
+        {
+            let mut walk = vec![k];
+            while let Some(s) = from[walk[walk.len() - 1]] {
+                walk.push(s);
+            }
+            walk.reverse();
+            return Some(walk);
+        }
+        let mut next = Vec::new();
+        for &s in &front {
+            for k in 0..candidates {
+                if !reached[k] && linked(&[s], k) {
+                    reached[k] = true;
+                    from[k] = Some(s);
+                    next.push(k);
+                }
+            }
+        }
+        front = next;
+    }
+    None
 }
 
 /// How much of what each candidate sees (`sees`, target indices) was seen (`seen`).
@@ -75,5 +128,27 @@ mod tests {
         let mut chosen = vec![1];
         enter_rooms(&mut chosen, 4, room, linked, |k| 10 - k);
         assert_eq!(chosen, vec![1, 0, 2]);
+    }
+
+    /// Candidates 0..6 on a line, each linked to its neighbours: 0 in room 0 (chosen), 1-3 in
+    /// no room (its far side behind a desk, the doorway, the corridor's edge), 4 and 5 in room
+    /// 1: no one stone reaches room 1, the walk of three does.
+    #[test]
+    fn a_room_three_stones_away_is_walked_to() {
+        let room = |k: usize| match k {
+            0 => Some(0),
+            1..=3 => None,
+            _ => Some(1),
+        };
+        let linked = |chosen: &[usize], k: usize| chosen.iter().any(|&c| c.abs_diff(k) <= 1);
+        let mut chosen = vec![0];
+        enter_rooms(&mut chosen, 6, room, linked, |k| 10 - k);
+        assert_eq!(chosen, vec![0, 1, 2, 3, 4]);
+        // (a room beyond no walk at all is left)
+        let unlinked =
+            |chosen: &[usize], k: usize| chosen.iter().any(|&c| c.abs_diff(k) <= 1 && k != 3);
+        let mut chosen = vec![0];
+        enter_rooms(&mut chosen, 6, room, unlinked, |k| 10 - k);
+        assert_eq!(chosen, vec![0]);
     }
 }

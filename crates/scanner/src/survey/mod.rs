@@ -276,17 +276,20 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
         //     a survey of it; see `rooms`).
         let before = chosen.len();
         let unseen = seen.iter().filter(|&&s| !s).count();
+        // Where the poses left most of the reachable floor unseen (the first one in a room
+        // whose door, ajar, shows little of the corridor beyond: no pose a step away gains
+        // enough), the survey is stuck, not done: the rooms' poses are new starts for step 3,
+        // and a room no one stone reaches is walked to.
+        let stuck = unseen as f64 > STUCK_UNSEEN * seen.len() as f64;
         rooms::enter_rooms(
             &mut chosen,
             candidates.len(),
             |k| room_of_cell[candidates[k]],
             linked_to_chosen,
             rooms::shared(&sees, &seen),
+            stuck,
         );
-        // Where the poses left most of the reachable floor unseen (the first one in a room
-        // whose door, ajar, shows little of the corridor beyond: no pose a step away gains
-        // enough), the survey is stuck, not done: the rooms' poses are new starts for step 3.
-        if unseen as f64 <= STUCK_UNSEEN * seen.len() as f64 || chosen.len() == before {
+        if !stuck || chosen.len() == before {
             break;
         }
         for &k in &chosen[before..] {

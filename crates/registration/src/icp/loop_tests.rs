@@ -3,7 +3,7 @@
 //! measured: how many iterations it runs and whether it says it converged.
 
 use super::point_to_point::CorrelationSums;
-use super::{run_loop, PairSums, StepSums};
+use super::{run_loop, undoes_last, PairSums, StepSums};
 use crate::config::IcpConfig;
 use crate::error::Result;
 use glam::{DAffine3, DVec3, Vec3};
@@ -134,4 +134,21 @@ fn a_pose_going_round_three_on_the_final_gate_converges_early() {
         result.iterations.len(),
         c.max_iterations
     );
+}
+
+#[test]
+fn a_step_back_to_the_pose_before_last_is_a_cycle_a_creep_is_not() {
+    let c = IcpConfig::default();
+    let eps = (c.translation_epsilon_m, c.rotation_epsilon_deg);
+    // Steps of 3 epsilons that return to within a tenth of one: a cycle.
+    let step = (3.0 * eps.0, 3.0 * eps.1);
+    assert!(undoes_last(step, (0.1 * eps.0, 0.1 * eps.1), &c));
+    // Two steps of 3 epsilons the same way: back by 6, no cycle.
+    assert!(!undoes_last(step, (6.0 * eps.0, 6.0 * eps.1), &c));
+    // Back within half a step but far from the pose before last (large steps): no cycle.
+    let big = (40.0 * eps.0, 40.0 * eps.1);
+    assert!(!undoes_last(big, (15.0 * eps.0, 0.0), &c));
+    // A step that only turns, and turns back: a cycle; no step at all: none.
+    assert!(undoes_last((0.0, 3.0 * eps.1), (0.0, 0.1 * eps.1), &c));
+    assert!(!undoes_last((0.0, 0.0), (0.0, 0.0), &c));
 }

@@ -50,9 +50,12 @@ pub(super) fn enter_rooms(
             chosen.extend([s, k]);
             continue;
         }
+        if !stuck {
+            break;
+        }
         match walk_to_room(chosen, candidates, &in_room, &linked, &shared) {
-            Some(walk) if stuck => chosen.extend(walk),
-            _ => break,
+            Some(walk) => chosen.extend(walk),
+            None => break,
         }
     }
 }

@@ -370,14 +370,9 @@ mod tests {
     /// bench's map.)
     #[test]
     fn returns_at_the_far_end_of_a_top_landing_end_it() {
-        let part: Vec<(DVec2, f64)> = include_str!("../../tests/data/garage48_top_landing.txt")
-            .lines()
-            .filter(|l| !l.starts_with('#'))
-            .map(|l| {
-                let v: Vec<f64> = l.split(' ').map(|x| x.parse().expect("a number")).collect();
-                (DVec2::new(v[0], v[1]), v[2])
-            })
-            .collect();
+        let part = crate::stairs::tests::returns(include_str!(
+            "../../tests/data/garage48_top_landing.txt"
+        ));
         assert_eq!(part.len(), 965);
         let found = mid_landing(&part, DVec2::X, &StairsConfig::default());
         let (_, far, height) = found.expect("a landing");

@@ -77,7 +77,7 @@ fn search(part: &[(DVec2, f64)], length_m: f64) -> Option<Vec<DetectedStairs>> {
 }
 
 /// Returns `(xy, height)` from a test data file: lines of three numbers, `#` comments.
-fn returns(text: &str) -> Vec<(DVec2, f64)> {
+pub(super) fn returns(text: &str) -> Vec<(DVec2, f64)> {
     text.lines()
         .filter(|l| !l.starts_with('#'))
         .map(|l| {

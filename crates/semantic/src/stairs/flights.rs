@@ -9,11 +9,13 @@
 //! describes it (`[[stairs]]` with `base_m`).
 //!
 //! Either flight may be hidden or only glimpsed (a survey that saw the staircase from above,
-//! or its side face past a wall). Where the lower one is no plausible staircase, the upper one
-//! is still a flight, on the landing, if the landing stands a whole number of its risers up (at
-//! least `min_steps`: a staircase's risers are uniform) and the floor before the landing, where
-//! the hidden flight would stand, is not seen; where the upper one is none, the lower
-//! one is a flight ending on its landing. The upper flight ends at the far edge of its own top
+//! or its side face past a wall). A lower flight whose own profile shows no steps is read with
+//! the upper one's rise (a staircase's risers are uniform) before it counts as hidden: mixed
+//! pixels level with the landing can hide a level of its running maximum. Where the lower one
+//! is still no plausible staircase, the upper one is a flight on the landing if the landing
+//! stands a whole number of its risers up (at least `min_steps`) and the floor before the
+//! landing, where the hidden flight would stand, is not seen; where the upper one is none, the
+//! lower one is a flight ending on its landing. The upper flight ends at the far edge of its own top
 //! landing where something stands beyond it.
 //!
 //! A level stretch can also be treads above the laser that the scans missed, part way up one
@@ -88,6 +90,16 @@ pub(super) fn two_flights(
     let rise = first.as_ref().map(|f| f.rise);
     let second =
         profile_near(&upper, &upper_all, dir, c, rise).and_then(|p| finish(&upper, p, sc, c));
+    // 4. A lower flight its own profile did not show, read with the upper one's rise (a
+    //    staircase's risers are uniform), where its steps climb to the landing: mixed pixels
+    //    level with the landing, along rays grazing its edge, can lie over the lower flight's
+    //    top treads and hide a level of the running maximum.
+    let first = first.or_else(|| {
+        let rise = second.as_ref()?.rise;
+        profile_near(&lower, &lower_all, dir, c, Some(rise))
+            .and_then(|p| finish(&lower, p, sc, c))
+            .filter(|f| (f.rise * f64::from(f.steps) - landing_height).abs() <= 0.5 * f.rise)
+    });
     match (first, second) {
         // (the level stretch was no landing: a straight flight whose middle treads the laser
         // missed, both flights one)

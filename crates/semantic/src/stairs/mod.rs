@@ -328,4 +328,6 @@ fn highest_first(mut pts: Vec<(DVec2, f64)>) -> Vec<(DVec2, f64)> {
 }
 
 #[cfg(test)]
+mod landing_tests;
+#[cfg(test)]
 mod tests;

@@ -55,7 +55,7 @@ pub(super) fn over_floor(
 
 /// The staircase search on `part` (along and across X, as walls would give), in a cloud of
 /// the part over a floor seen everywhere but under the flight of `length_m` (y 0..1.3).
-fn search(part: &[(DVec2, f64)], length_m: f64) -> Option<Vec<DetectedStairs>> {
+pub(super) fn search(part: &[(DVec2, f64)], length_m: f64) -> Option<Vec<DetectedStairs>> {
     let points = over_floor(
         part,
         DVec2::new(-1.5, -2.0),
@@ -89,7 +89,7 @@ pub(super) fn returns(text: &str) -> Vec<(DVec2, f64)> {
 
 /// Both flights of a staircase with a mid landing in `found`, each of `steps` steps climbing
 /// +X (of `rise`, within 1 cm, where given).
-fn assert_two_flights(
+pub(super) fn assert_two_flights(
     found: Option<Vec<DetectedStairs>>,
     steps: u32,
     rise: Option<f64>,
@@ -167,52 +167,20 @@ fn a_person_crossing_a_side_face_over_its_landing_is_no_step() {
     assert!((found[0].run - 0.284).abs() < 0.03, "run {}", found[0].run);
 }
 
-/// Regression: fresh garage-28's 9 degree ramp was reported as a 5-step flight (rise 0.111 m,
-/// run 0.407 m) ending on a landing, on the ramp's side face: sampled sparsely, the face's top
-/// edge has its running maximum creep up by a centimetre or two per return and never jump, so
-/// a stretch of it 0.6 m long read as level (each rise under the 3 cm a level allows), and the
-/// ramp climbing on beyond it as the next flight. A level stretch holds within half the lowest
-/// rise (5 cm) of the height it started at. (The returns on the face, from the bench's map.)
-#[test]
-fn a_ramps_side_face_creeping_up_is_no_landing() {
-    let part = returns(include_str!("../../tests/data/garage28_ramp_face.txt"));
-    assert_eq!(part.len(), 250);
-    assert_eq!(search(&part, 4.9), None);
-}
-
-/// Regression: held-out office-16's staircase with a mid landing (two flights of 4 steps) had
-/// a person's streak 0.25 m in front of the upper flight's side face, a wall of returns up to
-/// 0.18 m over the landing just before the upper flight's first riser: read along the flight
-/// it was a first step 0.3 m early, and the upper flight was missed (a 5-step fit of rise
-/// 0.173 m found 3 of its levels and was no staircase). The upper flight climbs in line with
-/// the lower one: the streak is beside it. (The returns over the staircase, from the bench's
-/// map.)
-#[test]
-fn a_person_beside_the_upper_flight_is_no_part_of_it() {
-    let part = returns(include_str!("../../tests/data/office16_two_flights.txt"));
-    assert_eq!(part.len(), 2931);
-    let found = assert_two_flights(search_as_mapped(&part, DVec2::new(4.6, 1.3)), 4, None);
-    // The upper flight: its rise, and its first riser 2.27 m along, beyond the landing.
-    let upper = &found[1];
-    assert!((upper.rise - 0.153).abs() < 0.01, "rise {}", upper.rise);
-    assert!(
-        (upper.start.x - 2.274).abs() < 0.05,
-        "start {}",
-        upper.start
-    );
-}
-
 /// The staircase search on a part's returns `part` as `find_stairs` reads a part (its levels
 /// from the returns on surfaces, its edges from all of them), along and across X, over a floor
 /// seen everywhere but under the staircase (from the origin to `hidden`).
-fn search_as_mapped(part: &[(DVec2, f64)], hidden: DVec2) -> Option<Vec<DetectedStairs>> {
+pub(super) fn search_as_mapped(
+    part: &[(DVec2, f64)],
+    hidden: DVec2,
+) -> Option<Vec<DetectedStairs>> {
     search_as_mapped_on(part, (DVec2::new(-1.5, -2.0), (160, 100)), hidden, false)
 }
 
 /// [`search_as_mapped`] over a floor sampled from `floor.0` on `floor.1` cells of 4 cm, with the
 /// part's own axes as candidate directions too (after the walls') where `own_axes`, as
 /// `find_stairs` tries them.
-fn search_as_mapped_on(
+pub(super) fn search_as_mapped_on(
     part: &[(DVec2, f64)],
     floor: (DVec2, (usize, usize)),
     hidden: DVec2,
@@ -295,58 +263,4 @@ fn furniture_stepping_up_along_no_walls_direction_is_no_staircase() {
         search_as_mapped_on(&part, floor, DVec2::new(2.8, 2.3), true),
         None
     );
-}
-
-/// Regression: fresh garage-43's parked car read as a 3-step flight (rise 0.147 m, run 0.202 m)
-/// on a landing 1.03 m up: its body's top was the landing, its cabin's front the flight, and
-/// the flight below the landing "hidden". A hidden flight hides the floor it stands on; before
-/// the car's end the floor is seen. The same returns with the floor hidden there are still a
-/// flight on a landing. (The car's returns, from the bench's map.)
-#[test]
-fn a_parked_cars_body_is_no_landing_of_a_hidden_flight() {
-    let car = returns(include_str!("../../tests/data/garage43_parked_car.txt"));
-    assert_eq!(car.len(), 3446);
-    let floor = (DVec2::new(-1.0, -2.5), (100, 250));
-    // The floor seen everywhere but under the car (x 0-1.85 m, y 0-4.45 m).
-    assert_eq!(
-        search_as_mapped_on(&car, floor, DVec2::new(1.85, 4.45), false),
-        None
-    );
-    // Hidden under the car and 2 m before its end (y from -2 m): where a flight would stand.
-    let mut shifted = car.clone();
-    for p in &mut shifted {
-        p.0.y += 2.0;
-    }
-    let found = search_as_mapped_on(&shifted, floor, DVec2::new(1.85, 6.45), false)
-        .expect("a flight on a landing");
-    assert!(found.iter().any(|f| f.base > 0.9), "{found:?}");
-}
-
-/// Regression: fresh office-43's staircase with a mid landing (two flights of 3 steps, rise
-/// 0.160 m) read its upper flight as 5 steps of 0.111 m: returns over its top landing set the
-/// top height at 0.56 m over the landing, 6 cm over the top level's plateau, and no count up to
-/// it had the lower flight's rise. The upper flight's count at that rise up to the plateau is
-/// fitted too. (The returns over the staircase, from the bench's map.)
-#[test]
-fn an_upper_flights_count_at_the_lower_ones_rise_reaches_its_landings_plateau() {
-    let part = returns(include_str!("../../tests/data/office43_two_flights.txt"));
-    assert_eq!(part.len(), 3037);
-    assert_two_flights(search_as_mapped(&part, DVec2::new(4.0, 1.1)), 3, Some(0.16));
-}
-
-/// Regression: fresh hall-49's staircase with a mid landing (two flights of 3 steps, rise
-/// 0.171 m) read as one flight of 5 steps: mixed pixels along one ray, 0.2-0.35 m over the
-/// landing for 0.23 m of it, lifted the profile's running maximum there, so the level stretch
-/// before them was shorter than a landing and the one after them stood 5 rises up. Something
-/// the profile falls back from within a landing's depth stands on the level; a riser does not.
-/// (The returns over the staircase, from the bench's map.)
-#[test]
-fn mixed_pixels_standing_on_a_mid_landing_leave_it_a_landing() {
-    let part = returns(include_str!("../../tests/data/hall49_mid_landing.txt"));
-    assert_eq!(part.len(), 2301);
-    let found = assert_two_flights(search_as_mapped(&part, DVec2::new(4.1, 1.0)), 3, None);
-    // The upper flight starts on the landing, 0.51 m up, its first riser 2.06 m along.
-    let upper = &found[1];
-    assert!((upper.base - 0.51).abs() < 0.05, "base {}", upper.base);
-    assert!((upper.start.x - 2.06).abs() < 0.06, "start {}", upper.start);
 }

@@ -310,17 +310,30 @@ const FACE_AROUND_M: f64 = 1.0;
 /// The share of the face returns per bin of the wall around it that an open run's median bin
 /// holds where the wall's face goes on through it.
 const SPARSE_FACE_SHARE: f64 = 0.1;
+/// The longest stretch of an open run with no face return at door level where the wall's face
+/// goes on through it (m): a pane returns beams along all of its width, a doorway leaves a
+/// stretch with none (the bench's glass panes left at most 0.10 m).
+const MAX_EMPTY_M: f64 = 0.15;
 
 /// True if the wall's face goes on through the open run `bins[a..b]`, seen sparsely at door
 /// level: the run's median bin holds face returns (one at least), and at least
 /// [`SPARSE_FACE_SHARE`] of those of the median blocked bin within [`FACE_AROUND_M`] either
-/// side. A glass pane returns some beams, in most of its bins too few to block one, and its
+/// side, and no stretch of it longer than [`MAX_EMPTY_M`] holds none (a doorway beside a
+/// stretch of wall seen sparsely, far from the scanners, is one run: the 3DTK corridor). A glass pane returns some beams, in most of its bins too few to block one, and its
 /// upper part reads as a lintel; a gap in a wall has no face returns in most of its bins (a
 /// leaf crossing the face plane fills a few). On the bench's maps (110 buildings), the
 /// openings with a leaf in them had a median of 0-2 face returns per bin beside 20-80 around
 /// them; the runs in glass partitions 1-9 beside 4-18.
 fn face_goes_on(bins: &[Bin], a: usize, b: usize, c: &OpeningConfig) -> bool {
     let near = (FACE_AROUND_M / c.bin_m).round() as usize;
+    let longest_empty = bins[a..b]
+        .split(|x| x.door_face > 0)
+        .map(<[Bin]>::len)
+        .max()
+        .unwrap_or(0);
+    if longest_empty as f64 * c.bin_m > MAX_EMPTY_M + 1e-9 {
+        return false;
+    }
     let mut run: Vec<f64> = bins[a..b].iter().map(|x| f64::from(x.door_face)).collect();
     let mut around: Vec<f64> = bins[a.saturating_sub(near)..a]
         .iter()
@@ -363,6 +376,14 @@ mod tests {
         doorway.extend([0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 20, 40, 30, 0, 0]);
         doorway.extend([50; 20]);
         assert!(!face_goes_on(&bins(&doorway), 20, 36, &c));
+        // A doorway (0.35 m with no face return, a leaf's edge) beside a stretch of wall seen
+        // sparsely, in one run (the 3DTK corridor's, as `semsim run` maps it).
+        let mut beside = vec![8u16, 5, 4, 15, 10, 5, 5, 17, 4, 3];
+        beside.extend([
+            2, 3, 2, 4, 3, 7, 4, 2, 4, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 11, 16, 4, 0, 1,
+        ]);
+        beside.extend([6, 7, 7, 12, 8, 7, 4, 5, 5, 10]);
+        assert!(!face_goes_on(&bins(&beside), 10, 34, &c));
         // A run with nothing in most bins is a gap, however sparse the wall around it.
         let mut gap = vec![4u16; 10];
         gap.extend([0, 0, 1, 0, 0, 2, 0, 0]);

@@ -15,8 +15,8 @@
 //! is still no plausible staircase, the upper one is a flight on the landing if the landing
 //! stands a whole number of its risers up (at least `min_steps`) and the floor before the
 //! landing, where the hidden flight would stand, is not seen; where the upper one is none, the
-//! lower one is a flight ending on its landing. The upper flight ends at the far edge of its own top
-//! landing where something stands beyond it.
+//! lower one is a flight ending on its landing. The upper flight ends at the far edge of its
+//! own top landing where something stands beyond it.
 //!
 //! A level stretch can also be treads above the laser that the scans missed, part way up one
 //! straight flight: then the two flights fitted meet, the upper one's first riser within a

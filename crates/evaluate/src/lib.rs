@@ -76,7 +76,7 @@ pub use doors::DoorMatch;
 pub use frame::registration_frame;
 pub use ground_truth::{check_ground_truth, check_ground_truth_in_frame, EvalError};
 pub use labels::{evaluate_labels, LabelEvaluation};
-pub use obstacles::ObstacleMatch;
+pub use obstacles::{ObstacleMatch, UnmatchedObstacle};
 pub use ramps::RampMatch;
 pub use score::ClassScore;
 pub use stairs::{StairsMatch, StairsSeen};
@@ -145,6 +145,10 @@ pub struct Evaluation {
     /// Matched obstacles, columns and beams.
     #[serde(default)]
     pub obstacle_matches: Vec<ObstacleMatch>,
+    /// Map obstacles and columns over the size limits matching no expected object, with what
+    /// the scans saw inside each (see [`UnmatchedObstacle`]).
+    #[serde(default)]
+    pub obstacles_unmatched: Vec<UnmatchedObstacle>,
     /// Matched ramps.
     #[serde(default)]
     pub ramp_matches: Vec<RampMatch>,

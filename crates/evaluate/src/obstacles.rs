@@ -44,6 +44,22 @@ pub struct ObstacleMatch {
     pub height_error_m: f64,
 }
 
+/// A map obstacle or column (over the size limits) that matches no expected object, with what
+/// the scans saw inside its box: tells a phantom (mixed pixels, a person's streak, a wall's
+/// residue) from a thing split in two or a thing the truth does not count.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct UnmatchedObstacle {
+    /// The map entity's id.
+    pub entity: u32,
+    /// Its class.
+    pub class: EntityClass,
+    /// Its box's size (m).
+    pub size_m: [f64; 3],
+    /// Observed points inside its box (grown by 2 cm), by true entity name, most first (at
+    /// most five); empty without an observed cloud.
+    pub seen_inside: Vec<(String, usize)>,
+}
+
 /// One truth object: name, class, box, and its boxes' indices.
 struct Object {
     name: String,
@@ -83,6 +99,16 @@ pub(crate) fn evaluate_obstacles(
         .filter(|e| big(&e.geometry))
         .collect();
     let (score, matches, missed) = match_boxes(&truth, &found, c);
+    ev.obstacles_unmatched = found
+        .iter()
+        .filter(|e| !matches.iter().any(|m| m.entity == e.id))
+        .map(|e| UnmatchedObstacle {
+            entity: e.id,
+            class: e.class,
+            size_m: e.geometry.size_m,
+            seen_inside: seen_inside(&e.geometry, building, t),
+        })
+        .collect();
     ev.obstacles = score;
     ev.obstacle_matches = matches;
     ev.missed.extend(missed);
@@ -126,6 +152,39 @@ pub(crate) fn evaluate_obstacles(
             2 * on > n + 1
         })
         .count();
+}
+
+/// The observed points inside `b` (grown by 2 cm) by true entity name (a named box's parts
+/// under its object's name), most first, at most five.
+fn seen_inside(b: &OrientedBox, building: &Building, t: &Truth) -> Vec<(String, usize)> {
+    let footprint = corners(&grown(b, 0.02));
+    let [z0, z1] = b.z_range_m();
+    let object_name = |name: &str| {
+        name.strip_prefix("boxes[")
+            .and_then(|r| r.strip_suffix(']'))
+            .and_then(|i| i.parse::<usize>().ok())
+            .and_then(|i| building.boxes.get(i))
+            .filter(|b| !b.name.is_empty())
+            .map_or_else(|| name.to_string(), |b| b.name.clone())
+    };
+    let mut counts: Vec<(String, usize)> = Vec::new();
+    for (name, points) in t.seen_by_name() {
+        let n = points
+            .iter()
+            .filter(|p| p.z >= z0 - 0.02 && p.z <= z1 + 0.02 && inside(p.truncate(), &footprint))
+            .count();
+        if n == 0 {
+            continue;
+        }
+        let name = object_name(name);
+        match counts.iter_mut().find(|(k, _)| *k == name) {
+            Some((_, m)) => *m += n,
+            None => counts.push((name, n)),
+        }
+    }
+    counts.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
+    counts.truncate(5);
+    counts
 }
 
 /// The building's boxes as objects (boxes of one name joined), in the map frame.

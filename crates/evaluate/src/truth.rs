@@ -44,7 +44,9 @@ impl Truth {
         };
         if let Some((cloud, labels)) = observed.and_then(|c| c.labels.as_ref().map(|l| (c, l))) {
             for (p, l) in cloud.points.iter().zip(labels) {
-                if p.is_finite() && l.entity != 0 {
+                // (Entity 0: returns no building entity explains, the mixed pixels and people,
+                // kept for `seen_by_name` as "unknown".)
+                if p.is_finite() {
                     let q = map_from_input.transform_point3(p.as_dvec3());
                     t.seen.entry(l.entity).or_default().push(q);
                 }
@@ -66,6 +68,16 @@ impl Truth {
     /// The observed points of the true entity `name` (e.g. `walls[2]`), map frame.
     pub fn points(&self, name: &str) -> Option<&Vec<DVec3>> {
         self.id_of.get(name).and_then(|id| self.seen.get(id))
+    }
+
+    /// Every true entity's name with its observed points (map frame), in no fixed order, and
+    /// the returns no entity explains (mixed pixels, people) as `unknown`.
+    pub fn seen_by_name(&self) -> impl Iterator<Item = (&str, &[DVec3])> {
+        let unknown = self.seen.get(&0).map(|p| ("unknown", p.as_slice()));
+        self.id_of
+            .iter()
+            .filter_map(|(name, id)| self.seen.get(id).map(|p| (name.as_str(), p.as_slice())))
+            .chain(unknown)
     }
 
     /// How many observed points the true entity `name` has.

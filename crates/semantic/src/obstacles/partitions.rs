@@ -105,7 +105,8 @@ fn faces_a_wall(o: &DetectedObstacle, sc: &ObstacleScene, passage_m: f64) -> boo
 }
 
 /// The fraction of `o`'s length (bins of [`BIN_M`]) where its points come down to within
-/// `partition_max_bottom_m` of the floor and up to within `max_vertical_gap_m` of its top.
+/// `partition_max_bottom_m` of the floor and up to within `max_vertical_gap_m` of its top (and
+/// not over it).
 fn standing_fraction(
     o: &DetectedObstacle,
     sc: &ObstacleScene,
@@ -141,7 +142,9 @@ fn standing_fraction(
                     }
                     let z = p.z as f64;
                     low[bin as usize] |= z <= bottom_below;
-                    high[bin as usize] |= z >= top_above;
+                    // (Not above its top: what hangs over it in its cells, a beam or a duct,
+                    // is no part of its face.)
+                    high[bin as usize] |= z >= top_above && z <= o.z_range.1;
                 }
             }
         }
@@ -290,6 +293,22 @@ mod tests {
         assert_eq!(found[0].0, EntityClass::Obstacle, "{found:?}");
         let found = classes_with_walls(&front, &[wall(4.0)]);
         assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
+    }
+
+    #[test]
+    fn what_hangs_over_a_low_streak_does_not_raise_its_face_to_a_wall() {
+        // garage-64 (seeds 61-65): the foot of a person's streak left by the transients filter
+        // (0.09-0.4 m along 1.6 m), a few returns up to 1.3 m at one end, under a beam's
+        // returns at 2.4-2.6 m. The beam stands in the same cells, over the streak's top: it
+        // is no part of the streak's face.
+        let mut points = slab(1.0, 2.6, 2.0, 0.09, 0.4);
+        points.extend(slab(2.5, 2.56, 2.0, 1.2, 1.3));
+        points.extend(slab(1.0, 2.6, 2.0, 2.4, 2.6));
+        let found = classes(&points);
+        assert!(
+            found.iter().all(|(c, _)| *c != EntityClass::Wall),
+            "{found:?}"
+        );
     }
 
     #[test]

@@ -5,7 +5,8 @@
 //! flight's blob ends a step short of its top, and the top riser is a blob of its own, too
 //! small for a staircase. So each flight is looked at one run past its top step's front: a
 //! riser standing there is one more step. A riser is points on a face across the flight
-//! (spread over at least half its width), between its top tread's height and one rise above
+//! (covering at least half its width, in bins of 10 cm: a few mixed pixels strung along the
+//! landing's front edge span the width but cover little of it), between its top tread's height and one rise above
 //! it, its top edge at that rise, and nothing standing right above it (a person on the
 //! landing, a cupboard, a wall beyond the flight stand higher).
 
@@ -21,8 +22,10 @@ const ABOVE_FROM_M: f64 = 0.06;
 /// ... to this high: more than a quarter of the riser's count there is something standing on
 /// the flight's top, not a riser.
 const ABOVE_TO_M: f64 = 0.6;
-/// The riser's points spread across at least this fraction of the flight's width.
-const MIN_SPREAD: f64 = 0.5;
+/// The riser's points cover at least this fraction of the flight's width ...
+const MIN_COVER: f64 = 0.5;
+/// ... in bins this wide across the flight: about a rotating laser's sample spacing at 10 m.
+const COVER_BIN_M: f64 = 0.1;
 
 /// Adds the steps whose risers stand one run past the flight's top (see the module docs);
 /// `usable(i)` is true for the points the height map holds (not in a wall's slab, between the
@@ -39,13 +42,14 @@ pub(super) fn extend_top(
     };
     let half = st.width / 2.0;
     let foot = sc.floor + st.base;
+    let bins = ((st.width / COVER_BIN_M).ceil() as usize).clamp(1, 1000);
     while st.steps < 64 {
         let k = f64::from(st.steps);
         let front = k * st.run;
         let (lo, top) = (k * st.rise + 0.02, (k + 1.0) * st.rise);
         let (mut on_riser, mut above) = (0usize, 0usize);
-        let (mut t_lo, mut t_hi, mut highest) =
-            (f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+        let mut highest = f64::NEG_INFINITY;
+        let mut covered = vec![false; bins];
         sc.index.for_each_near_line(
             &line,
             front - RISER_BAND_M,
@@ -58,7 +62,11 @@ pub(super) fn extend_top(
                 let h = z - foot;
                 if h > lo && h <= top + 0.03 {
                     on_riser += 1;
-                    (t_lo, t_hi, highest) = (t_lo.min(t), t_hi.max(t), highest.max(h));
+                    highest = highest.max(h);
+                    let bin = ((t + half) / COVER_BIN_M)
+                        .floor()
+                        .clamp(0.0, (bins - 1) as f64);
+                    covered[bin as usize] = true;
                 } else if h > top + ABOVE_FROM_M && h <= top + ABOVE_TO_M {
                     above += 1;
                 }
@@ -66,7 +74,7 @@ pub(super) fn extend_top(
         );
         let is_riser = on_riser >= c.min_step_points
             && highest >= top - 0.035
-            && t_hi - t_lo >= MIN_SPREAD * st.width
+            && covered.iter().filter(|&&b| b).count() as f64 >= MIN_COVER * bins as f64
             && above * 4 <= on_riser;
         if !is_riser {
             return;
@@ -143,5 +151,24 @@ mod tests {
         assert_eq!(extended(&riser(0.98, 1.03, 1.18)), 3);
         // Nothing there.
         assert_eq!(extended(&[]), 3);
+    }
+
+    /// Regression: hall-62's upper flight (seeds 61-65, 5 steps) was read as 6 from five
+    /// mixed pixels along its top landing's front edge, one run past its fifth riser: they
+    /// spanned 0.73 of its 1.26 m but covered 3 of its 13 bins.
+    #[test]
+    fn mixed_pixels_along_the_landing_edge_are_no_riser() {
+        let (x, z) = (0.84, 1.16);
+        let points: Vec<Vec3> = [-0.41, -0.38, -0.37, -0.21, 0.32]
+            .iter()
+            .map(|&y| Vec3::new(x, y, z))
+            .collect();
+        assert_eq!(extended(&points), 3);
+        // A riser seen over half the width is one.
+        let half_seen: Vec<Vec3> = riser(x, 1.03, 1.18)
+            .into_iter()
+            .filter(|p| p.y >= -0.02)
+            .collect();
+        assert_eq!(extended(&half_seen), 4);
     }
 }

@@ -114,6 +114,24 @@ fn a_walled_off_door_is_listed_unreachable_and_the_run_still_gets_a_verdict() {
 }
 
 #[test]
+fn a_sweep_ends_where_the_robot_can_turn() {
+    // Regression (the 3DTK corridor's planned sweep): the farthest free cell from where the
+    // robot stood lay in a doorway with nothing mapped beyond, where the robot turned into the
+    // jamb. Here it was a corner, 0.28 m from both walls. The room's inner faces: x 0.1 and
+    // 5.9, y -1.9 and 1.9.
+    let w = world(&fixtures::walled_off_room());
+    let (model, cfg) = robot("pioneer3at");
+    let p = plan_scenario(&w, &model, None, &cfg).expect("planned");
+    let end = p.sweep_end_m.expect("a sweep");
+    let clearance = (end[0] - 0.1).min(5.9 - end[0]).min(1.9 - end[1].abs());
+    // The Pioneer 3-AT turns in a circle of 0.36 m radius (its half diagonal).
+    assert!(
+        clearance >= 0.36,
+        "sweep end {end:?}: {clearance:.2} m from a wall"
+    );
+}
+
+#[test]
 fn the_same_door_without_the_wall_behind_is_passed() {
     // The control for the test above: the door itself is passable.
     let text = fixtures::RoomToml::new([0.0, -2.0], [6.0, 2.0], 2.5)

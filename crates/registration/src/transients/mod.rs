@@ -258,6 +258,29 @@ mod tests {
     }
 
     #[test]
+    fn a_persons_legs_go_with_the_person_down_to_the_floor() {
+        // Regression (garage-64, seeds 61-65): the floor both scans saw lies within reach of
+        // a person's lowest returns, which stayed as a kerb-high obstacle.
+        let (a0, b0) = (Vec3::new(-2.0, 0.0, 0.5), Vec3::new(2.0, -1.0, 0.5));
+        let person = (Vec3::new(0.0, 2.0, 0.0), 0.25, 1.75);
+        let a = scan_of_room(a0, &[person]);
+        let b = scan_of_room(b0, &[]);
+        let legs = |points: &[Vec3]| {
+            points
+                .iter()
+                .filter(|p| {
+                    (0.1..0.45).contains(&p.z)
+                        && Vec3::new(p.x - person.0.x, p.y - person.0.y, 0.0).length() < 0.3
+                })
+                .count()
+        };
+        let seen = legs(&a.points);
+        let (kept, _) = drop_transients(vec![a, b], &TransientConfig::default());
+        let left = legs(&kept[0].points);
+        assert!(seen > 20 && left * 10 < seen, "{left} of {seen} left");
+    }
+
+    #[test]
     fn a_thing_hidden_from_the_other_scan_is_kept() {
         // The thing stands where scan b's view is blocked by a wide pillar: b never saw the
         // space it occupies, so it stays although b saw nothing there.

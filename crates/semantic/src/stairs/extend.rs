@@ -6,9 +6,9 @@
 //! small for a staircase. So each flight is looked at one run past its top step's front: a
 //! riser standing there is one more step. A riser is points on a face across the flight
 //! (covering at least half its width, in bins of 10 cm: a few mixed pixels strung along the
-//! landing's front edge span the width but cover little of it), between its top tread's height and one rise above
-//! it, its top edge at that rise, and nothing standing right above it (a person on the
-//! landing, a cupboard, a wall beyond the flight stand higher).
+//! landing's front edge span the width but cover little of it), between its top tread's height
+//! and one rise above it, its top edge at that rise, and nothing standing right above it (a
+//! person on the landing, a cupboard, a wall beyond the flight stand higher).
 
 use super::{DetectedStairs, StairsConfig};
 use crate::points::Line2;

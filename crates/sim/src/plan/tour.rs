@@ -3,10 +3,11 @@
 //! straight leg from an approach point on one side of its free space to a point on the other
 //! side where the robot has left it; a staircase as a leg from a point before its foot, facing
 //! up the stairs, to the middle of its landing (or top step); a ramp likewise, to its upper
-//! end. Paths between goals are simplified into
-//! waypoints. A tour with no door or staircase to pass sweeps the start's free region instead
-//! (to its farthest point, then to the point farthest from there: a corridor's two ends, a
-//! room's far corners; of the points where the robot can turn in place, where there are any), so that the robot drives the space the map holds rather than stand.
+//! end. Paths between goals are simplified into waypoints. A tour with no door or staircase to
+//! pass sweeps the start's free region instead (to its farthest point, then to the point
+//! farthest from there: a corridor's two ends, a room's far corners; of the points where the
+//! robot can turn in place, where there are any), so that the robot drives the space the map
+//! holds rather than stand.
 
 use super::footprint::Footprint;
 use super::goals::{door_leg, stairs_leg, ClimbLeg, DoorLeg};

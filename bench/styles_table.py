@@ -71,7 +71,7 @@ header = ("| building | poses | walls F1 | doors F1 | stairs exact | every step 
           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for style in styles:
     lines += [f"## {style}", "", header]
-    evs, all_poses, failed = [], 0, 0
+    evs, all_poses = [], 0
     for seed in seeds:
         d = os.path.join(work, f"{style}-{seed}")
         scans = os.path.join(d, "scans")
@@ -79,7 +79,6 @@ for style in styles:
         if os.path.exists(os.path.join(d, "failed.txt")):
             what = open(os.path.join(d, "failed.txt")).read().strip()
             lines.append(f"| seed {seed} | {poses} | failed at `{what}` (see `{d}/log.txt`) | | | | | | | | | | | |")
-            failed += 1
             continue
         ev = json.load(open(os.path.join(d, "eval.json")))
         evs.append(ev)

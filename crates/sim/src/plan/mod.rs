@@ -14,8 +14,9 @@
 //! leaves are seen ajar). Where both sides are reachable, the tour enters from the push side.
 //! Staircases and ramps are climbed last (the tour ends on a landing or a ramp's upper end;
 //! with several, the robot drives back down to each foot before the next). A ramp is climbed
-//! only up to `max_ramp_pitch_deg`; its upper end is the robot's half length short of its head. A tour with nothing to pass or climb sweeps the
-//! start's free region (its two farthest points where the robot can turn in place), with a `reach` rule at the point farthest from
+//! only up to `max_ramp_pitch_deg`; its upper end is the robot's half length short of its
+//! head. A tour with nothing to pass or climb sweeps the start's free region (its two farthest
+//! points where the robot can turn in place), with a `reach` rule at the point farthest from
 //! the start.
 //!
 //! The scenario names the world it was planned in (`building`: a semantic map's world is

@@ -21,18 +21,12 @@
 //! A level stretch can also be treads above the laser that the scans missed, part way up one
 //! straight flight: then the two flights fitted meet, the upper one's first riser within a
 //! tread's depth of the lower one's top front edge, and their points are one flight.
-use super::envelope::{envelope, of_flight, BIN_M};
+use super::landing::mid_landing;
 use super::plausible::{finish, floor_density, floor_in_strip};
 use super::profile::{profile, profile_near};
 use super::{DetectedStairs, StairsConfig};
 use crate::scene::Scene;
 use glam::DVec2;
-
-/// The shortest level stretch that is a landing and no tread: longer than the longest run by
-/// the 0.2 m a tread's nosing and a laser's sampling can add.
-fn min_landing_m(c: &StairsConfig) -> f64 {
-    c.run_m[1] + 0.2
-}
 
 /// How far beside the lower flight's width the upper flight's points may lie (m): a side
 /// face's returns spread by the range noise, and a width measured from 1-99 % of the points.
@@ -70,26 +64,15 @@ pub(super) fn two_flights(
     //    are those across the lower one's width (and the measurement's spread); a person
     //    walking past in front of its side face, smeared into a wall of returns a landing's
     //    height up, is beside it.
-    let in_line = |q: DVec2| {
-        first
-            .as_ref()
-            .is_none_or(|f| dir.perp_dot(q - f.start).abs() <= f.width / 2.0 + IN_LINE_MARGIN_M)
-    };
-    let above = |p: &[(DVec2, f64)]| -> Vec<(DVec2, f64)> {
-        p.iter()
-            .filter(|(q, z)| {
-                q.dot(dir) >= landing_end - c.run_m[1] && *z >= base - 0.05 && in_line(*q)
-            })
-            .map(|(q, z)| (*q, z - base))
-            .collect()
-    };
-    let (mut upper, mut upper_all) = (above(pts), above(all));
-    let upper_end = mid_landing(&upper, dir, c).map_or(f64::INFINITY, |(_, end, _)| end);
-    upper.retain(|(q, _)| q.dot(dir) < upper_end);
-    upper_all.retain(|(q, _)| q.dot(dir) < upper_end);
-    let rise = first.as_ref().map(|f| f.rise);
-    let second =
-        profile_near(&upper, &upper_all, dir, c, rise).and_then(|p| finish(&upper, p, sc, c));
+    let (second, upper_end) = upper_flight(
+        (pts, all),
+        dir,
+        landing_end - c.run_m[1],
+        base,
+        first.as_ref(),
+        sc,
+        c,
+    );
     // 4. A lower flight its own profile did not show, read with the upper one's rise (a
     //    staircase's risers are uniform), where its steps climb to the landing: mixed pixels
     //    level with the landing, along rays grazing its edge, can lie over the lower flight's
@@ -143,6 +126,63 @@ pub(super) fn two_flights(
         }
         (None, None) => None,
     }
+}
+
+/// Returns `(xy, height)`.
+type Returns<'a> = &'a [(DVec2, f64)];
+
+/// The upper flight of a staircase along `dir`: from `from` on (along `dir`), heights from
+/// the landing at `base`, in line with the lower flight where that was found (`first`), up to
+/// the far edge of its own top landing if something stands beyond that (see `two_flights`).
+/// Also where that edge is (infinity if nothing stands beyond).
+fn upper_flight(
+    (pts, all): (Returns, Returns),
+    dir: DVec2,
+    from: f64,
+    base: f64,
+    first: Option<&DetectedStairs>,
+    sc: &Scene,
+    c: &StairsConfig,
+) -> (Option<DetectedStairs>, f64) {
+    let in_line = |q: DVec2| {
+        first.is_none_or(|f| dir.perp_dot(q - f.start).abs() <= f.width / 2.0 + IN_LINE_MARGIN_M)
+    };
+    let above = |p: &[(DVec2, f64)]| -> Vec<(DVec2, f64)> {
+        p.iter()
+            .filter(|(q, z)| q.dot(dir) >= from && *z >= base - 0.05 && in_line(*q))
+            .map(|(q, z)| (*q, z - base))
+            .collect()
+    };
+    let (mut upper, mut upper_all) = (above(pts), above(all));
+    let upper_end = mid_landing(&upper, dir, c).map_or(f64::INFINITY, |(_, end, _)| end);
+    upper.retain(|(q, _)| q.dot(dir) < upper_end);
+    upper_all.retain(|(q, _)| q.dot(dir) < upper_end);
+    let rise = first.map(|f| f.rise);
+    let second =
+        profile_near(&upper, &upper_all, dir, c, rise).and_then(|p| finish(&upper, p, sc, c));
+    (second, upper_end)
+}
+
+/// The flight on the landing of a flight found on its own (`first`: its top level is the
+/// landing), from the points `pts` and `all` beyond its top step (see `upper`): `None` where
+/// they show none, or one starting within a tread's depth of its top front edge (the two
+/// would be one straight flight whose middle treads the laser missed).
+pub(super) fn flight_above(
+    first: &DetectedStairs,
+    pts: &[(DVec2, f64)],
+    all: &[(DVec2, f64)],
+    sc: &Scene,
+    c: &StairsConfig,
+) -> Option<DetectedStairs> {
+    let base = first.rise * f64::from(first.steps);
+    let from = first.start.dot(first.dir) + first.run * f64::from(first.steps);
+    let (second, _) = upper_flight((pts, all), first.dir, from, base, Some(first), sc, c);
+    let mut second = second.filter(|s| on_its_landing(first, s, c))?;
+    second.base = base;
+    second.rules.push(format!(
+        "starts on the landing of the flight below, {base:.2} m above the floor (its risers seen from below, apart from that flight's)"
+    ));
+    Some(second)
 }
 
 /// True if the upper flight starts on the lower one's landing: its first riser stands beyond
@@ -208,80 +248,6 @@ fn floor_seen_before(
     floor_seen > c.min_step_points && floor_seen as f64 > open
 }
 
-/// The near and far edges (along `dir`) and height of a mid landing in the profile of `pts`
-/// (its envelope, see `envelope`): a level stretch at least a flight's worth of the lowest rise
-/// up, with something climbing beyond it (the next flight, or what stands beyond a flight's
-/// top landing: `two_flights` keeps the lower flight alone then).
-fn mid_landing(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<(f64, f64, f64)> {
-    let along: Vec<f64> = pts.iter().map(|(q, _)| q.dot(dir)).collect();
-    let lo = along.iter().copied().fold(f64::INFINITY, f64::min);
-    let hi = along.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
-        return None;
-    }
-    let nb = (((hi - lo) / BIN_M).ceil() as usize + 1).min(100_000);
-    let env = envelope(pts, dir, lo, nb, c.run_m[0] / 2.0);
-    let env = of_flight(&env, c);
-    let least = c.min_steps as f64 * c.rise_m[0];
-    // The running maximum; a level stretch starts where it last rose by more than the
-    // measurement's few centimetres, and holds within half the lowest rise of the height it
-    // started at (a ramp's side face, sampled sparsely, creeps up by a centimetre or two per
-    // return and never jumps: garage-28 of the fresh seeds read a 9 degree ramp's as a
-    // flight's landing, with more of the ramp climbing beyond it). It ends in a climb: within
-    // a tread's depth the profile stands half the lowest rise above it (the first return of
-    // the rise may be a mixed pixel between the landing and the next tread, only a few
-    // centimetres up).
-    let creep = 0.5 * c.rise_m[0];
-    let mut running = f64::NEG_INFINITY;
-    let mut since = lo;
-    let mut since_height = f64::NEG_INFINITY;
-    for (k, &(s, z)) in env.iter().enumerate() {
-        if running.is_finite() && falls_back(&env[k..], running + creep, min_landing_m(c)) {
-            // (something standing on the level, shorter than a landing: no climb)
-            continue;
-        }
-        if z > running + 0.03 || z > since_height + creep {
-            let level = running;
-            let climbs = env[k..]
-                .iter()
-                .take_while(|e| e.0 <= s + c.run_m[1])
-                .any(|e| e.1 - level >= 0.5 * c.rise_m[0]);
-            let is_landing =
-                running.is_finite() && s - since >= min_landing_m(c) && level >= least && climbs;
-            if is_landing {
-                return Some((since - BIN_M / 2.0, s - BIN_M / 2.0, level));
-            }
-            since = s;
-            since_height = running.max(z);
-        }
-        running = running.max(z);
-    }
-    None
-}
-
-/// True if the profile `env` falls back to `level` from its first bin within `reach_m`: most
-/// of it there, and its last bin there, lie at or below `level`, and the profile goes on
-/// beyond. What rose there is something standing on a level stretch (mixed pixels along a ray
-/// over a landing, a thing left on it), not a riser, beyond which every tread stands higher;
-/// nor what stands at the far end of the profile (the wall or the cupboard beyond a flight's
-/// top landing, the mixed pixels at its edge).
-fn falls_back(env: &[(f64, f64)], level: f64, reach_m: f64) -> bool {
-    let Some(&(s0, z0)) = env.first() else {
-        return false;
-    };
-    if z0 <= level {
-        return false;
-    }
-    let within = env.iter().take_while(|e| e.0 <= s0 + reach_m);
-    let (mut at_level, mut n, mut last) = (0usize, 0usize, z0);
-    for &(_, z) in within {
-        n += 1;
-        at_level += usize::from(z <= level);
-        last = z;
-    }
-    n < env.len() && 2 * at_level >= n && last <= level
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -320,76 +286,5 @@ mod tests {
             &flight(1.12 + c.run_m[1] - 0.01, 5, 0.85),
             &c
         ));
-    }
-
-    /// The top edge of a side face along +X, every 1 cm: `(x0, x1, height at x0, height at x1)`
-    /// stretches.
-    fn profile_of(stretches: &[(f64, f64, f64, f64)]) -> Vec<(DVec2, f64)> {
-        let mut pts = Vec::new();
-        for &(x0, x1, z0, z1) in stretches {
-            let n = ((x1 - x0) / 0.01).round() as usize;
-            for i in 0..n {
-                let t = i as f64 / n as f64;
-                pts.push((DVec2::new(x0 + 0.01 * i as f64, 0.0), z0 + t * (z1 - z0)));
-            }
-        }
-        pts
-    }
-
-    #[test]
-    fn something_on_a_mid_landing_shorter_than_a_landing_leaves_it_a_landing() {
-        let c = StairsConfig::default();
-        let climb = |from: f64, base: f64| -> Vec<(f64, f64, f64, f64)> {
-            (0..3)
-                .map(|k| {
-                    let (x, z) = (from + 0.25 * f64::from(k), base + 0.17 * f64::from(k + 1));
-                    (x, x + 0.25, z, z)
-                })
-                .collect()
-        };
-        // 3 steps, a 1.5 m landing 0.51 m up, 3 steps; on the landing, mixed pixels 0.15 m over
-        // it for 8 cm, then along a ray climbing from 0.1 to 0.35 m over it for 0.22 m
-        // (as over hall-49's landing: `stairs::tests`).
-        let mut stretches = climb(0.0, 0.0);
-        stretches.extend([
-            (0.75, 1.0, 0.51, 0.51),
-            (1.0, 1.08, 0.66, 0.66),
-            (1.08, 1.3, 0.61, 0.86),
-            (1.3, 2.25, 0.51, 0.51),
-        ]);
-        stretches.extend(climb(2.25, 0.51));
-        let (near, far, height) =
-            mid_landing(&profile_of(&stretches), DVec2::X, &c).expect("a landing");
-        assert!((near - 0.5).abs() < 0.03, "near edge {near}");
-        assert!((far - 2.25).abs() < 0.03, "far edge {far}");
-        assert!((height - 0.51).abs() < 0.01, "height {height}");
-        // What stays up for longer than a landing is the level: 0.5 m at 0.51 m, then 1.25 m
-        // at 0.81 m before the climb.
-        let mut stretches = climb(0.0, 0.0);
-        stretches.extend([(0.75, 1.0, 0.51, 0.51), (1.0, 2.25, 0.81, 0.81)]);
-        stretches.extend(climb(2.25, 0.81));
-        let (near, _, height) =
-            mid_landing(&profile_of(&stretches), DVec2::X, &c).expect("a landing");
-        assert!((near - 1.0).abs() < 0.03, "near edge {near}");
-        assert!((height - 0.81).abs() < 0.01, "height {height}");
-    }
-
-    /// Regression: fresh garage-48's 5-step flight, seen from its side only, has mixed pixels
-    /// up to 0.15 m over the far end of its top landing, where its profile ends. They end the
-    /// landing (the flight is fitted on the points before them), not something standing on it
-    /// that the profile falls back from: taken for that, they left no landing, and the whole
-    /// part read as 6 steps of 0.149 m. (The returns over the flight and its landing, from the
-    /// bench's map.)
-    #[test]
-    fn returns_at_the_far_end_of_a_top_landing_end_it() {
-        let part = crate::stairs::tests::returns(include_str!(
-            "../../tests/data/garage48_top_landing.txt"
-        ));
-        assert_eq!(part.len(), 965);
-        let found = mid_landing(&part, DVec2::X, &StairsConfig::default());
-        let (_, far, height) = found.expect("a landing");
-        // (5 rises of 0.156 m up; the returns from 2.28 m along)
-        assert!((height - 0.78).abs() < 0.03, "height {height}");
-        assert!((far - 2.28).abs() < 0.1, "far edge {far}");
     }
 }

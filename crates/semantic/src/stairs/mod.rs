@@ -41,7 +41,9 @@
 //!
 //! A flight whose top riser stands alone one run past its top step (its tread above the laser,
 //! the side face unseen there, so the blobs part it from the flight) gets that step back (see
-//! `extend`).
+//! `extend`). An upper flight whose risers, seen from below with no tread or landing between
+//! them, are parts of their own beyond a lone flight's top is read as the flight on its landing
+//! (see `upper`).
 //!
 //! The search over a part's directions is `search`. A part that shows no staircase is tried
 //! again face by face: a flight seen from its side only that clutter joins into one part with
@@ -54,6 +56,7 @@ mod envelope;
 mod extend;
 mod fit;
 mod flights;
+mod landing;
 mod levels;
 mod parts;
 mod plausible;
@@ -62,6 +65,7 @@ mod risers;
 mod search;
 mod side_faces;
 mod surface;
+mod upper;
 
 use crate::scene::Scene;
 use crate::walls::WallFit;
@@ -245,66 +249,20 @@ pub(crate) fn find_stairs(
         .collect();
     // Each part on its own (in parallel): the best profile over the candidate directions, then
     // the staircase if it is plausible.
-    blob_parts
+    let mut found: Vec<Option<Vec<DetectedStairs>>> = blob_parts
         .par_iter()
-        .filter_map(|part| {
-            let members = &part.members;
-            if !big_enough(part.pixels, members.len()) {
+        .map(|part| {
+            if !big_enough(part.pixels, part.members.len()) {
                 return None;
             }
-            let all: Vec<(DVec2, f64)> = members
-                .iter()
-                .map(|&i| {
-                    let p = sc.points[i];
-                    (DVec2::new(p.x as f64, p.y as f64), p.z as f64 - sc.floor)
-                })
-                .collect();
-            let xy: Vec<DVec2> = all.iter().map(|p| p.0).collect();
-            let mut cands = directions.clone();
-            // (the first `walls_cands` are the walls' directions)
-            let mut walls_cands = cands.len();
-            if let Some((_, d)) = crate::points::fit_line(&xy) {
-                // A staircase seen from its side only is one face, a line in plan: it climbs
-                // along that line (its stepped top edge reads as a staircase along any
-                // direction not square to it, with the run shortened).
-                if across(&xy, d) < c.min_width_m {
-                    cands.retain(|e| {
-                        e.angle_to(d).abs().to_degrees() < c.snap_direction_deg
-                            || e.angle_to(-d).abs().to_degrees() < c.snap_direction_deg
-                    });
-                }
-                walls_cands = cands.len();
-                for cand in [d, d.perp(), -d, -d.perp()] {
-                    if !cands
-                        .iter()
-                        .any(|e| e.angle_to(cand).abs().to_degrees() < c.snap_direction_deg)
-                    {
-                        cands.push(cand);
-                    }
-                }
-            }
-            // The part's returns on surfaces: its levels and support.
-            let pts: Vec<(DVec2, f64)> = part
-                .surface
-                .iter()
-                .map(|&i| {
-                    let p = sc.points[i];
-                    (DVec2::new(p.x as f64, p.y as f64), p.z as f64 - sc.floor)
-                })
-                .collect();
-            // Both highest first: a profile's envelope takes each bin's points in that order,
-            // and binned in order they need no sorting per bin.
-            let (pts, all) = (highest_first(pts), highest_first(all));
-            Search {
-                pts: &pts,
-                all: &all,
-                cands: &cands,
-                walls_cands,
-                sc,
-                c,
-            }
-            .stairs()
+            search_part(part, &directions, sc, c)
         })
+        .collect();
+    // An upper flight parted from the flight below it (see `upper`).
+    upper::join_upper_flights(&blob_parts, &mut found, sc, c);
+    found
+        .into_iter()
+        .flatten()
         .flatten()
         .map(|mut st| {
             // A top riser the blobs parted from its flight (see `extend`).
@@ -312,6 +270,66 @@ pub(crate) fn find_stairs(
             st
         })
         .collect()
+}
+
+/// A part's staircase: its best profile over the walls' `directions` and its own, then the
+/// staircase if it is plausible.
+fn search_part(
+    part: &parts::Part,
+    directions: &[DVec2],
+    sc: &Scene,
+    c: &StairsConfig,
+) -> Option<Vec<DetectedStairs>> {
+    let all = part_points(sc, &part.members);
+    let xy: Vec<DVec2> = all.iter().map(|p| p.0).collect();
+    let mut cands = directions.to_vec();
+    // (the first `walls_cands` are the walls' directions)
+    let mut walls_cands = cands.len();
+    if let Some((_, d)) = crate::points::fit_line(&xy) {
+        // A staircase seen from its side only is one face, a line in plan: it climbs along
+        // that line (its stepped top edge reads as a staircase along any direction not
+        // square to it, with the run shortened).
+        if across(&xy, d) < c.min_width_m {
+            cands.retain(|e| {
+                e.angle_to(d).abs().to_degrees() < c.snap_direction_deg
+                    || e.angle_to(-d).abs().to_degrees() < c.snap_direction_deg
+            });
+        }
+        walls_cands = cands.len();
+        for cand in [d, d.perp(), -d, -d.perp()] {
+            if !cands
+                .iter()
+                .any(|e| e.angle_to(cand).abs().to_degrees() < c.snap_direction_deg)
+            {
+                cands.push(cand);
+            }
+        }
+    }
+    // The part's returns on surfaces: its levels and support.
+    let pts = part_points(sc, &part.surface);
+    Search {
+        pts: &pts,
+        all: &all,
+        cands: &cands,
+        walls_cands,
+        sc,
+        c,
+    }
+    .stairs()
+}
+
+/// The points `(xy, height above the floor)` of these indices, highest first (a profile's
+/// envelope takes each bin's points in that order, and binned in order they need no sorting
+/// per bin).
+fn part_points(sc: &Scene, indices: &[usize]) -> Vec<(DVec2, f64)> {
+    let pts = indices
+        .iter()
+        .map(|&i| {
+            let p = sc.points[i];
+            (DVec2::new(p.x as f64, p.y as f64), p.z as f64 - sc.floor)
+        })
+        .collect();
+    highest_first(pts)
 }
 
 /// The extent of points across a direction (1 % to 99 %).
@@ -331,3 +349,5 @@ fn highest_first(mut pts: Vec<(DVec2, f64)>) -> Vec<(DVec2, f64)> {
 mod landing_tests;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod upper_tests;

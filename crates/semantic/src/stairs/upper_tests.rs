@@ -1,0 +1,99 @@
+//! Regressions of upper flights parted from the flight below them (`upper`).
+
+use super::tests::over_floor;
+use super::*;
+use crate::points::XyIndex;
+
+/// The returns of a test data file with a part column: `(xy, height)` and each one's part.
+fn returns_by_part(text: &str) -> (Vec<(DVec2, f64)>, Vec<usize>) {
+    text.lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| {
+            let v: Vec<f64> = l.split(' ').map(|x| x.parse().expect("a number")).collect();
+            ((DVec2::new(v[0], v[1]), v[2]), v[3] as usize)
+        })
+        .unzip()
+}
+
+/// The stairs stage's last steps on `returns` parted as `part_of` (each part searched along
+/// and across X, as walls would give, then the upper flights joined), in a cloud of them over
+/// a floor seen everywhere but under the staircase (x 0..`hidden_x`, y 0..1.3).
+fn search_parts(
+    returns: &[(DVec2, f64)],
+    part_of: &[usize],
+    hidden_x: f64,
+) -> Vec<Option<Vec<DetectedStairs>>> {
+    let c = StairsConfig::default();
+    let points = over_floor(
+        returns,
+        DVec2::new(-1.5, -2.0),
+        (250, 100),
+        DVec2::new(hidden_x, 1.3),
+    );
+    let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(9.0), 0.25);
+    let sc = Scene::with_one_index(&points, &index, 0.0, 2.6);
+    let n = part_of.iter().max().map_or(0, |m| m + 1);
+    let parts: Vec<parts::Part> = (0..n)
+        .map(|k| {
+            let members: Vec<usize> = (0..returns.len()).filter(|&i| part_of[i] == k).collect();
+            let surface = surface::on_surfaces(
+                &points,
+                &members,
+                c.min_surface_neighbours,
+                c.surface_radius_spacings,
+                3.0 * c.cell_m,
+            );
+            parts::Part {
+                pixels: members.len(),
+                members,
+                surface,
+            }
+        })
+        .collect();
+    let directions = [DVec2::X, DVec2::Y, -DVec2::X, -DVec2::Y];
+    let mut found: Vec<_> = parts
+        .iter()
+        .map(|p| search_part(p, &directions, &sc, &c))
+        .collect();
+    upper::join_upper_flights(&parts, &mut found, &sc, &c);
+    found
+}
+
+/// Regression: fresh office-66's staircase with a mid landing (flights of 3 and 4 steps of
+/// 0.179 m; the landing 0.54 m up, above the laser) showed its lower flight alone: the upper
+/// flight's risers, seen from below a run apart with no tread between them, were parts of
+/// their own (three risers with the landing's side face, and the top riser), each too few
+/// levels to be a flight. Read together, from the lower flight's landing, they are its upper
+/// flight. (The parts' returns, from the bench's map.)
+#[test]
+fn an_upper_flights_risers_parted_from_the_lower_flight_are_its_flight() {
+    let (returns, part_of) =
+        returns_by_part(include_str!("../../tests/data/office66_upper_flight.txt"));
+    assert_eq!(returns.len(), 868);
+    let found = search_parts(&returns, &part_of, 4.0);
+    let flights = found[0].as_ref().expect("the lower flight");
+    assert_eq!(flights.len(), 2, "{flights:?}");
+    let (lower, upper) = (&flights[0], &flights[1]);
+    assert_eq!((lower.steps, upper.steps), (3, 4), "{flights:?}");
+    assert!((upper.base - 0.537).abs() < 0.03, "base {}", upper.base);
+    assert!((upper.rise - 0.179).abs() < 0.01, "rise {}", upper.rise);
+    // Its first riser 2.25 m along, past the landing.
+    assert!((upper.start.x - 2.25).abs() < 0.06, "start {}", upper.start);
+    assert!(found[1..].iter().all(Option::is_none));
+}
+
+/// The same risers beside the lower flight's line (moved 1.5 m across it) are no flight of it.
+#[test]
+fn risers_beside_a_flights_line_are_no_flight_on_its_landing() {
+    let (mut returns, part_of) =
+        returns_by_part(include_str!("../../tests/data/office66_upper_flight.txt"));
+    for (p, &k) in returns.iter_mut().zip(&part_of) {
+        if k > 0 {
+            p.0.y += 1.5;
+        }
+    }
+    let found = search_parts(&returns, &part_of, 4.0);
+    let flights = found[0].as_ref().expect("the lower flight");
+    assert_eq!(flights.len(), 1, "{flights:?}");
+    assert_eq!(flights[0].steps, 3);
+}

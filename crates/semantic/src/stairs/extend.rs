@@ -25,7 +25,7 @@ const ABOVE_TO_M: f64 = 0.6;
 /// The riser's points cover at least this fraction of the flight's width ...
 const MIN_COVER: f64 = 0.5;
 /// ... in bins this wide across the flight: about a rotating laser's sample spacing at 10 m.
-const COVER_BIN_M: f64 = 0.1;
+pub(super) const COVER_BIN_M: f64 = 0.1;
 
 /// Adds the steps whose risers stand one run past the flight's top (see the module docs);
 /// `usable(i)` is true for the points the height map holds (not in a wall's slab, between the

@@ -14,10 +14,12 @@
 //! on its landing (see `flights::flight_above`): heights from the landing, the lone flight's
 //! rise as the hint, and the same checks as any flight's.
 
+use super::extend::COVER_BIN_M;
 use super::flights::flight_above;
 use super::parts::Part;
 use super::{part_points, DetectedStairs, StairsConfig};
 use crate::scene::Scene;
+use glam::DVec2;
 
 /// How far beyond a flight's top step an upper flight's returns may lie (m): a landing as deep
 /// as the widest stair, and a long flight beyond it.
@@ -33,6 +35,9 @@ const MIN_SHARE: f64 = 0.9;
 
 /// The share of a part's returns that must stand above the flight's top level.
 const MIN_ABOVE: f64 = 0.5;
+
+/// The share of a flight's width an upper flight's risers cover (see [`spans_width`]).
+const MIN_SPAN: f64 = 0.8;
 
 /// Reads the returns of the parts beyond each lone flight of `found` (by part, as `parts`),
 /// in line with it and above its top level, as the flight on its landing, where they show one
@@ -56,7 +61,8 @@ pub(super) fn join_upper_flights(
         if beyond.is_empty() {
             continue;
         }
-        // 2. The flight on the lone flight's landing, from the returns of those parts.
+        // 2. The flight on the lone flight's landing, from the returns of those parts, where
+        //    they span its width as risers do.
         let joined = |of: fn(&Part) -> &Vec<usize>| -> Vec<usize> {
             beyond
                 .iter()
@@ -65,6 +71,9 @@ pub(super) fn join_upper_flights(
         };
         let pts = part_points(sc, &joined(|p| &p.surface));
         let all = part_points(sc, &joined(|p| &p.members));
+        if !spans_width(&all, &lone) {
+            continue;
+        }
         if let Some(second) = flight_above(&lone, &pts, &all, sc, c) {
             found[i] = Some(vec![lone, second]);
         }
@@ -80,7 +89,7 @@ fn lies_beyond(part: &Part, flight: &DetectedStairs, sc: &Scene) -> bool {
     let (mut in_line, mut above) = (0usize, 0usize);
     for &k in &part.members {
         let p = sc.points[k];
-        let q = glam::DVec2::new(p.x as f64, p.y as f64) - flight.start;
+        let q = DVec2::new(p.x as f64, p.y as f64) - flight.start;
         let (along, across) = (q.dot(flight.dir), flight.dir.perp_dot(q));
         if along >= first_beyond
             && along <= first_beyond + REACH_M
@@ -92,4 +101,23 @@ fn lies_beyond(part: &Part, flight: &DetectedStairs, sc: &Scene) -> bool {
     }
     let n = part.members.len() as f64;
     in_line as f64 >= MIN_SHARE * n && above as f64 >= MIN_ABOVE * n
+}
+
+/// True if the returns `pts` span the flight's width as an upper flight's risers do, each
+/// across all of it: they cover at least [`MIN_SPAN`] of it in bins [`COVER_BIN_M`] wide. A
+/// tall cabinet beyond a flight's landing, along its line, shows its shelves at heights a rise
+/// apart too, but on a face along the flight (bench office-61: its face and what stood in
+/// front of it covered half of the flight's width, and read as a 6-step flight on the
+/// landing; office-66's upper flight covers all of it).
+fn spans_width(pts: &[(DVec2, f64)], flight: &DetectedStairs) -> bool {
+    let half = flight.width / 2.0;
+    let bins = ((flight.width / COVER_BIN_M).ceil() as usize).clamp(1, 1000);
+    let mut covered = vec![false; bins];
+    for (q, _) in pts {
+        let t = flight.dir.perp_dot(*q - flight.start) + half;
+        if (0.0..flight.width).contains(&t) {
+            covered[((t / COVER_BIN_M) as usize).min(bins - 1)] = true;
+        }
+    }
+    covered.iter().filter(|&&b| b).count() as f64 >= MIN_SPAN * bins as f64
 }

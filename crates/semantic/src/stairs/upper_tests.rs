@@ -97,3 +97,20 @@ fn risers_beside_a_flights_line_are_no_flight_on_its_landing() {
     assert_eq!(flights.len(), 1, "{flights:?}");
     assert_eq!(flights[0].steps, 3);
 }
+
+/// A face along the flight's line beyond its landing, a tall cabinet's with its shelves a rise
+/// apart (bench office-61), is no flight on the landing: the same returns squeezed into 0.2 m
+/// across the flight's width, as a face along it, are no risers spanning it.
+#[test]
+fn a_face_along_a_flights_line_beyond_its_landing_is_no_flight_on_it() {
+    let (mut returns, part_of) =
+        returns_by_part(include_str!("../../tests/data/office66_upper_flight.txt"));
+    for (p, &k) in returns.iter_mut().zip(&part_of) {
+        if k > 0 {
+            p.0.y = 0.1 + 0.2 * (p.0.y / 1.3).clamp(0.0, 1.0);
+        }
+    }
+    let found = search_parts(&returns, &part_of, 4.0);
+    let flights = found[0].as_ref().expect("the lower flight");
+    assert_eq!(flights.len(), 1, "{flights:?}");
+}

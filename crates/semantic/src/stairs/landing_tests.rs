@@ -151,3 +151,55 @@ fn treads_missed_part_way_up_a_flight_seen_as_a_landing_leave_it_one_flight() {
         "{flight:?}"
     );
 }
+
+/// A side face at y = 0, sampled every 1 cm along and 2 cm up from 1 cm: `(x0, x1, top)`
+/// stretches, each seen up to the highest scan line under its top.
+fn side_face_of(stretches: &[(f64, f64, f64)]) -> Vec<(DVec2, f64)> {
+    let mut pts = Vec::new();
+    for &(x0, x1, top) in stretches {
+        let n = ((x1 - x0) / 0.01).round() as usize;
+        for i in 0..n {
+            let mut z = 0.01;
+            while z <= top {
+                pts.push((DVec2::new(x0 + 0.01 * i as f64, 0.0), z));
+                z += 0.02;
+            }
+        }
+    }
+    pts
+}
+
+/// Regression: fresh office-68's staircase with a mid landing (flights of 4 and 5 steps of
+/// 0.165 m), seen from its side only, the lower flight barely: the landing's side face showed
+/// up to 0.61 m for its 0.66 m (the highest scan line under its top edge), 3.7 of the upper
+/// flight's risers, and a landing had to stand within a quarter of a riser of a whole number of
+/// them; the staircase read as one flight of 9 steps. A side face's top is seen at or under
+/// its height: the landing may read low by up to half a riser, and the upper flight is read
+/// again from the whole risers' height. (The same geometry, the landing's face seen up to
+/// 0.61 m.)
+#[test]
+fn a_landing_seen_low_on_its_side_face_still_carries_the_flight_above_it() {
+    // The hidden lower flight (x 0-1.2), the landing (1.2-2.4, 0.66 m up), 5 steps of
+    // 0.165 m x 0.3 m, their top landing (3.9-4.9).
+    let mut stretches = vec![(1.2, 2.4, 0.615)];
+    for k in 0..5 {
+        let x = 2.4 + 0.3 * f64::from(k);
+        stretches.push((x, x + 0.3, 0.66 + 0.165 * f64::from(k + 1)));
+    }
+    stretches.push((3.9, 4.9, 0.66 + 0.165 * 5.0));
+    let part = side_face_of(&stretches);
+    let floor = (DVec2::new(-1.0, -2.0), (175, 100));
+    let found =
+        search_as_mapped_on(&part, floor, DVec2::new(4.9, 1.3), false).expect("a staircase");
+    let upper = found
+        .iter()
+        .find(|f| f.base > 0.3)
+        .unwrap_or_else(|| panic!("a flight on the landing: {found:?}"));
+    assert_eq!(upper.steps, 5, "{found:?}");
+    assert!((upper.base - 0.66).abs() < 0.08, "base {}", upper.base);
+    assert!((upper.rise - 0.165).abs() < 0.015, "rise {}", upper.rise);
+    // Read from the whole risers' height, its first riser where it stands (2.4 m along), its
+    // run 0.3 m (read from the low landing, 2.01 m and 0.39 m).
+    assert!((upper.start.x - 2.4).abs() < 0.05, "start {}", upper.start);
+    assert!((upper.run - 0.3).abs() < 0.02, "run {}", upper.run);
+}

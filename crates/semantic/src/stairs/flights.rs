@@ -121,12 +121,9 @@ pub(super) fn two_flights(
             if floor_seen_before(&second, landing_start, hidden_length, sc, c) {
                 return None;
             }
-            // Read low, the landing lifts the upper flight's first step by what it missed, and
-            // the fit may stretch the run to match (a side face sampled every 2 cm up, seen to
-            // 5 cm under the landing's top: 0.39 m for 0.3 m): the upper flight is read again
-            // from the whole risers' height, and that reading wins where it found as large a
-            // share of its levels (from a rise estimated on the low landing, that height can
-            // be as far off the other way).
+            // Read low, the landing lifted the upper flight's first step by what it missed
+            // (and its fit, a run stretched to match: office-68's 0.39 m for 0.32 m): the
+            // upper flight is read again from the whole risers' height.
             let mut base = base;
             if risers - whole < -0.25 {
                 let whole_base = whole * second.rise;
@@ -134,9 +131,7 @@ pub(super) fn two_flights(
                 if let (Some(again), _) =
                     upper_flight((pts, all), dir, from, whole_base, None, sc, c)
                 {
-                    if again.confidence >= second.confidence {
-                        (second, base) = (again, whole_base);
-                    }
+                    (second, base) = (again, whole_base);
                 }
             }
             second.base = base;

@@ -105,39 +105,22 @@ pub(super) fn two_flights(
         (None, Some(mut second)) => {
             // The hidden flight climbed to the landing in risers like the upper one's (a
             // staircase's risers are uniform): the landing stands a whole number of them up,
-            // at least a flight's worth. Seen from its side only, the landing's level is the
-            // highest scan line on its side face, at or under its top edge: it may read low by
-            // up to half a riser, high by a quarter (office-68: 0.61 m for 0.66 m, 3.55 of the
-            // upper flight's risers).
+            // at least a flight's worth.
             let risers = base / second.rise;
-            let whole = (risers - 0.25).ceil();
-            if whole < f64::from(c.min_steps) || risers - whole < -0.5 {
+            if risers.round() < f64::from(c.min_steps) || (risers - risers.round()).abs() > 0.25 {
                 return None;
             }
             // And it hid the floor it stands on, before the landing: a parked car's body top
             // read as a landing, with its cabin's front as a flight on it (fresh garage-43),
             // has open floor before it.
-            let hidden_length = (whole - 1.0) * c.run_m[0];
+            let hidden_length = (risers.round() - 1.0) * c.run_m[0];
             if floor_seen_before(&second, landing_start, hidden_length, sc, c) {
                 return None;
-            }
-            // Read low, the landing lifted the upper flight's first step by what it missed
-            // (and its fit, a run stretched to match: office-68's 0.39 m for 0.32 m): the
-            // upper flight is read again from the whole risers' height.
-            let mut base = base;
-            if risers - whole < -0.25 {
-                let whole_base = whole * second.rise;
-                let from = landing_end - c.run_m[1];
-                if let (Some(again), _) =
-                    upper_flight((pts, all), dir, from, whole_base, None, sc, c)
-                {
-                    (second, base) = (again, whole_base);
-                }
             }
             second.base = base;
             second.rules.push(format!(
                 "starts on a landing {base:.2} m above the floor ({:.0} of its risers up); the flight below it is hidden or only glimpsed",
-                whole
+                risers.round()
             ));
             Some(vec![second])
         }

@@ -157,7 +157,7 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
         hi - lo,
         coverage * 100.0
     ), format!(
-        "face seen below head height along {:.0} % of it (where something stands beside it, above 1.5 m), seen through below head height along {:.0} %, seen above head height only with nothing below along {:.0} % (a beam or pillars would be open or bare more than standing)",
+        "face seen below head height along {:.0} % of it (above 1.5 m where something stands beside it, or where it is seen above head height and almost nowhere between), seen through below head height along {:.0} %, seen above head height only with nothing below along {:.0} % (a beam or pillars would be open or bare more than standing)",
         standing * 100.0,
         open * 100.0,
         bare * 100.0

@@ -200,6 +200,19 @@ pub(super) fn search_as_mapped_on(
         3.0 * c.cell_m,
     );
     let surface: Vec<(DVec2, f64)> = on.iter().map(|&i| part[i]).collect();
+    search_on_surface(part, &surface, floor, hidden, own_axes)
+}
+
+/// [`search_as_mapped_on`] with the part's returns on surfaces `surface` given (as the map's
+/// stairs stage took them).
+fn search_on_surface(
+    part: &[(DVec2, f64)],
+    surface: &[(DVec2, f64)],
+    floor: (DVec2, (usize, usize)),
+    hidden: DVec2,
+    own_axes: bool,
+) -> Option<Vec<DetectedStairs>> {
+    let c = StairsConfig::default();
     let points = over_floor(part, floor.0, floor.1, hidden);
     let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(9.0), 0.25);
     let sc = Scene::with_one_index(&points, &index, 0.0, 2.6);
@@ -211,7 +224,7 @@ pub(super) fn search_as_mapped_on(
         cands.extend([d, d.perp(), -d, -d.perp()]);
     }
     Search {
-        pts: &surface,
+        pts: surface,
         all: part,
         cands: &cands,
         walls_cands,
@@ -289,25 +302,9 @@ fn a_flight_with_mixed_pixels_over_its_treads_keeps_the_count_that_sees_every_le
         .map(|v| (DVec2::new(v[0], v[1]), v[2]))
         .collect();
     assert_eq!((all.len(), surface.len()), (4936, 4909));
-    let points = over_floor(
-        &all,
-        DVec2::new(-1.5, -2.0),
-        (160, 100),
-        DVec2::new(4.5, 1.4),
-    );
-    let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(9.0), 0.25);
-    let sc = Scene::with_one_index(&points, &index, 0.0, 2.6);
-    let cands = [DVec2::X, DVec2::Y, -DVec2::X, -DVec2::Y];
-    let found = Search {
-        pts: &surface,
-        all: &all,
-        cands: &cands,
-        walls_cands: cands.len(),
-        sc: &sc,
-        c: &StairsConfig::default(),
-    }
-    .stairs()
-    .expect("a staircase");
+    let floor = (DVec2::new(-1.5, -2.0), (160, 100));
+    let found =
+        search_on_surface(&all, &surface, floor, DVec2::new(4.5, 1.4), false).expect("a staircase");
     assert_eq!(found.len(), 1);
     let flight = &found[0];
     assert_eq!(flight.steps, 12, "{flight:?}");

@@ -249,7 +249,7 @@ mod tests {
     /// from the floor to 1.4 m and its body beside the flank unseen (hollow to the laser, under
     /// its top), stood as a floor-to-ceiling wall under the beam. A face seen low and above
     /// head height, almost nowhere between, is no standing face; a wall whose face the scans
-    /// missed between in some bins (seen sparsely) still stands on the others.
+    /// missed between in some bins (seen sparsely) still stands along its whole length.
     #[test]
     fn a_flank_under_a_beams_face_with_nothing_between_is_no_standing_face() {
         let mut car = SupportProfile::new(100, &[0.0], 0.0);

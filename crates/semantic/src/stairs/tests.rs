@@ -87,6 +87,18 @@ pub(super) fn returns(text: &str) -> Vec<(DVec2, f64)> {
         .collect()
 }
 
+/// The returns of a test data file with a fourth column (a part, or 1 for a return on a
+/// surface): `(xy, height)` and each one's fourth column.
+pub(super) fn returns_by_part(text: &str) -> (Vec<(DVec2, f64)>, Vec<usize>) {
+    text.lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| {
+            let v: Vec<f64> = l.split(' ').map(|x| x.parse().expect("a number")).collect();
+            ((DVec2::new(v[0], v[1]), v[2]), v[3] as usize)
+        })
+        .unzip()
+}
+
 /// Both flights of a staircase with a mid landing in `found`, each of `steps` steps climbing
 /// +X (of `rise`, within 1 cm, where given).
 pub(super) fn assert_two_flights(
@@ -286,20 +298,14 @@ fn furniture_stepping_up_along_no_walls_direction_is_no_staircase() {
 /// surface, from the bench's map.)
 #[test]
 fn a_flight_with_mixed_pixels_over_its_treads_keeps_the_count_that_sees_every_level() {
-    let text = include_str!("../../tests/data/hall72_flight_from_below.txt");
-    let rows: Vec<Vec<f64>> = text
-        .lines()
-        .filter(|l| !l.starts_with('#'))
-        .map(|l| l.split(' ').map(|x| x.parse().expect("a number")).collect())
-        .collect();
-    let all: Vec<(DVec2, f64)> = rows
+    let (all, on_surface) = returns_by_part(include_str!(
+        "../../tests/data/hall72_flight_from_below.txt"
+    ));
+    let surface: Vec<(DVec2, f64)> = all
         .iter()
-        .map(|v| (DVec2::new(v[0], v[1]), v[2]))
-        .collect();
-    let surface: Vec<(DVec2, f64)> = rows
-        .iter()
-        .filter(|v| v[3] == 1.0)
-        .map(|v| (DVec2::new(v[0], v[1]), v[2]))
+        .zip(&on_surface)
+        .filter(|(_, &on)| on == 1)
+        .map(|(r, _)| *r)
         .collect();
     assert_eq!((all.len(), surface.len()), (4936, 4909));
     let floor = (DVec2::new(-1.5, -2.0), (160, 100));

@@ -1,19 +1,8 @@
 //! Regressions of upper flights parted from the flight below them (`upper`).
 
-use super::tests::over_floor;
+use super::tests::{over_floor, returns_by_part};
 use super::*;
 use crate::points::XyIndex;
-
-/// The returns of a test data file with a part column: `(xy, height)` and each one's part.
-fn returns_by_part(text: &str) -> (Vec<(DVec2, f64)>, Vec<usize>) {
-    text.lines()
-        .filter(|l| !l.starts_with('#'))
-        .map(|l| {
-            let v: Vec<f64> = l.split(' ').map(|x| x.parse().expect("a number")).collect();
-            ((DVec2::new(v[0], v[1]), v[2]), v[3] as usize)
-        })
-        .unzip()
-}
 
 /// The stairs stage's last steps on `returns` parted as `part_of` (each part searched along
 /// and across X, as walls would give, then the upper flights joined), in a cloud of them over

@@ -32,6 +32,16 @@ use glam::DVec2;
 /// face's returns spread by the range noise, and a width measured from 1-99 % of the points.
 const IN_LINE_MARGIN_M: f64 = 0.15;
 
+/// How far under the lower flight's top level a landing may be read, in its rises. The
+/// landing's height is the profile's running maximum over a level stretch, where a rise that
+/// the profile falls back from within a landing's depth counts as something standing on it
+/// (see `landing`); a side face whose top edge over the landing is hidden (fresh office-74: a
+/// desk's top in front of it, above the laser, hid it over half the landing) falls back under
+/// the flight's top step too, and the landing reads a level low. Its flight, fitted on the
+/// points before the landing's far edge, still climbs to the top step: that is the landing.
+/// (More than a level and a half over it is no flight climbing to it.)
+const LANDING_UNDER_TOP: f64 = 1.5;
+
 /// The flights of a staircase with a mid landing climbing along `dir`, if the points show one
 /// (see the module docs): both, or the one of them that is plausible; `None` if they show no
 /// mid landing or neither flight is.
@@ -52,8 +62,12 @@ pub(super) fn two_flights(
         Some(first) => first.rise * first.steps as f64,
         None => landing_height,
     };
+    // The lower flight climbs to the landing: its top level is the landing's height, or stands
+    // a level over the landing read where the profile fell back under its top step past the
+    // edge of what hid the landing's side face (see `LANDING_UNDER_TOP`).
     if let Some(first) = &first {
-        if (base - landing_height).abs() > 0.5 * first.rise {
+        let over = base - landing_height;
+        if over < -0.5 * first.rise || over > LANDING_UNDER_TOP * first.rise {
             return None;
         }
     }

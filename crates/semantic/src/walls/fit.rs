@@ -19,6 +19,15 @@ use glam::DVec2;
 /// metre) and it is a plane through clutter, a beam or a door leaf.
 const UNBOUNDED_FACE_MAX_THROUGH: f64 = 0.1;
 
+/// A face is picked from the peaks of the projection band's distances (see `faces`); one that
+/// holds fewer than this share of the face points over the wall's height that the strongest
+/// holds is no face of the wall: a few returns in the band beside it (fresh office-77's and
+/// office-7's glass partitions, seen from both rooms, neither face with free space of its
+/// own: a veil of returns near the ceiling 0.2 m beside the glass held 2 and 1 face points for
+/// the glass's 1280 and 1575, and the wall was placed on the veil, then dropped for resting on
+/// no points of its own). A glass wall's two faces hold a fifth to all of each other's.
+const MIN_FACE_SHARE: f64 = 0.1;
+
 /// The least fraction of a wall's length along which its face reaches up to the ceiling.
 const MIN_TOP_COVERAGE: f64 = 0.3;
 
@@ -82,6 +91,8 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
     let mut bins = vec![false; (((hi - lo) / 0.1).ceil() as usize).clamp(1, 1_000_000)];
     let mut reach = TopReach::new(bins.len(), z_lo, sc.ceiling - c.max_top_below_ceiling_m);
     let mut front = vec![[0usize; 2]; faces.len()];
+    // (the points on each face)
+    let mut on_each = vec![0usize; faces.len()];
     let strip = (0.02, 0.10);
     let mut profile = SupportProfile::new(
         ((hi - lo) / BIN_M).ceil().max(1.0) as usize,
@@ -100,6 +111,9 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
             }
             if z >= z_lo && z <= z_hi && on_face(d, &faces) && !crossed(s, z) {
                 zs.push(z);
+                for (k, f) in faces.iter().enumerate() {
+                    on_each[k] += usize::from((d - f).abs() <= tol);
+                }
                 let b = (((s - lo) / 0.1) as usize).min(bins.len() - 1);
                 bins[b] = true;
                 reach.add(b, z);
@@ -195,8 +209,15 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
         }
     }
     if !fit.measured {
-        // One face: the one with free space in front of it (else the first, the strongest).
-        let k = (0..faces.len()).find(|&k| side(k) != 0.0).unwrap_or(0);
+        // One face: the one with free space in front of it, else the first (across the wall)
+        // of those that hold face points over its height (see `MIN_FACE_SHARE`).
+        let most = on_each.iter().copied().max().unwrap_or(0);
+        let k = (0..faces.len())
+            .find(|&k| side(k) != 0.0)
+            .or_else(|| {
+                (0..faces.len()).find(|&k| on_each[k] as f64 >= MIN_FACE_SHARE * most as f64)
+            })
+            .unwrap_or(0);
         let mut s = side(k);
         if s == 0.0 && open + bare >= UNBOUNDED_FACE_MAX_THROUGH {
             // No side of the face is free space with a body behind it, and the scans saw
@@ -240,6 +261,46 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::points::XyIndex;
+    use glam::Vec3;
+
+    /// Regression: fresh office-77's glass partition, seen from both rooms (the floor seen on
+    /// both sides of it alike: neither face bounds free space), with a sparse veil of returns
+    /// 0.2 m beside its face in the projection band picked as its second face: the wall was
+    /// placed on the veil, 0.2 m off the glass, and then dropped for having no points of its
+    /// own there. It stands on the face that holds the face points, whichever way along the
+    /// segment runs (see `MIN_FACE_SHARE`).
+    #[test]
+    fn a_wall_with_no_free_side_stands_on_its_face_not_on_a_veil_of_returns_beside_it() {
+        let mut points = Vec::new();
+        for i in 0..80 {
+            let y = 0.025 + 0.05 * f64::from(i);
+            // The face, every 5 cm from 5 cm over the floor to 5 cm under the ceiling.
+            for k in 1..49 {
+                points.push(Vec3::new(0.0, y as f32, 0.05 * k as f32));
+            }
+            // A veil 0.2 m beside it in the band, a return per 10 cm of height.
+            for k in 0..4 {
+                points.push(Vec3::new(0.2, y as f32, 1.0 + 0.1 * k as f32));
+            }
+            // The floor and the ceiling on both sides.
+            for j in 1..30 {
+                for x in [-0.05 * f64::from(j), 0.05 * f64::from(j)] {
+                    points.push(Vec3::new(x as f32, y as f32, 0.0));
+                    points.push(Vec3::new(x as f32, y as f32, 2.5));
+                }
+            }
+        }
+        let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(6.0), 0.25);
+        let sc = Scene::with_one_index(&points, &index, 0.0, 2.5);
+        let c = WallConfig::default();
+        for (a, b) in [([0.0, 0.1], [0.0, 3.9]), ([0.0, 3.9], [0.0, 0.1])] {
+            let seg = Segment { a_m: a, b_m: b };
+            let wall = fit_wall(&seg, &sc, &c).expect("a wall");
+            assert!(!wall.measured, "{wall:?}");
+            assert!(wall.line.origin.x.abs() < 0.02, "{:?}", wall.line);
+        }
+    }
 
     /// A scripted refit: round `k` turns the line to `angles_deg[k]` off +X through the origin,
     /// with its extent from 0 to 2.5 m; counts the rounds run.

@@ -108,8 +108,8 @@ fn a_face_along_a_flights_line_beyond_its_landing_is_no_flight_on_it() {
 /// 0.158 m; the landing 0.63 m up, 1.25 m deep, above the laser), seen from its side past a
 /// desk whose top hid the side face's top edge over half the landing, was missed whole: the
 /// profile rose to the lower flight's top step and fell back under it past the desk, so the
-/// landing was read a level low (0.48 m), under the lower flight's top (0.58 m), and neither
-/// was kept. The lower flight climbs to its top step: that is the landing (see
+/// landing was read low (0.48 m), under the lower flight's top (0.58 m), and neither was
+/// kept. The lower flight climbs to its top step: that is the landing (see
 /// `flights::LANDING_UNDER_TOP`). The upper flight, its first riser in the lower flight's part
 /// and the others a part of their own, all seen from below a few centimetres low, is still
 /// not found. (The parts' returns, from the bench's map.)

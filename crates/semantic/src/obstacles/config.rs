@@ -73,6 +73,11 @@ pub struct ObstacleConfig {
     /// length: it divides space, while the face of a block (a car, a crate, a cabinet seen from
     /// one side) has the block's unseen footprint behind it.
     pub partition_min_floor_both_sides: f64,
+    /// A cluster thicker than a partition may be one with things standing against it (a desk
+    /// pushed against it, a chair's back touching it): the slab of its returns this thick
+    /// holding the most of them is looked at as a partition. A panel's two faces (0.05-0.12
+    /// m apart) and the registration's spread of them (1-2 cm).
+    pub partition_slab_m: f64,
 }
 
 impl Default for ObstacleConfig {
@@ -98,6 +103,7 @@ impl Default for ObstacleConfig {
             partition_min_standing: 0.7,
             partition_min_passage_m: 0.7,
             partition_min_floor_both_sides: 0.5,
+            partition_slab_m: 0.15,
         }
     }
 }
@@ -142,6 +148,7 @@ impl ObstacleConfig {
                 "obstacles.partition_min_passage_m",
                 self.partition_min_passage_m,
             ),
+            ("obstacles.partition_slab_m", self.partition_slab_m),
         ] {
             check_range(name, v, 0.0, 100.0, "within 0..100 m")?;
         }

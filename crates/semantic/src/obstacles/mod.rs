@@ -51,7 +51,11 @@
 //!    height by construction: the robot passes under it); anything else is an `obstacle`.
 //! 7. A thin, long cluster at least `partition_min_height_m` tall whose face is seen from the
 //!    floor up to its top along most of its length is a partial-height `wall` ([`partitions`]):
-//!    a partition under the projection band the wall stage looks at.
+//!    a partition under the projection band the wall stage looks at. A cluster too thick for
+//!    one may be one with a desk or a chair against it: the thin slab of its returns holding
+//!    the most of them is looked at so ([`slabs`]), and what lies beside the slab is fitted
+//!    again as obstacles. Thin pieces standing on one line across short gaps are looked at as
+//!    one partition seen in pieces ([`pieces`]).
 
 mod backing;
 mod classify;
@@ -71,7 +75,9 @@ mod levels;
 mod merge;
 mod necks;
 mod partitions;
+mod pieces;
 mod pillar_rows;
+mod slabs;
 mod tops;
 
 use crate::image_frame::ImageFrame;
@@ -90,6 +96,7 @@ use levels::split_levels;
 use merge::{absorb_parts, drop_wall_slivers, join_collinear};
 use necks::split_at_necks;
 use partitions::classify_partition;
+use pieces::join_partition_pieces;
 use pillar_rows::{may_be_a_pillar_row, split_pillar_row};
 use tops::split_beside_tops;
 
@@ -284,12 +291,17 @@ pub(crate) fn find_obstacles(
     let mut out = join_faces(out, c);
     let seen = floor_seen(&frame, sc.points, sc.floor, c.min_above_floor_m);
     back_onto_walls(&mut out, sc.walls, &frame, &seen, sc.floor);
+    let mut stood_against = Vec::new();
     for o in &mut out {
         classify(o, sc.floor, sc.ceiling, frame.resolution_m, c);
-        // 7. A thin slab standing on the floor along its length: a partial-height wall.
-        classify_partition(o, sc, [&low_grid, &high_grid], &seen, &frame, c);
+        // 7. A thin slab standing on the floor along its length: a partial-height wall (and
+        //    what stands against it, fitted on its own).
+        let grids = [&low_grid, &high_grid];
+        stood_against.extend(classify_partition(o, sc, grids, &seen, &frame, c));
     }
-    out
+    out.extend(stood_against);
+    // A partition seen in pieces along one line is one wall.
+    join_partition_pieces(out, sc, [&low_grid, &high_grid], &seen, &frame, c)
 }
 
 /// A 10 x 6 m grid of 10 cm cells (the frames' and necks' tests).

@@ -10,17 +10,26 @@
 //! passage is wide (`partition_min_passage_m`), divides no space: it is the front of a cabinet
 //! or a shelf against that wall, seen from the room.
 
+use super::classify::set_box_rule;
 use super::cluster::BandGrid;
+use super::fit::rect_corners;
+use super::slabs::{points_in_box, thin_slab};
 use super::{DetectedObstacle, ObstacleConfig, ObstacleScene};
-use crate::image_frame::{pixel_center, pixel_range, ImageFrame};
+use crate::image_frame::ImageFrame;
 use cloud::EntityClass;
 use glam::DVec2;
 
 /// Bins along a partition's length in which its face is looked for.
 const BIN_M: f64 = 0.1;
 
+/// What stands against a partition runs along at most this share of it: a desk 1.2-1.6 m
+/// long by a partition 1.6-2 m long, a chair; a block's faces beside the one taken run along
+/// all of it (their boxes reach a little beyond, by the mixed pixels at its edges).
+const MAX_BESIDE_SHARE: f64 = 0.8;
+
 /// Makes `o` a wall if it stands as a partial-height wall does (see the module docs); its last
-/// rule says why.
+/// rule says why. A cluster too thick for one may hold one with things standing against it
+/// ([`thin_slab`]): then `o` becomes that wall, and what stood against it is returned.
 pub(super) fn classify_partition(
     o: &mut DetectedObstacle,
     sc: &ObstacleScene,
@@ -28,37 +37,83 @@ pub(super) fn classify_partition(
     floor_seen: &[bool],
     frame: &ImageFrame,
     c: &ObstacleConfig,
-) {
+) -> Vec<DetectedObstacle> {
+    if o.overhead || o.class != EntityClass::Obstacle {
+        return Vec::new();
+    }
+    // 1. The cluster as it is.
+    if let Some(why) = partition_rule(o, sc, grids, floor_seen, frame, c) {
+        o.class = EntityClass::Wall;
+        o.rules.truncate(2);
+        o.rules.push(why);
+        return Vec::new();
+    }
+    // 2. A cluster too thick for one: the thin slab holding most of its returns, and what
+    //    stands against it. What stands against a partition (a desk, a chair) runs along part
+    //    of it, while a block's other faces (a crate's, a row of crates') run along the whole
+    //    face taken ([`MAX_BESIDE_SHARE`]). And the slab stays under head height: a door's
+    //    leaf standing open (2 m or more) is as thin, with its frame beside it.
+    if o.size[1] <= c.partition_max_thickness_m {
+        return Vec::new();
+    }
+    let Some((mut slab, rest)) = thin_slab(o, sc, grids, frame, c) else {
+        return Vec::new();
+    };
+    let along_slab = |r: &DetectedObstacle| {
+        let s = rect_corners(r.center, r.dir, r.size).map(|q| q.dot(slab.dir));
+        s.iter().copied().fold(f64::MIN, f64::max) - s.iter().copied().fold(f64::MAX, f64::min)
+    };
+    if rest
+        .iter()
+        .any(|r| along_slab(r) >= MAX_BESIDE_SHARE * slab.size[0])
+        || slab.z_range.1 - sc.floor > c.head_height_m
+    {
+        return Vec::new();
+    }
+    let Some(why) = partition_rule(&slab, sc, grids, floor_seen, frame, c) else {
+        return Vec::new();
+    };
+    slab.class = EntityClass::Wall;
+    set_box_rule(
+        &mut slab,
+        format!(
+            "box: the slab {:.2} m thick holding the most returns of a cluster {:.2} m thick (things standing against a partition), its smallest-area rectangle",
+            c.partition_slab_m, o.size[1]
+        ),
+    );
+    slab.rules.truncate(2);
+    slab.rules.push(why);
+    *o = slab;
+    rest
+}
+
+/// Why `o` stands as a partial-height wall does (see the module docs), or `None`.
+pub(super) fn partition_rule(
+    o: &DetectedObstacle,
+    sc: &ObstacleScene,
+    grids: [&BandGrid; 2],
+    floor_seen: &[bool],
+    frame: &ImageFrame,
+    c: &ObstacleConfig,
+) -> Option<String> {
     let [length, across] = o.size;
     let height = o.z_range.1 - sc.floor;
-    if o.overhead
-        || o.class != EntityClass::Obstacle
-        || across > c.partition_max_thickness_m
+    if across > c.partition_max_thickness_m
         || length < c.partition_min_length_m
         || length < 4.0 * across
         || height < c.partition_min_height_m
+        || faces_a_wall(o, sc, c.partition_min_passage_m)
+        || floor_both_sides(o, floor_seen, frame) < c.partition_min_floor_both_sides
     {
-        return;
+        return None;
     }
-    if faces_a_wall(o, sc, c.partition_min_passage_m) {
-        return;
-    }
-    let both_sides = floor_both_sides(o, floor_seen, frame);
-    if both_sides < c.partition_min_floor_both_sides {
-        return;
-    }
-    let standing = standing_fraction(o, sc, grids, frame, c);
-    if standing < c.partition_min_standing {
-        return;
-    }
-    o.class = EntityClass::Wall;
-    o.rules.truncate(2);
-    o.rules.push(format!(
+    let standing = standing_fraction(o, sc, &points_in_box(o, sc, grids, frame), c);
+    (standing >= c.partition_min_standing).then(|| format!(
         "a partial-height wall: {length:.2} m long, {across:.2} m thick, {height:.2} m high; its face seen from within {:.2} m of the floor up to its top along {:.0} % of its length (a wall stands on the floor along {:.0} % at least)",
         c.partition_max_bottom_m,
         100.0 * standing,
         100.0 * c.partition_min_standing
-    ));
+    ))
 }
 
 /// The fraction of `o`'s length (bins of [`BIN_M`]) where the floor was seen on both sides of
@@ -104,14 +159,13 @@ fn faces_a_wall(o: &DetectedObstacle, sc: &ObstacleScene, passage_m: f64) -> boo
     })
 }
 
-/// The fraction of `o`'s length (bins of [`BIN_M`]) where its points come down to within
-/// `partition_max_bottom_m` of the floor and up to within `max_vertical_gap_m` of its top (and
-/// not over it).
+/// The fraction of `o`'s length (bins of [`BIN_M`]) where its points `members` come down to
+/// within `partition_max_bottom_m` of the floor and up to within `max_vertical_gap_m` of its
+/// top.
 fn standing_fraction(
     o: &DetectedObstacle,
     sc: &ObstacleScene,
-    grids: [&BandGrid; 2],
-    frame: &ImageFrame,
+    members: &[u32],
     c: &ObstacleConfig,
 ) -> f64 {
     let bins = (o.size[0] / BIN_M).ceil().max(1.0) as usize;
@@ -120,48 +174,36 @@ fn standing_fraction(
         sc.floor + c.partition_max_bottom_m,
         o.z_range.1 - c.max_vertical_gap_m,
     );
-    let half = DVec2::new(o.size[0] / 2.0, o.size[1] / 2.0) + frame.resolution_m / 2.0;
-    let reach = DVec2::splat(half.length());
-    let Some((c0, c1, r0, r1)) = pixel_range(frame, o.center - reach, o.center + reach) else {
-        return 0.0;
-    };
-    let w = frame.width_px as usize;
-    for row in r0..=r1 {
-        for col in c0..=c1 {
-            let q = pixel_center(frame, col as f64, row as f64) - o.center;
-            if q.dot(o.dir).abs() > half.x || q.dot(o.dir.perp()).abs() > half.y {
-                continue;
-            }
-            for grid in grids {
-                for &i in grid.points(row * w + col) {
-                    let p = sc.points[i as usize];
-                    let s = (DVec2::new(p.x as f64, p.y as f64) - o.center).dot(o.dir);
-                    let bin = ((s + o.size[0] / 2.0) / BIN_M).floor();
-                    if !(0.0..bins as f64).contains(&bin) {
-                        continue;
-                    }
-                    let z = p.z as f64;
-                    low[bin as usize] |= z <= bottom_below;
-                    // (Not above its top: what hangs over it in its cells, a beam or a duct,
-                    // is no part of its face.)
-                    high[bin as usize] |= z >= top_above && z <= o.z_range.1;
-                }
-            }
+    for &i in members {
+        let p = sc.points[i as usize];
+        let s = (DVec2::new(p.x as f64, p.y as f64) - o.center).dot(o.dir);
+        let bin = ((s + o.size[0] / 2.0) / BIN_M).floor();
+        if !(0.0..bins as f64).contains(&bin) {
+            continue;
         }
+        let z = p.z as f64;
+        low[bin as usize] |= z <= bottom_below;
+        high[bin as usize] |= z >= top_above;
     }
+    // The foot's band is a few centimetres high: at range the laser's rows leave a bin of it
+    // without a return here and there. A bin between two that stand on the floor stands too
+    // (a shelf's or a bench's legs are further apart than that).
+    let low: Vec<bool> = (0..bins)
+        .map(|k| low[k] || (k > 0 && k + 1 < bins && low[k - 1] && low[k + 1]))
+        .collect();
     let standing = low.iter().zip(&high).filter(|(l, h)| **l && **h).count();
     standing as f64 / bins as f64
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::super::find_obstacles;
     use super::*;
     use glam::Vec3;
 
     /// Both faces of a slab 0.08 m thick along x from `x0` to `x1` at `y`, sampled every 2 cm
     /// from `z0` to `z1`.
-    fn slab(x0: f32, x1: f32, y: f32, z0: f32, z1: f32) -> Vec<Vec3> {
+    pub(crate) fn slab(x0: f32, x1: f32, y: f32, z0: f32, z1: f32) -> Vec<Vec3> {
         let mut out = Vec::new();
         let (nx, nz) = (((x1 - x0) / 0.02) as usize, ((z1 - z0) / 0.02) as usize);
         for i in 0..=nx {
@@ -194,7 +236,7 @@ mod tests {
         out
     }
 
-    fn classes(points: &[Vec3]) -> Vec<(EntityClass, String)> {
+    pub(crate) fn classes(points: &[Vec3]) -> Vec<(EntityClass, String)> {
         classes_with_walls(points, &[])
     }
 
@@ -209,6 +251,14 @@ mod tests {
     }
 
     fn classes_in(points: &[Vec3], walls: &[crate::walls::WallFit]) -> Vec<(EntityClass, String)> {
+        found_in(points, walls)
+            .into_iter()
+            .map(|o| (o.class, o.rules.last().cloned().unwrap_or_default()))
+            .collect()
+    }
+
+    /// What the obstacle stage finds in `points` with `walls`.
+    fn found_in(points: &[Vec3], walls: &[crate::walls::WallFit]) -> Vec<DetectedObstacle> {
         let explained = vec![false; points.len()];
         let image = ImageFrame {
             origin_m: [0.0, 8.0],
@@ -226,9 +276,6 @@ mod tests {
             keep_out: &[],
         };
         find_obstacles(&scene, &ObstacleConfig::default(), 1 << 20)
-            .into_iter()
-            .map(|o| (o.class, o.rules.last().cloned().unwrap_or_default()))
-            .collect()
     }
 
     #[test]
@@ -322,5 +369,19 @@ mod tests {
             found.iter().all(|(c, _)| *c != EntityClass::Wall),
             "{found:?}"
         );
+    }
+
+    #[test]
+    fn a_foot_seen_in_every_other_bin_still_stands_on_the_floor() {
+        // At range the laser's rows leave 10 cm stretches of a partition's foot without a
+        // return here and there: its face stands on the floor all the same.
+        let mut points = slab(1.0, 3.0, 2.0, 0.16, 1.4);
+        for k in 0..10 {
+            let x = 1.0 + 0.2 * k as f32;
+            points.extend(slab(x, x + 0.06, 2.0, 0.09, 0.16));
+        }
+        let found = classes(&points);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
     }
 }

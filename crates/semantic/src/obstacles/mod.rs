@@ -341,6 +341,27 @@ pub(crate) fn test_cluster(
     }
 }
 
+/// A scene of `points` (`explained` by other entities or not) over a floor at 0 m under a
+/// ceiling at `ceiling_m`, in `image`, with `walls` and nothing kept out (the stage's tests).
+#[cfg(test)]
+pub(crate) fn test_scene<'a>(
+    points: &'a [Vec3],
+    explained: &'a [bool],
+    ceiling_m: f64,
+    image: &'a ImageFrame,
+    walls: &'a [WallFit],
+) -> ObstacleScene<'a> {
+    ObstacleScene {
+        points,
+        explained,
+        floor: 0.0,
+        ceiling: ceiling_m,
+        image,
+        walls,
+        keep_out: &[],
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -359,15 +380,7 @@ mod tests {
             width_px: 200,
             height_px: 200,
         };
-        let scene = ObstacleScene {
-            points: &points,
-            explained: &explained,
-            floor: 0.0,
-            ceiling: 3.0,
-            image: &image,
-            walls: &[],
-            keep_out: &[],
-        };
+        let scene = test_scene(&points, &explained, 3.0, &image, &[]);
         let members: Vec<u32> = (0..points.len() as u32).collect();
         let o = fit_cluster(
             &scene,

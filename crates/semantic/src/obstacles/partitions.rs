@@ -197,7 +197,7 @@ fn standing_fraction(
 
 #[cfg(test)]
 pub(super) mod tests {
-    use super::super::find_obstacles;
+    use super::super::{find_obstacles, test_scene};
     use super::*;
     use glam::Vec3;
 
@@ -266,15 +266,7 @@ pub(super) mod tests {
             width_px: 160,
             height_px: 160,
         };
-        let scene = ObstacleScene {
-            points,
-            explained: &explained,
-            floor: 0.0,
-            ceiling: 3.0,
-            image: &image,
-            walls,
-            keep_out: &[],
-        };
+        let scene = test_scene(points, &explained, 3.0, &image, walls);
         find_obstacles(&scene, &ObstacleConfig::default(), 1 << 20)
     }
 

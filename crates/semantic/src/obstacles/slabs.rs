@@ -132,7 +132,7 @@ pub(super) fn thin_slab(
 mod tests {
     use super::super::backing::floor_seen;
     use super::super::partitions::classify_partition;
-    use super::super::test_cluster;
+    use super::super::{test_cluster, test_scene};
     use super::*;
     use cloud::EntityClass;
     use glam::Vec3;
@@ -184,15 +184,7 @@ mod tests {
             width_px: 60,
             height_px: 60,
         };
-        let sc = ObstacleScene {
-            points,
-            explained: &explained,
-            floor: 0.0,
-            ceiling: 3.0,
-            image: &image,
-            walls: &[],
-            keep_out: &[],
-        };
+        let sc = test_scene(points, &explained, 3.0, &image, &[]);
         let c = ObstacleConfig::default();
         let mut cell_of = vec![u32::MAX; points.len()];
         let mut low = Vec::new();

@@ -169,7 +169,7 @@ pub(super) fn split_beside_tops(
 mod tests {
     use super::*;
     use crate::obstacles::fit::{intersection_area, rect_corners};
-    use crate::obstacles::{find_obstacles, test_grid, ObstacleConfig, ObstacleScene};
+    use crate::obstacles::{find_obstacles, test_grid, test_scene, ObstacleConfig};
     use crate::OrientedBox;
     use glam::Vec3;
 
@@ -294,15 +294,7 @@ mod tests {
                 width_px: 80,
                 height_px: 100,
             };
-            let scene = ObstacleScene {
-                points: &points,
-                explained: &explained,
-                floor: 0.0,
-                ceiling: 2.8,
-                image: &image,
-                walls: &walls,
-                keep_out: &[],
-            };
+            let scene = test_scene(&points, &explained, 2.8, &image, &walls);
             let found = find_obstacles(&scene, &ObstacleConfig::default(), 1_000_000);
             // The eval's test: a box covering half of the smaller footprint.
             let covered = |(t, area): &([DVec2; 4], f64)| {

@@ -18,7 +18,7 @@ const MAX_GAP_M: f64 = 0.3;
 
 /// Joins the pieces of partitions in `found` (see the module docs) into walls.
 pub(super) fn join_partition_pieces(
-    mut found: Vec<DetectedObstacle>,
+    found: Vec<DetectedObstacle>,
     sc: &ObstacleScene,
     grids: [&BandGrid; 2],
     floor_seen: &[bool],
@@ -54,11 +54,12 @@ pub(super) fn join_partition_pieces(
         }
     }
     // 3. Each group of two or more, put together, is a wall if it stands as a partition.
+    let roots: Vec<usize> = (0..piece.len()).map(|m| root(&mut group, m)).collect();
     let mut joined_into_walls = Vec::new();
     let mut gone = vec![false; found.len()];
     for r in 0..piece.len() {
         let members: Vec<usize> = (0..piece.len())
-            .filter(|&m| root(&mut group, m) == r)
+            .filter(|&m| roots[m] == r)
             .map(|m| piece[m])
             .collect();
         if members.len() < 2 {
@@ -89,7 +90,7 @@ pub(super) fn join_partition_pieces(
         joined_into_walls.push(wall);
     }
     let mut kept: Vec<DetectedObstacle> = found
-        .drain(..)
+        .into_iter()
         .zip(gone)
         .filter_map(|(o, gone)| (!gone).then_some(o))
         .collect();

@@ -35,7 +35,7 @@ const IN_LINE_MARGIN_M: f64 = 0.15;
 /// How far under the lower flight's top level a landing may be read, in its rises. The
 /// landing's height is the profile's running maximum over a level stretch, where a rise that
 /// the profile falls back from within a landing's depth counts as something standing on it
-/// (see `landing`); a side face whose top edge over the landing is hidden (fresh office-74: a
+/// (see `landing`); a side face whose top edge over the landing is hidden (office-74, seeds 71-75: a
 /// desk's top in front of it, above the laser, hid it over half the landing) falls back under
 /// the flight's top step too, and the landing reads low (office-74: at 0.48 m, the top step
 /// read at 0.58 m, two thirds of a rise higher). Its flight, fitted on the points before the

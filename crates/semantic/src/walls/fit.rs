@@ -22,7 +22,7 @@ const UNBOUNDED_FACE_MAX_THROUGH: f64 = 0.1;
 /// A face is picked from the peaks of the projection band's distances (see `faces`); one that
 /// holds fewer than this share of the face points over the wall's height that the strongest
 /// holds is no face of the wall: a few returns in the band beside it (the glass partitions of
-/// fresh office-77 and of office-7, seen from both rooms, neither face with free space of its
+/// office-77 (seeds 76-80) and of office-7, seen from both rooms, neither face with free space of its
 /// own: a veil of returns near the ceiling 0.2 m beside the glass held 2 and 1 face points for
 /// the glass's 1280 and 1575, and the wall was placed on the veil, then dropped for resting on
 /// no points of its own). A glass wall's two faces hold a fifth to all of each other's.
@@ -264,7 +264,7 @@ mod tests {
     use crate::points::XyIndex;
     use glam::Vec3;
 
-    /// Regression: fresh office-77's glass partition, seen from both rooms (the floor seen on
+    /// Regression: office-77's (seeds 76-80) glass partition, seen from both rooms (the floor seen on
     /// both sides of it alike: neither face bounds free space), with a sparse veil of returns
     /// 0.2 m beside its face in the projection band picked as its second face: the wall was
     /// placed on the veil, 0.2 m off the glass, and then dropped for having no points of its

@@ -5,6 +5,13 @@ use super::WallConfig;
 use crate::points::Line2;
 use crate::scene::Scene;
 
+/// A crossing surface this near a wall's end is where it ends (the hidden bins beside the
+/// surface keep the face points a few centimetres off it) ...
+const CORNER_M: f64 = 0.15;
+/// ... if it covers this much of the wall's height: another wall's face, not a duct or a pipe
+/// crossing the plane up high.
+const CORNER_HEIGHT_M: f64 = 1.5;
+
 /// The corner regions along a wall where a crossing surface hides the face points: per 3 cm
 /// bin of the searched range, the heights `(z0, z1)` it covers, if any.
 pub(crate) struct Crossings {
@@ -21,6 +28,15 @@ impl Crossings {
             return false;
         }
         matches!(self.heights.get(k as usize), Some(Some((z0, z1))) if z >= *z0 && z <= *z1)
+    }
+
+    /// The crossing surface nearest `end` within [`CORNER_M`] of it that covers a wall's
+    /// height ([`CORNER_HEIGHT_M`]): the face of a wall this one meets there, a corner.
+    pub fn corner_near(&self, end: f64) -> Option<f64> {
+        self.centres()
+            .filter(|&(m, height)| height >= CORNER_HEIGHT_M && (m - end).abs() <= CORNER_M)
+            .map(|(m, _)| m)
+            .min_by(|p, q| (p - end).abs().total_cmp(&(q - end).abs()))
     }
 
     /// The crossing bins' centres along the wall and their heights covered.
@@ -128,14 +144,7 @@ pub(crate) fn find_extent(
         };
         // An end next to a wall-high crossing surface (the hidden bins keep it a few
         // centimetres off) is a corner: the wall ends at the surface.
-        let snap = |end: f64| {
-            crossing
-                .centres()
-                .filter(|&(m, height)| height >= 1.5 && (m - end).abs() <= 0.15)
-                .map(|(m, _)| m)
-                .min_by(|p, q| (p - end).abs().total_cmp(&(q - end).abs()))
-                .unwrap_or(end)
-        };
+        let snap = |end: f64| crossing.corner_near(end).unwrap_or(end);
         let (lo, hi) = (snap(lo), snap(hi));
         found = Some((lo, hi, crossing));
         if !grow_lo && !grow_hi {

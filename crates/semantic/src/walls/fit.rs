@@ -3,9 +3,9 @@
 
 use super::extent::find_extent;
 use super::faces::refine_line;
-use super::orientation::{FaceOrientation, MIN_ALONG};
-use super::support::{SupportProfile, BIN_M, HEAD_HEIGHT_M};
-use super::top::TopReach;
+use super::measure::{measure, FacePass};
+use super::orientation::MIN_ALONG;
+use super::support::BIN_M;
 use super::{WallConfig, WallFit};
 use crate::merge::Segment;
 use crate::points::{quantile, Line2};
@@ -71,7 +71,6 @@ fn settle<X>(
 /// Measures the wall along one prerequisite segment; `None` if it is no wall.
 pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
     let len0 = seg.length_m();
-    let hw = c.search_half_width_m;
     // Refit the line on the faces over the extent found, and the extent on the refitted line,
     // until both settle.
     let (line, lo, hi, (faces, crossing)) =
@@ -82,51 +81,18 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
             let (lo, hi, crossing) = find_extent(&l, &faces, a, b, sc, c)?;
             Some((l, lo, hi, (faces, crossing)))
         })?;
-    let tol = c.face_tolerance_m;
-    let on_face = |d: f64, faces: &[f64]| faces.iter().any(|f| (d - f).abs() <= tol);
-    let (z_lo, z_hi) = (sc.floor + 0.05, sc.ceiling - 0.05);
-    let crossed = |s: f64, z: f64| crossing.hides(s, z);
-    // Face points over the final extent (corners left out): support, coverage, heights, free sides.
-    let mut zs = Vec::new();
-    let mut bins = vec![false; (((hi - lo) / 0.1).ceil() as usize).clamp(1, 1_000_000)];
-    let mut reach = TopReach::new(bins.len(), z_lo, sc.ceiling - c.max_top_below_ceiling_m);
-    let mut front = vec![[0usize; 2]; faces.len()];
-    // (the points on each face)
-    let mut on_each = vec![0usize; faces.len()];
-    let strip = (0.02, 0.10);
-    let mut profile = SupportProfile::new(
-        ((hi - lo) / BIN_M).ceil().max(1.0) as usize,
-        &faces,
-        sc.floor,
-    );
-    let mut orientation = FaceOrientation::new(hi - lo, &faces);
-    sc.index
-        .for_each_near_line(&line, lo, hi, hw + strip.1, |_, s, d, z| {
-            if !crossed(s, z) {
-                let face = z >= z_lo && z <= z_hi && on_face(d, &faces);
-                profile.add(((s - lo) / BIN_M) as usize, d, z, face);
-                if z > sc.floor + 0.1 && z < sc.floor + HEAD_HEIGHT_M {
-                    orientation.add(s - lo, d);
-                }
-            }
-            if z >= z_lo && z <= z_hi && on_face(d, &faces) && !crossed(s, z) {
-                zs.push(z);
-                for (k, f) in faces.iter().enumerate() {
-                    on_each[k] += usize::from((d - f).abs() <= tol);
-                }
-                let b = (((s - lo) / 0.1) as usize).min(bins.len() - 1);
-                bins[b] = true;
-                reach.add(b, z);
-            }
-            if sc.on_slab(z, 0.04) {
-                for (k, f) in faces.iter().enumerate() {
-                    let off = d - f;
-                    if off.abs() >= strip.0 && off.abs() <= strip.1 {
-                        front[k][usize::from(off > 0.0)] += 1;
-                    }
-                }
-            }
-        });
+    // Face points over the final extent (corners left out): support, coverage, heights, free
+    // sides.
+    let pass = measure(&line, (lo, hi), &faces, &crossing, sc, c);
+    let FacePass {
+        mut zs,
+        covered: bins,
+        reach,
+        front,
+        on_each,
+        profile,
+        orientation,
+    } = pass;
     if zs.len() < c.min_face_points {
         return None;
     }
@@ -165,6 +131,25 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
             0.0
         }
     };
+    // A wall that stands: an end seen through, its face seen below head height in stray returns
+    // only, is cut off and the rest measured again (see `SupportProfile::seen_through_ends`). What judged it
+    // a wall is the whole extent's (a cut never turns a beam into a wall).
+    let corners = (
+        crossing.corner_near(lo).is_some(),
+        crossing.corner_near(hi).is_some(),
+    );
+    let (cut0, cut1) = profile.seen_through_ends(corners);
+    let (lo, hi) = (lo + cut0 as f64 * BIN_M, hi - cut1 as f64 * BIN_M);
+    let (support, coverage) = if cut0 + cut1 > 0 {
+        let cut = measure(&line, (lo, hi), &faces, &crossing, sc, c);
+        let covered = cut.covered.iter().filter(|&&b| b).count();
+        (
+            cut.zs.len() as u64,
+            covered as f64 / cut.covered.len() as f64,
+        )
+    } else {
+        (support, coverage)
+    };
     let start = line.at(lo);
     let mut rules = vec![format!(
         "vertical plane through a {len0:.2} m projection segment; face points over {:.2} m ({:.0} % covered)",
@@ -179,6 +164,13 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
         Some(f) => format!("face points below head height run along it in {:.0} % of its 20 cm stretches (the sides of a corner cut through would not)", f * 100.0),
         None => "too few face points below head height to tell their direction".into(),
     }];
+    if cut0 + cut1 > 0 {
+        rules.push(format!(
+            "cut {:.1} m at its start and {:.1} m at its end: seen through there below head height, its face not seen there but in stray returns",
+            cut0 as f64 * BIN_M,
+            cut1 as f64 * BIN_M
+        ));
+    }
     let mut fit = WallFit {
         line: Line2 {
             origin: start,

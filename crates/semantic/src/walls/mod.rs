@@ -23,7 +23,10 @@
 //!    ([`top`]: not through the mixed pixels over a top edge).
 //! 5. Support ([`support`]): a wall's face is seen below head height, and nothing is seen
 //!    through it there; a prerequisite open underneath along more of its length than it
-//!    stands (a beam, a row of pillars, a beam over pillars) is no wall.
+//!    stands (a beam, a row of pillars, a beam over pillars) is no wall. A wall's end seen
+//!    through below head height, its face not seen there but in stray returns, and no corner
+//!    there, is cut off: its face ran on along a beam's underside over open floor. (All of a
+//!    prerequisite's points near its faces are walked once per extent, [`measure`].)
 //! 6. Orientation ([`orientation`]): below head height, the points near its face run along it
 //!    in at least half of its 20 cm stretches; a line cut through the corner of a pillar, a
 //!    cabinet or a car has the corner's sides crossing its face band instead; the one face a
@@ -46,6 +49,7 @@ mod faces;
 mod fit;
 mod glimpses;
 mod joins;
+mod measure;
 mod orientation;
 mod own_points;
 mod piers;

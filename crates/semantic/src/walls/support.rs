@@ -61,6 +61,13 @@ const UPPER_FACE_M: f64 = 1.5;
 /// such bins along at most 17 % of their length, and are seen between along more.)
 const NEVER_BETWEEN_SHARE: f64 = 0.1;
 
+/// A stretch at a wall's end seen through for this long, its face seen below head height in
+/// stray bins only, is no part of the wall (see [`SupportProfile::seen_through_ends`]): three bins,
+/// more than a stray return or a person's shadow leaves.
+const THROUGH_END_M: f64 = 0.3;
+/// ... with a standing bin in at most one of this many (stray returns).
+const MAX_STRAYS: usize = 5;
+
 const STANDING: u8 = 1;
 const LEFT: u8 = 2;
 const RIGHT: u8 = 4;
@@ -155,6 +162,49 @@ impl SupportProfile {
             share(&open),
             share(&|b| b & (STANDING | CLUTTER) == 0 && b & ABOVE_HEAD != 0 && !open(b)),
         )
+    }
+
+    /// The bins to cut off at the start and at the end: a run of at least [`THROUGH_END_M`]
+    /// from an end up to where the face is seen below head height in two bins running, seen
+    /// through (open) along half of it or more and the face seen below head height in at most
+    /// one bin in [`MAX_STRAYS`] of it (stray returns), unless that end is a corner (`corners`:
+    /// at the start, at the end; the face of a wall it meets is there). A wall's face seen from
+    /// a room runs on along a beam's underside over the wall it meets and out over the floor
+    /// beyond (garage-81 of seeds 81-85: 1.47 m past the lobby's corner, along a beam). A
+    /// doorway next to a corner is open too, but it ends at that corner (at a free end a
+    /// doorway is no doorway: the wall just ends). Bare bins are not enough: a wall's end whose
+    /// face was hidden below head height from afar, nothing standing beside it, is bare
+    /// (office-69 of seeds 66-70: the last 0.6 m of an outer wall); nor is a wall's end hidden by what
+    /// stands before it, which is neither open nor bare.
+    pub fn seen_through_ends(&self, corners: (bool, bool)) -> (usize, usize) {
+        let n = self.bins.len();
+        let min_bins = (THROUGH_END_M / BIN_M).round() as usize;
+        let stands = |k: usize| self.bins[k] & STANDING != 0;
+        let through = |k: usize| {
+            let b = self.bins[k];
+            !stands(k) && (b & BETWEEN != 0 || b & (LEFT | RIGHT) == LEFT | RIGHT)
+        };
+        // The bins from an end up to where the face stands in two bins running (one is a
+        // stray return: a person's head passing, a mixed pixel).
+        // (`bin(i)`: the `i`-th bin from the end looked at)
+        let cut = |bin: &dyn Fn(usize) -> usize| -> usize {
+            let len = (0..n)
+                .find(|&i| stands(bin(i)) && (i + 1 == n || stands(bin(i + 1))))
+                .unwrap_or(n);
+            let strays = (0..len).filter(|&i| stands(bin(i))).count();
+            let seen_through = (0..len).filter(|&i| through(bin(i))).count();
+            if len >= min_bins && 2 * seen_through >= len && MAX_STRAYS * strays <= len {
+                len
+            } else {
+                0
+            }
+        };
+        let start = if corners.0 { 0 } else { cut(&|i| i) };
+        let end = if corners.1 { 0 } else { cut(&|i| n - 1 - i) };
+        if start + end >= n {
+            return (0, 0);
+        }
+        (start, end)
     }
 }
 
@@ -265,5 +315,56 @@ mod tests {
         }
         assert_eq!(car.fractions(), (0.0, 0.0, 0.0));
         assert_eq!(sparse.fractions(), (1.0, 0.0, 0.0));
+    }
+
+    /// Regression: garage-81's (seeds 81-85) lobby wall ran on along a beam's underside over the
+    /// wall it meets and 1.47 m out over the garage's floor (seen on both sides of its face
+    /// there, the face nowhere below head height but for a passer-by's head): its end is cut
+    /// where its face stands. Not at a corner (a doorway next to it), nor where what stands
+    /// before the wall hid its face (neither open nor bare).
+    #[test]
+    fn a_wall_running_on_along_a_beam_over_open_floor_is_cut_where_it_stands() {
+        let profile_from = |wall: usize, end: &dyn Fn(&mut SupportProfile, usize)| {
+            let mut p = SupportProfile::new(45, &[0.0], 0.0);
+            for k in 0..45 {
+                p.add(k, 0.0, 2.6, true); // the face (or the beam's underside) up high
+                if k < wall {
+                    p.add(k, 0.0, 1.0, true); // the wall's face
+                    p.add(k, 0.0, 1.7, true);
+                    p.add(k, 0.1, 0.0, false); // the floor in front of it
+                } else {
+                    end(&mut p, k);
+                }
+            }
+            p
+        };
+        let profile = |end: &dyn Fn(&mut SupportProfile, usize)| profile_from(30, end);
+        let beam = profile(&|p, k| {
+            p.add(k, 0.1, 0.0, false); // the floor on both sides of the face line
+            p.add(k, -0.1, 0.0, false);
+            if k == 38 {
+                p.add(k, 0.0, 1.9, true); // a passer-by's head
+            }
+        });
+        assert_eq!(beam.seen_through_ends((false, false)), (0, 15));
+        assert_eq!(beam.seen_through_ends((false, true)), (0, 0));
+        let hidden = profile(&|p, k| p.add(k, 0.3, 1.0, false)); // a car before the wall
+        assert_eq!(hidden.seen_through_ends((false, false)), (0, 0));
+        let bare = profile(&|_, _| ()); // nothing seen below the face's top there
+        assert_eq!(bare.seen_through_ends((false, false)), (0, 0));
+        // A stretch under the least length, or standing in more than one bin in five, stays.
+        let short = profile_from(43, &|p, k| {
+            p.add(k, 0.1, 0.0, false);
+            p.add(k, -0.1, 0.0, false);
+        });
+        assert_eq!(short.seen_through_ends((false, false)), (0, 0));
+        let strays = profile(&|p, k| {
+            p.add(k, 0.1, 0.0, false);
+            p.add(k, -0.1, 0.0, false);
+            if k % 4 == 0 {
+                p.add(k, 0.0, 1.0, true);
+            }
+        });
+        assert_eq!(strays.seen_through_ends((false, false)), (0, 0));
     }
 }

@@ -30,7 +30,9 @@
 //! the walls around it; furniture of assorted heights steps up along some direction with a
 //! level missing). Along the direction chosen, every other step count in the range of rises is
 //! fitted too, and wins where it fits better and finds as large a share of its levels (see
-//! `profile::profile_other_count`). A staircase must then
+//! `profile::profile_other_count`); of the counts either side of the grid's, and the others
+//! its levels point to, one replaces another only where it fits better and misses no more of
+//! its levels (`profile`). A staircase must then
 //! be one people could climb (clutter of boxes of assorted heights steps up and down too):
 //! rise and run in the ranges of building codes, at least `min_steps` steps on the one rise,
 //! every step supported by `min_step_points` points on its tread, riser or side face (and by a

@@ -21,7 +21,7 @@
 //! A level stretch can also be treads above the laser that the scans missed, part way up one
 //! straight flight: then the two flights fitted meet, the upper one's first riser within a
 //! tread's depth of the lower one's top front edge, and their points are one flight.
-use super::landing::mid_landing;
+use super::landing::{mid_landing, Landing};
 use super::plausible::{finish, floor_density, floor_in_strip};
 use super::profile::{profile, profile_near};
 use super::{DetectedStairs, StairsConfig};
@@ -55,10 +55,13 @@ pub(super) fn two_flights(
 ) -> Option<Vec<DetectedStairs>> {
     // 1. The landing: the running maximum of the profile level for more than a tread, with
     //    at least `min_steps` of the lowest rise below it and a climb beyond it.
-    let (landing_start, landing_end, landing_height) = mid_landing(pts, dir, c)?;
+    let landing = mid_landing(pts, dir, c)?;
+    let (landing_start, landing_end, landing_height) = (landing.near, landing.far, landing.height);
     // 2. The lower flight: the points before the landing's far edge.
     let (lower, lower_all) = (before(pts, dir, landing_end), before(all, dir, landing_end));
-    let first = profile(&lower, &lower_all, dir, c).and_then(|p| finish(&lower, p, sc, c));
+    let first = profile(&lower, &lower_all, dir, c)
+        .and_then(|p| finish(&lower, p, sc, c))
+        .filter(|f| climbs_to(f, &landing, dir, c));
     let base = match &first {
         Some(first) => first.rise * first.steps as f64,
         None => landing_height,
@@ -97,6 +100,7 @@ pub(super) fn two_flights(
         profile_near(&lower, &lower_all, dir, c, Some(rise))
             .and_then(|p| finish(&lower, p, sc, c))
             .filter(|f| (f.rise * f64::from(f.steps) - landing_height).abs() <= 0.5 * f.rise)
+            .filter(|f| climbs_to(f, &landing, dir, c))
     });
     match (first, second) {
         // (the level stretch was no landing: a straight flight whose middle treads the laser
@@ -169,7 +173,7 @@ fn upper_flight(
             .collect()
     };
     let (mut upper, mut upper_all) = (above(pts), above(all));
-    let upper_end = mid_landing(&upper, dir, c).map_or(f64::INFINITY, |(_, end, _)| end);
+    let upper_end = mid_landing(&upper, dir, c).map_or(f64::INFINITY, |l| l.far);
     upper.retain(|(q, _)| q.dot(dir) < upper_end);
     upper_all.retain(|(q, _)| q.dot(dir) < upper_end);
     let rise = first.map(|f| f.rise);
@@ -198,6 +202,18 @@ pub(super) fn flight_above(
         "starts on the landing of the flight below, {base:.2} m above the floor (its risers seen from below, apart from that flight's)"
     ));
     Some(second)
+}
+
+/// True if `flight` may be the one climbing to `landing` along `dir`: where the landing was
+/// read in two layers (see `landing`), its near edge is where its lower layer starts, and the
+/// flight's top riser stands there, no more than the shortest tread (`run_m`) past it. A
+/// landing's side face, a solid block's, holds points at every height up to its top edge, and
+/// the grid search of the steps can lay a flight's treads on it: office-82 of seeds 81-85 (the
+/// lower flight seen by no scan) read the landing's lower layer as a flight of 3 steps, its
+/// top riser 0.47 m in from the landing's near edge.
+fn climbs_to(flight: &DetectedStairs, landing: &Landing, dir: DVec2, c: &StairsConfig) -> bool {
+    let top_riser = flight.start.dot(dir) + f64::from(flight.steps.saturating_sub(1)) * flight.run;
+    !landing.layered || top_riser - landing.near <= c.run_m[0]
 }
 
 /// True if the upper flight starts on the lower one's landing: its first riser stands beyond

@@ -11,15 +11,32 @@ fn min_landing_m(c: &StairsConfig) -> f64 {
     c.run_m[1] + 0.2
 }
 
-/// The near and far edges (along `dir`) and height of a mid landing in the profile of `pts`
-/// (its envelope, see `envelope`): a level stretch at least a flight's worth of the lowest rise
-/// up, with something climbing beyond it (the next flight, or what stands beyond a flight's
-/// top landing: `two_flights` keeps the lower flight alone then).
-pub(super) fn mid_landing(
-    pts: &[(DVec2, f64)],
-    dir: DVec2,
-    c: &StairsConfig,
-) -> Option<(f64, f64, f64)> {
+/// The most a level stretch's top edge may read higher over part of it, as a share of the lowest
+/// rise, and be one level still: the map's 5 cm voxels put a side face's top edge in one of two
+/// layers of centroids (office-82 of seeds 81-85: a landing's read at 0.475 m over its first
+/// 0.45 m, where the scans' rays hit its face's top 5 cm too sparsely to continue a surface, and
+/// at 0.526 m over the rest). Under the lowest rise, so no riser is read as such a jump.
+const ONE_LAYER: f64 = 0.6;
+
+/// A mid landing in a staircase's profile (see [`mid_landing`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Landing {
+    /// Its near edge along the direction of ascent (m).
+    pub near: f64,
+    /// Its far edge along the direction of ascent (m).
+    pub far: f64,
+    /// Its height over the profile's zero (m).
+    pub height: f64,
+    /// Read in two layers (see [`ONE_LAYER`]): its near part's top edge a voxel layer under
+    /// its far part's.
+    pub layered: bool,
+}
+
+/// The mid landing in the profile of `pts` along `dir` (its envelope, see `envelope`): a
+/// level stretch at least a flight's worth of the lowest rise up, with something climbing
+/// beyond it (the next flight, or what stands beyond a flight's top landing: `two_flights`
+/// keeps the lower flight alone then).
+pub(super) fn mid_landing(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) -> Option<Landing> {
     let along: Vec<f64> = pts.iter().map(|(q, _)| q.dot(dir)).collect();
     let lo = along.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = along.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -42,6 +59,8 @@ pub(super) fn mid_landing(
     let mut running = f64::NEG_INFINITY;
     let mut since = lo;
     let mut since_height = f64::NEG_INFINITY;
+    // The stretch before this one, and how far the profile rose from it to this one.
+    let (mut before, mut rose) = (lo, f64::INFINITY);
     for (k, &(s, z)) in env.iter().enumerate() {
         if running.is_finite() && falls_back(&env[k..], running + creep, min_landing_m(c)) {
             // (something standing on the level, shorter than a landing: no climb)
@@ -49,15 +68,43 @@ pub(super) fn mid_landing(
         }
         if z > running + 0.03 || z > since_height + creep {
             let level = running;
-            let climbs = env[k..]
-                .iter()
-                .take_while(|e| e.0 <= s + c.run_m[1])
-                .any(|e| e.1 - level >= 0.5 * c.rise_m[0]);
-            let is_landing =
-                running.is_finite() && s - since >= min_landing_m(c) && level >= least && climbs;
+            // (the profile stands `by` over the level within `within_m`)
+            let climbs_by = |by: f64, within_m: f64| {
+                env[k..]
+                    .iter()
+                    .take_while(|e| e.0 <= s + within_m)
+                    .any(|e| e.1 - level >= by)
+            };
+            let is_landing = running.is_finite()
+                && s - since >= min_landing_m(c)
+                && level >= least
+                && climbs_by(0.5 * c.rise_m[0], c.run_m[1]);
             if is_landing {
-                return Some((since - BIN_M / 2.0, s - BIN_M / 2.0, level));
+                return Some(Landing {
+                    near: since - BIN_M / 2.0,
+                    far: s - BIN_M / 2.0,
+                    height: level,
+                    layered: false,
+                });
             }
+            // A landing whose top edge read one voxel layer higher over its far part (see
+            // `ONE_LAYER`): the two stretches are one, where a whole riser climbs beyond them,
+            // within the shortest tread. (A ramp's side face, read in layers too, climbs a layer
+            // at a time: two layers, as long as a landing, and two more up take more than that.)
+            let layered = running.is_finite()
+                && rose <= ONE_LAYER * c.rise_m[0]
+                && s - before >= min_landing_m(c)
+                && level >= least
+                && climbs_by(c.rise_m[0], c.run_m[0]);
+            if layered {
+                return Some(Landing {
+                    near: before - BIN_M / 2.0,
+                    far: s - BIN_M / 2.0,
+                    height: level,
+                    layered: true,
+                });
+            }
+            (before, rose) = (since, z - running);
             since = s;
             since_height = running.max(z);
         }
@@ -128,20 +175,68 @@ mod tests {
             (1.3, 2.25, 0.51, 0.51),
         ]);
         stretches.extend(climb(2.25, 0.51));
-        let (near, far, height) =
-            mid_landing(&profile_of(&stretches), DVec2::X, &c).expect("a landing");
-        assert!((near - 0.5).abs() < 0.03, "near edge {near}");
-        assert!((far - 2.25).abs() < 0.03, "far edge {far}");
-        assert!((height - 0.51).abs() < 0.01, "height {height}");
+        let found = mid_landing(&profile_of(&stretches), DVec2::X, &c).expect("a landing");
+        assert!((found.near - 0.5).abs() < 0.03, "near edge {}", found.near);
+        assert!((found.far - 2.25).abs() < 0.03, "far edge {}", found.far);
+        assert!(
+            (found.height - 0.51).abs() < 0.01,
+            "height {}",
+            found.height
+        );
         // What stays up for longer than a landing is the level: 0.5 m at 0.51 m, then 1.25 m
         // at 0.81 m before the climb.
         let mut stretches = climb(0.0, 0.0);
         stretches.extend([(0.75, 1.0, 0.51, 0.51), (1.0, 2.25, 0.81, 0.81)]);
         stretches.extend(climb(2.25, 0.81));
-        let (near, _, height) =
-            mid_landing(&profile_of(&stretches), DVec2::X, &c).expect("a landing");
-        assert!((near - 1.0).abs() < 0.03, "near edge {near}");
-        assert!((height - 0.81).abs() < 0.01, "height {height}");
+        let found = mid_landing(&profile_of(&stretches), DVec2::X, &c).expect("a landing");
+        assert!((found.near - 1.0).abs() < 0.03, "near edge {}", found.near);
+        assert!(
+            (found.height - 0.81).abs() < 0.01,
+            "height {}",
+            found.height
+        );
+    }
+
+    /// A landing whose top edge reads one voxel layer lower over its near part is one landing
+    /// where a whole riser climbs beyond it; a ramp's side face read in such layers climbs a
+    /// layer at a time and has none (a layer every 0.35 m, 8 degrees, to every 0.6 m, 5).
+    #[test]
+    fn a_landing_read_in_two_layers_is_one_but_a_ramp_in_layers_is_none() {
+        let c = StairsConfig::default();
+        let flat = |x0: f64, x1: f64, z: f64| (x0, x1, z, z);
+        let mut stretches = vec![
+            flat(0.0, 0.25, 0.18),
+            flat(0.25, 0.5, 0.36),
+            flat(0.5, 0.95, 0.475),
+            flat(0.95, 1.45, 0.526),
+        ];
+        stretches.extend((0..3).map(|k| {
+            let x = 1.45 + 0.25 * f64::from(k);
+            flat(x, x + 0.25, 0.526 + 0.18 * f64::from(k + 1))
+        }));
+        let found = mid_landing(&profile_of(&stretches), DVec2::X, &c).expect("a landing");
+        assert!(found.layered);
+        assert!((found.near - 0.5).abs() < 0.03, "near edge {}", found.near);
+        assert!((found.far - 1.45).abs() < 0.03, "far edge {}", found.far);
+        assert!(
+            (found.height - 0.526).abs() < 0.01,
+            "height {}",
+            found.height
+        );
+        // Without the riser beyond it (half a rise up only), no landing.
+        stretches.truncate(4);
+        stretches.push(flat(1.45, 1.9, 0.58));
+        assert!(mid_landing(&profile_of(&stretches), DVec2::X, &c).is_none());
+        for layer_m in [0.35, 0.4, 0.45, 0.5, 0.6] {
+            let ramp: Vec<_> = (0..12)
+                .map(|k| {
+                    let x = layer_m * f64::from(k);
+                    flat(x, x + layer_m, 0.05 * f64::from(k + 1))
+                })
+                .collect();
+            let found = mid_landing(&profile_of(&ramp), DVec2::X, &c);
+            assert!(found.is_none(), "{layer_m}: {found:?}");
+        }
     }
 
     /// Regression: fresh garage-48's 5-step flight, seen from its side only, has mixed pixels
@@ -157,9 +252,14 @@ mod tests {
         ));
         assert_eq!(part.len(), 965);
         let found = mid_landing(&part, DVec2::X, &StairsConfig::default());
-        let (_, far, height) = found.expect("a landing");
+        let found = found.expect("a landing");
         // (5 rises of 0.156 m up; the returns from 2.28 m along)
-        assert!((height - 0.78).abs() < 0.03, "height {height}");
-        assert!((far - 2.28).abs() < 0.1, "far edge {far}");
+        assert!(
+            (found.height - 0.78).abs() < 0.03,
+            "height {}",
+            found.height
+        );
+        assert!((found.far - 2.28).abs() < 0.1, "far edge {}", found.far);
+        assert!(!found.layered);
     }
 }

@@ -151,3 +151,26 @@ fn treads_missed_part_way_up_a_flight_seen_as_a_landing_leave_it_one_flight() {
         "{flight:?}"
     );
 }
+
+/// Regression: fresh office-82's (seeds 81-85) upper flight, 4 steps on a mid landing 0.547 m up
+/// whose lower flight no scan saw, was missed: the landing's side face read its top edge in the
+/// map's voxel layer at 0.475 m over its first 0.45 m and at 0.526 m over the rest, two level
+/// stretches each shorter than a landing, and the part as one flight lacked the 3 levels under
+/// the landing. The two layers are one landing where a whole riser climbs beyond it; and a
+/// lower flight fitted on the landing's lower layer (its side face holds points at every height)
+/// is none. (The returns over the staircase, from the bench's map.)
+#[test]
+fn a_landing_read_in_two_voxel_layers_carries_the_flight_on_it() {
+    let part = returns(include_str!(
+        "../../tests/data/office82_layered_landing.txt"
+    ));
+    assert_eq!(part.len(), 1163);
+    let found = search_as_mapped(&part, DVec2::new(4.2, 1.1)).expect("the upper flight");
+    assert_eq!(found.len(), 1, "{found:?}");
+    let upper = &found[0];
+    assert_eq!(upper.steps, 4, "{upper:?}");
+    assert!((upper.base - 0.547).abs() < 0.04, "base {}", upper.base);
+    assert!((upper.rise - 0.182).abs() < 0.01, "rise {}", upper.rise);
+    // Its first riser 1.98 m along, at the landing's far edge.
+    assert!((upper.start.x - 1.98).abs() < 0.15, "start {}", upper.start);
+}

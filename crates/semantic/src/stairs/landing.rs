@@ -79,13 +79,14 @@ pub(super) fn mid_landing(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) ->
                 && s - since >= min_landing_m(c)
                 && level >= least
                 && climbs_by(0.5 * c.rise_m[0], c.run_m[1]);
+            let landing_from = |near: f64, layered: bool| Landing {
+                near: near - BIN_M / 2.0,
+                far: s - BIN_M / 2.0,
+                height: level,
+                layered,
+            };
             if is_landing {
-                return Some(Landing {
-                    near: since - BIN_M / 2.0,
-                    far: s - BIN_M / 2.0,
-                    height: level,
-                    layered: false,
-                });
+                return Some(landing_from(since, false));
             }
             // A landing whose top edge read one voxel layer higher over its far part (see
             // `ONE_LAYER`): the two stretches are one, where a whole riser climbs beyond them,
@@ -97,12 +98,7 @@ pub(super) fn mid_landing(pts: &[(DVec2, f64)], dir: DVec2, c: &StairsConfig) ->
                 && level >= least
                 && climbs_by(c.rise_m[0], c.run_m[0]);
             if layered {
-                return Some(Landing {
-                    near: before - BIN_M / 2.0,
-                    far: s - BIN_M / 2.0,
-                    height: level,
-                    layered: true,
-                });
+                return Some(landing_from(before, true));
             }
             (before, rose) = (since, z - running);
             since = s;

@@ -1,7 +1,10 @@
 //! Regressions of staircases with a mid landing (`flights`) and of what can pass for one:
 //! the returns over each, from the bench's maps, replayed through a part's staircase search.
 
-use super::tests::{assert_two_flights, returns, search, search_as_mapped, search_as_mapped_on};
+use super::tests::{
+    assert_two_flights, returns, returns_by_part, search, search_as_mapped, search_as_mapped_on,
+    search_on_surface,
+};
 use glam::DVec2;
 
 /// Regression: fresh garage-28's 9 degree ramp was reported as a 5-step flight (rise 0.111 m,
@@ -173,4 +176,32 @@ fn a_landing_read_in_two_voxel_layers_carries_the_flight_on_it() {
     assert!((upper.rise - 0.182).abs() < 0.01, "rise {}", upper.rise);
     // Its first riser 1.98 m along, at the landing's far edge.
     assert!((upper.start.x - 1.98).abs() < 0.15, "start {}", upper.start);
+}
+
+/// Regression: fresh hall-93's (seeds 91-95) staircase with a mid landing (4 and 5 steps of
+/// 0.184 m) read its upper flight as 4 steps: mixed pixels 6-8 cm over the landing's near edge
+/// set the lower flight's top height, so it was fitted as 4 steps of 0.205 m, its top 6.5 cm
+/// over the landing, and the upper flight, heights from that top at that rise, lost a step.
+/// Fitted again on the returns up to the landing's height, the lower flight keeps its 4 steps at
+/// the true rise. (The part's returns and those the map took as on a surface, from the bench's
+/// map.)
+#[test]
+fn mixed_pixels_over_a_landings_edge_leave_the_lower_flights_rise() {
+    let (all, on_surface) =
+        returns_by_part(include_str!("../../tests/data/hall93_two_flights.txt"));
+    let surface: Vec<(DVec2, f64)> = all
+        .iter()
+        .zip(&on_surface)
+        .filter(|(_, &on)| on == 1)
+        .map(|(r, _)| *r)
+        .collect();
+    assert_eq!((all.len(), surface.len()), (3583, 3555));
+    let floor = (DVec2::new(-1.5, -2.0), (160, 100));
+    let found =
+        search_on_surface(&all, &surface, floor, DVec2::new(5.6, 1.8), false).expect("a staircase");
+    assert_eq!(found.len(), 2, "{found:?}");
+    let (lower, upper) = (&found[0], &found[1]);
+    assert_eq!((lower.steps, upper.steps), (4, 5), "{found:?}");
+    assert!((lower.rise - 0.184).abs() < 0.01, "rise {}", lower.rise);
+    assert!((upper.base - 0.734).abs() < 0.03, "base {}", upper.base);
 }

@@ -217,7 +217,7 @@ pub(super) fn search_as_mapped_on(
 
 /// [`search_as_mapped_on`] with the part's returns on surfaces `surface` given (as the map's
 /// stairs stage took them).
-fn search_on_surface(
+pub(super) fn search_on_surface(
     part: &[(DVec2, f64)],
     surface: &[(DVec2, f64)],
     floor: (DVec2, (usize, usize)),

@@ -2,8 +2,8 @@
 //! the returns over each, from the bench's maps, replayed through a part's staircase search.
 
 use super::tests::{
-    assert_two_flights, returns, returns_by_part, search, search_as_mapped, search_as_mapped_on,
-    search_on_surface,
+    assert_two_flights, returns, returns_and_surface, search, search_as_mapped,
+    search_as_mapped_on, search_as_mapped_with_surface,
 };
 use glam::DVec2;
 
@@ -187,18 +187,11 @@ fn a_landing_read_in_two_voxel_layers_carries_the_flight_on_it() {
 /// map.)
 #[test]
 fn mixed_pixels_over_a_landings_edge_leave_the_lower_flights_rise() {
-    let (all, on_surface) =
-        returns_by_part(include_str!("../../tests/data/hall93_two_flights.txt"));
-    let surface: Vec<(DVec2, f64)> = all
-        .iter()
-        .zip(&on_surface)
-        .filter(|(_, &on)| on == 1)
-        .map(|(r, _)| *r)
-        .collect();
+    let (all, surface) =
+        returns_and_surface(include_str!("../../tests/data/hall93_two_flights.txt"));
     assert_eq!((all.len(), surface.len()), (3583, 3555));
-    let floor = (DVec2::new(-1.5, -2.0), (160, 100));
     let found =
-        search_on_surface(&all, &surface, floor, DVec2::new(5.6, 1.8), false).expect("a staircase");
+        search_as_mapped_with_surface(&all, &surface, DVec2::new(5.6, 1.8)).expect("a staircase");
     assert_eq!(found.len(), 2, "{found:?}");
     let (lower, upper) = (&found[0], &found[1]);
     assert_eq!((lower.steps, upper.steps), (4, 5), "{found:?}");

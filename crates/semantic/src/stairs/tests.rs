@@ -99,6 +99,22 @@ pub(super) fn returns_by_part(text: &str) -> (Vec<(DVec2, f64)>, Vec<usize>) {
         .unzip()
 }
 
+/// Returns `(xy, height)`.
+type Returns = Vec<(DVec2, f64)>;
+
+/// The returns of a test data file whose fourth column is 1 for a return on a surface: all of
+/// them, and those on a surface (as the map's stairs stage took them).
+pub(super) fn returns_and_surface(text: &str) -> (Returns, Returns) {
+    let (all, on_surface) = returns_by_part(text);
+    let surface = all
+        .iter()
+        .zip(&on_surface)
+        .filter(|(_, &on)| on == 1)
+        .map(|(r, _)| *r)
+        .collect();
+    (all, surface)
+}
+
 /// Both flights of a staircase with a mid landing in `found`, each of `steps` steps climbing
 /// +X (of `rise`, within 1 cm, where given).
 pub(super) fn assert_two_flights(
@@ -189,6 +205,22 @@ pub(super) fn search_as_mapped(
     search_as_mapped_on(part, (DVec2::new(-1.5, -2.0), (160, 100)), hidden, false)
 }
 
+/// [`search_as_mapped`] with the part's returns on surfaces `surface` given (as the map's stairs
+/// stage took them).
+pub(super) fn search_as_mapped_with_surface(
+    part: &[(DVec2, f64)],
+    surface: &[(DVec2, f64)],
+    hidden: DVec2,
+) -> Option<Vec<DetectedStairs>> {
+    search_on_surface(
+        part,
+        surface,
+        (DVec2::new(-1.5, -2.0), (160, 100)),
+        hidden,
+        false,
+    )
+}
+
 /// [`search_as_mapped`] over a floor sampled from `floor.0` on `floor.1` cells of 4 cm, with the
 /// part's own axes as candidate directions too (after the walls') where `own_axes`, as
 /// `find_stairs` tries them.
@@ -217,7 +249,7 @@ pub(super) fn search_as_mapped_on(
 
 /// [`search_as_mapped_on`] with the part's returns on surfaces `surface` given (as the map's
 /// stairs stage took them).
-pub(super) fn search_on_surface(
+fn search_on_surface(
     part: &[(DVec2, f64)],
     surface: &[(DVec2, f64)],
     floor: (DVec2, (usize, usize)),
@@ -298,19 +330,12 @@ fn furniture_stepping_up_along_no_walls_direction_is_no_staircase() {
 /// surface, from the bench's map.)
 #[test]
 fn a_flight_with_mixed_pixels_over_its_treads_keeps_the_count_that_sees_every_level() {
-    let (all, on_surface) = returns_by_part(include_str!(
+    let (all, surface) = returns_and_surface(include_str!(
         "../../tests/data/hall72_flight_from_below.txt"
     ));
-    let surface: Vec<(DVec2, f64)> = all
-        .iter()
-        .zip(&on_surface)
-        .filter(|(_, &on)| on == 1)
-        .map(|(r, _)| *r)
-        .collect();
     assert_eq!((all.len(), surface.len()), (4936, 4909));
-    let floor = (DVec2::new(-1.5, -2.0), (160, 100));
     let found =
-        search_on_surface(&all, &surface, floor, DVec2::new(4.5, 1.4), false).expect("a staircase");
+        search_as_mapped_with_surface(&all, &surface, DVec2::new(4.5, 1.4)).expect("a staircase");
     assert_eq!(found.len(), 1);
     let flight = &found[0];
     assert_eq!(flight.steps, 12, "{flight:?}");

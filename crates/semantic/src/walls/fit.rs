@@ -83,7 +83,6 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
         })?;
     // Face points over the final extent (corners left out): support, coverage, heights, free
     // sides.
-    let pass = measure(&line, (lo, hi), &faces, &crossing, sc, c);
     let FacePass {
         mut zs,
         covered: bins,
@@ -92,7 +91,7 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
         on_each,
         profile,
         orientation,
-    } = pass;
+    } = measure(&line, (lo, hi), &faces, &crossing, sc, c);
     if zs.len() < c.min_face_points {
         return None;
     }
@@ -132,8 +131,8 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
         }
     };
     // A wall that stands: an end seen through, its face seen below head height in stray returns
-    // only, is cut off and the rest measured again (see `SupportProfile::seen_through_ends`). What judged it
-    // a wall is the whole extent's (a cut never turns a beam into a wall).
+    // only, is cut off and the rest measured again (see `SupportProfile::seen_through_ends`).
+    // What judged it a wall is the whole extent's (a cut never turns a beam into a wall).
     let corners = (
         crossing.corner_near(lo).is_some(),
         crossing.corner_near(hi).is_some(),

@@ -15,7 +15,9 @@
 //!   two visited ones does); each piece with at least `min_points` (50) points and
 //!   `min_length_m` (0.5 m) is one expected wall, whose extent is the observed one (min to max
 //!   of its points along the centre line). A wall seen only in part is thus compared with the
-//!   part that was seen;
+//!   part that was seen. Two pieces of one wall are one expected wall where a map wall runs
+//!   from one through the gap into the other (the map carried the wall on behind what hid it,
+//!   which is right);
 //! - a door opening is expected if its lintel and leaf together carry at least
 //!   `min_door_points` (20) points (the opening itself has no surface);
 //! - a staircase, the floor and the ceiling if they carry at least `min_points` points; for

@@ -39,14 +39,17 @@
 //! ends then move on to its face points glimpsed beyond a stretch of up to
 //! `max_glimpse_gap_m` that nobody saw ([`glimpses`]: through the doorway of a room not
 //! entered). A stretch no longer than a column is wide that stands free (the floor seen past
-//! both ends) is a column, not a wall; so is a row of such stretches, cut where the floor is
-//! seen deep in the wall's body with no face in front of it: pillars in a row ([`piers`]).
+//! both ends; or past one, no wall meeting the other and its back seen: [`free_pier`]) is a
+//! column, not a wall; so is a row of such stretches, cut where the floor is seen deep in the
+//! wall's body with no face in front of it: pillars in a row ([`piers`]).
 //! Last, every wall must rest on points of its own, not claimed by a longer wall
 //! ([`own_points`]: a line across the corner of two walls has none).
 
+mod duplicates;
 mod extent;
 mod faces;
 mod fit;
+mod free_pier;
 mod glimpses;
 mod joins;
 mod measure;
@@ -61,12 +64,14 @@ use crate::merge::Segment;
 use crate::points::{median, undirected_angle_deg, Line2};
 use crate::scene::Scene;
 use cloud::check_range;
+use duplicates::merge_duplicates;
 use fit::fit_wall;
+use free_pier::is_free_standing_pier;
 use glam::DVec2;
 use glimpses::extend_to_glimpses;
 use joins::merge_through_gaps;
 use own_points::retain_walls_with_own_points;
-use piers::{is_free_standing_pier, is_row_of_piers};
+use piers::is_row_of_piers;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -294,29 +299,23 @@ pub(crate) fn identify_walls(
             unique.push(s);
         }
     }
-    let mut walls: Vec<WallFit> = unique
+    let walls: Vec<WallFit> = unique
         .par_iter()
         .filter_map(|s| fit_wall(s, sc, c))
         .collect();
-    walls.sort_by(|a, b| b.length.total_cmp(&a.length));
-    let mut kept: Vec<WallFit> = Vec::new();
-    for w in walls {
-        if let Some(k) = kept.iter_mut().find(|k| duplicate(k, &w, c, max_angle_deg)) {
-            let (a, b) = (k.line.coords(w.start()).0, k.line.coords(w.end()).0);
-            let lo = a.min(b).min(0.0);
-            let hi = a.max(b).max(k.length);
-            k.line.origin = k.line.at(lo);
-            k.length = hi - lo;
-            k.support += w.support;
-            k.rules.push("merged with a duplicate prerequisite".into());
-            continue;
-        }
-        kept.push(w);
-    }
+    let mut kept = merge_duplicates(walls, c, max_angle_deg, "a duplicate prerequisite");
     merge_through_gaps(&mut kept, sc, c, max_angle_deg);
     extend_to_glimpses(&mut kept, sc, c);
-    // A pillar's face standing free with the floor seen past both ends is a column.
-    kept.retain(|w| !is_free_standing_pier(w, sc));
+    // Two pieces of one wall whose ends moved on to the same glimpsed face points overlap now.
+    let mut kept = merge_duplicates(kept, c, max_angle_deg, "the collinear wall its end reached");
+    // A pillar's face standing free (the floor seen past both ends, or past one with its back
+    // seen and no wall meeting the other) is a column.
+    let piers: Vec<bool> = kept
+        .iter()
+        .map(|w| is_free_standing_pier(w, &kept, sc))
+        .collect();
+    let mut pier = piers.into_iter();
+    kept.retain(|_| !pier.next().unwrap_or(false));
     // Pillars in a row, the floor seen between them where a wall's body would hide it, too.
     kept.retain(|w| !is_row_of_piers(w, sc, c.face_tolerance_m));
     let mut measured: Vec<f64> = kept
@@ -342,50 +341,4 @@ pub(crate) fn identify_walls(
     // Every wall rests on points of its own (not a line across two walls' corner).
     retain_walls_with_own_points(&mut kept, sc, c.face_tolerance_m);
     kept
-}
-
-fn duplicate(k: &WallFit, w: &WallFit, c: &WallConfig, max_angle_deg: f64) -> bool {
-    if undirected_angle_deg(k.line.dir, w.line.dir) > max_angle_deg {
-        return false;
-    }
-    // A wall seen from one side has no thickness yet (it is resolved after the duplicates):
-    // the default one stands in, as it will for the wall itself; with none, two faces of one
-    // wall, one read 16 cm off the other over 15 m (a veil of mixed pixels in front of it),
-    // stayed two walls.
-    let thickness = |w: &WallFit| {
-        if w.measured {
-            w.thickness
-        } else {
-            c.default_thickness_m
-        }
-    };
-    let tol = c.duplicate_offset_m + (thickness(k) + thickness(w)) / 4.0;
-    let (sa, da) = k.line.coords(w.start());
-    let (sb, db) = k.line.coords(w.end());
-    if da.abs() > tol || db.abs() > tol {
-        return false;
-    }
-    let (lo, hi) = (sa.min(sb), sa.max(sb));
-    let overlap = hi.min(k.length) - lo.max(0.0);
-    overlap >= 0.5 * w.length.min(k.length) || overlap > -c.max_gap_m
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Regression: a garage's outer wall was found twice, the second time along a line 1 degree
-    /// off (16 cm in front of the face at one end, 12 cm behind it at the other: a veil of mixed
-    /// pixels under a pipe); walls seen from one side had no thickness at this stage, so the
-    /// duplicate test allowed only 15 cm and the copy stayed a wall.
-    #[test]
-    fn one_sided_walls_a_degree_apart_within_a_wall_thickness_are_duplicates() {
-        let c = WallConfig::default();
-        let outer = WallFit::one_sided(DVec2::new(0.0, 0.0), DVec2::new(47.5, 0.0), 1.0);
-        let copy = WallFit::one_sided(DVec2::new(32.5, 0.16), DVec2::new(47.5, -0.12), 1.0);
-        assert!(duplicate(&outer, &copy, &c, 4.0));
-        // A wall 0.5 m in front of it (a corridor's other side is farther still) is not.
-        let other = WallFit::one_sided(DVec2::new(32.5, 0.5), DVec2::new(47.5, 0.5), 1.0);
-        assert!(!duplicate(&outer, &other, &c, 4.0));
-    }
 }

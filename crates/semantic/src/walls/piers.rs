@@ -1,11 +1,6 @@
-//! Free-standing piers: a pillar's face is a wall face from the floor to the ceiling, but only
-//! as wide as the pillar, and the floor is seen past both of its ends. Walls meet other walls,
-//! stand at the edge of a doorway, or run on behind what hid them; a stretch no longer than a
-//! column is wide with the floor seen along its line beyond both ends stands free, and is a
-//! column (left to the obstacles stage), not a wall.
-//!
-//! A row of pillars is such piers in line: the Hough transform joins their faces into one
-//! segment, and the face tests see a wall face at every pillar. What no wall shows is the floor
+//! Rows of pillars: the Hough transform joins the faces of pillars in line into one segment,
+//! and the face tests see a wall face at every pillar (one pillar standing free is
+//! [`super::free_pier`]'s). What no wall shows is the floor
 //! seen deep inside its body (more than the faces' noise behind the face, where a wall's body
 //! would hide it) between the pillars, with no face in front of it (the floor is seen through
 //! a glass wall's body too, but so is its face); nor a stretch where the floor is seen right in
@@ -23,14 +18,12 @@ use crate::scene::Scene;
 /// Structural columns are at most this wide across: square and round columns of buildings are
 /// 0.3-0.8 m, and a free-standing pier of up to 1 m is still a column to move around.
 pub(crate) const MAX_COLUMN_M: f64 = 1.0;
-/// The floor is looked for this far beyond each end (from 5 cm, beyond the end's own noise).
-const BEYOND_M: (f64, f64) = (0.05, 0.35);
-/// ... within this distance behind a one-sided wall's face (where its body would be).
-const BODY_DEPTH_M: f64 = 0.2;
+/// A one-sided wall's body lies this far behind its face (where the floor is looked for).
+pub(super) const BODY_DEPTH_M: f64 = 0.2;
 /// Floor points a free end shows at least (fewer are noise or mixed pixels).
-const MIN_FLOOR_POINTS: usize = 5;
+pub(super) const MIN_FLOOR_POINTS: usize = 5;
 /// Floor points lie within this of the floor height (the laser's range noise is 1-2 cm).
-const FLOOR_TOL_M: f64 = 0.04;
+pub(super) const FLOOR_TOL_M: f64 = 0.04;
 
 /// The floor is seen in the body this far inside it at least: behind a one-sided wall's face,
 /// or inside either face of a measured wall (the faces' noise is 1-3 cm, registration adds a
@@ -154,40 +147,6 @@ pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) ->
         pieces += 1;
     }
     pieces >= 1
-}
-
-/// True if `w` (before one-sided walls are moved to their centre lines: `w.line` is the face
-/// of a one-sided wall) is no longer than a column and the floor is seen where its body would
-/// continue past both ends.
-pub(crate) fn is_free_standing_pier(w: &WallFit, sc: &Scene) -> bool {
-    if w.length > MAX_COLUMN_M {
-        return false;
-    }
-    let (b0, b1) = BEYOND_M;
-    free_past(w, -b1, -b0, sc) && free_past(w, w.length + b0, w.length + b1, sc)
-}
-
-/// True if the floor is seen in the wall's footprint between `s0` and `s1` along it.
-fn free_past(w: &WallFit, s0: f64, s1: f64, sc: &Scene) -> bool {
-    let reach = if w.measured {
-        w.thickness / 2.0
-    } else {
-        BODY_DEPTH_M
-    };
-    let mut n = 0;
-    sc.index
-        .for_each_near_line(&w.line, s0, s1, reach, |_, _, d, z| {
-            let in_body = if w.measured {
-                d.abs() <= w.thickness / 2.0
-            } else {
-                let behind = -w.free_side * d;
-                (0.0..=BODY_DEPTH_M).contains(&behind)
-            };
-            if in_body && (z - sc.floor).abs() <= FLOOR_TOL_M {
-                n += 1;
-            }
-        });
-    n >= MIN_FLOOR_POINTS
 }
 
 #[cfg(test)]

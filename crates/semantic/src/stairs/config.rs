@@ -20,6 +20,12 @@ pub struct StairsConfig {
     /// Plausible tread depths: 0.20-0.45 m (IBC at least 279 mm, IRC 254 mm, UK 220 mm,
     /// DIN 18065 210-370 mm; longer treads are landings or garden steps).
     pub run_m: [f64; 2],
+    /// Largest pace, twice the rise plus the run: the codes that bound it ask 0.55-0.70 m (UK
+    /// Approved Document K) or 0.59-0.65 m (DIN 18065), which every stair people climb
+    /// comfortably meets; 0.80 m leaves room for the measurement. A rise and a run each in
+    /// range can still make no stair together (0.22 m risers on 0.42 m treads: a sparse side
+    /// face's top edge read with too few, higher steps).
+    pub max_pace_m: f64,
     /// Highest tread above the floor.
     pub max_height_m: f64,
     /// Fewest pixels of a level.
@@ -58,6 +64,7 @@ impl Default for StairsConfig {
             min_steps: 3,
             rise_m: [0.10, 0.23],
             run_m: [0.20, 0.45],
+            max_pace_m: 0.80,
             max_height_m: 2.6,
             min_level_pixels: 3,
             min_width_m: 0.6,
@@ -114,6 +121,13 @@ impl StairsConfig {
             self.run_m[0],
             2.0,
             "within run_m[0]..2 m",
+        )?;
+        check_range(
+            "stairs.max_pace_m",
+            self.max_pace_m,
+            0.1,
+            10.0,
+            "within 0.1..10 m",
         )?;
         check_range(
             "stairs.max_height_m",

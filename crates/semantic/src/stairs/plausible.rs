@@ -45,6 +45,10 @@ pub(crate) fn finish(
     c: &StairsConfig,
 ) -> Option<DetectedStairs> {
     let dir = p.dir;
+    // Rise and run must make a stair together: its pace (2 x rise + run) within the codes'.
+    if 2.0 * p.rise + p.run > c.max_pace_m {
+        return None;
+    }
     // The width from the points on the flight's steps (a tread, a riser or a side face between
     // a step's height and the one below: as `per_step` counts them below), not from all of the
     // blob's (a desk or chairs beside the flight join its blob at other heights), and of those
@@ -217,8 +221,8 @@ pub(crate) fn finish(
         ),
         format!("step count {} from the top level; {width_rule}", p.steps),
         format!(
-            "every step supported: at least {weakest} points on its tread, riser or side (rise {:.3} m within {:.2}-{:.2}, run {:.3} m within {:.2}-{:.2}: building codes' ranges)",
-            p.rise, c.rise_m[0], c.rise_m[1], p.run, c.run_m[0], c.run_m[1]
+            "every step supported: at least {weakest} points on its tread, riser or side (rise {:.3} m within {:.2}-{:.2}, run {:.3} m within {:.2}-{:.2}, pace 2 x rise + run {:.3} m at most {:.2}: building codes' ranges)",
+            p.rise, c.rise_m[0], c.rise_m[1], p.run, c.run_m[0], c.run_m[1], 2.0 * p.rise + p.run, c.max_pace_m
         ),
     ];
     Some(DetectedStairs {

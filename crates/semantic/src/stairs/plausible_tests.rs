@@ -242,3 +242,50 @@ fn stray_returns_beyond_a_side_face_do_not_move_it() {
     // Its width from the face (y = 0) away from the floor seen: centred 0.5 m in.
     assert!((stairs.start.y - 0.5).abs() < 0.03, "{:?}", stairs.start);
 }
+
+/// A flight of `steps` steps of `rise` x `run` climbing +X from x = 0, 1 m wide, its treads
+/// and risers every 2 cm, over a floor seen everywhere but under it; `finish` on its profile.
+fn finished(rise: f64, run: f64, steps: u32) -> Option<DetectedStairs> {
+    let mut blob: Vec<(DVec2, f64)> = Vec::new();
+    for k in 0..steps {
+        let (x0, top) = (f64::from(k) * run, f64::from(k + 1) * rise);
+        for j in 0..50 {
+            let y = 0.01 + 0.02 * f64::from(j);
+            for i in 0..(rise / 0.02) as usize {
+                blob.push((DVec2::new(x0, y), top - rise + 0.02 * i as f64));
+            }
+            for i in 0..(run / 0.02) as usize {
+                blob.push((DVec2::new(x0 + 0.02 * i as f64, y), top));
+            }
+        }
+    }
+    let length = f64::from(steps) * run;
+    let points = over_floor(
+        &blob,
+        DVec2::new(-1.0, -2.0),
+        (150, 100),
+        DVec2::new(length, 1.0),
+    );
+    let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(5.0), 0.25);
+    let sc = Scene::with_one_index(&points, &index, 0.0, 2.5);
+    finish(
+        &blob,
+        flight(DVec2::X, (rise, run, steps), steps),
+        &sc,
+        &StairsConfig::default(),
+    )
+}
+
+/// Regression (garage-100 of seeds 96-100): an 8-step flight of 0.159 m x 0.289 m seen from
+/// its side only, its top edge sampled sparsely, read as 6 steps of 0.219 m x 0.423 m: each
+/// in the codes' range, but together a pace (2 x rise + run) of 0.86 m, which no code allows
+/// and no one climbs.
+#[test]
+fn a_rise_and_a_run_each_in_range_must_make_a_stair_together() {
+    assert!(finished(0.219, 0.42, 6).is_none());
+    let stairs = finished(0.159, 0.29, 8).expect("a staircase");
+    assert_eq!(stairs.steps, 8);
+    // The steepest and the shallowest the codes allow are stairs.
+    assert!(finished(0.22, 0.24, 5).is_some());
+    assert!(finished(0.12, 0.45, 5).is_some());
+}

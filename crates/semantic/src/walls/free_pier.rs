@@ -104,19 +104,7 @@ mod tests {
 
     /// Floor points on a 5 cm grid over x in [-2, 3], y in [-1, 2] where `solid` is false.
     fn floor(solid: impl Fn(f64, f64) -> bool) -> Vec<Vec3> {
-        let mut points = Vec::new();
-        for i in 0..100 {
-            for j in 0..60 {
-                let (x, y) = (
-                    -2.0 + i as f64 * 0.05 + 0.025,
-                    -1.0 + j as f64 * 0.05 + 0.025,
-                );
-                if !solid(x, y) {
-                    points.push(Vec3::new(x as f32, y as f32, 0.0));
-                }
-            }
-        }
-        points
+        crate::walls::test_floor((-2.0, -1.0), (100, 60), solid)
     }
 
     fn pier(points: &[Vec3], w: &WallFit, others: &[WallFit]) -> bool {

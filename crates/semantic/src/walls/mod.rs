@@ -252,6 +252,29 @@ impl WallFit {
     }
 }
 
+/// Floor points (z = 0) at the centres of a 5 cm grid of `cells.0` x `cells.1` cells from `min`,
+/// where `solid` is false (the stage's tests).
+#[cfg(test)]
+pub(crate) fn test_floor(
+    min: (f64, f64),
+    cells: (usize, usize),
+    solid: impl Fn(f64, f64) -> bool,
+) -> Vec<glam::Vec3> {
+    let mut points = Vec::new();
+    for i in 0..cells.0 {
+        for j in 0..cells.1 {
+            let (x, y) = (
+                min.0 + i as f64 * 0.05 + 0.025,
+                min.1 + j as f64 * 0.05 + 0.025,
+            );
+            if !solid(x, y) {
+                points.push(glam::Vec3::new(x as f32, y as f32, 0.0));
+            }
+        }
+    }
+    points
+}
+
 #[cfg(test)]
 impl WallFit {
     /// A wall seen from one side (thickness not yet resolved), its face from `from` to `to`,

@@ -163,17 +163,8 @@ mod tests {
     /// Floor points on a 5 cm grid over x in [-2, 6], y in [-1, 1] where `solid` is false, and
     /// face points on y = 0 at heights 0.2..1.8 where `faced` is true.
     fn cloud(solid: impl Fn(f64, f64) -> bool, faced: impl Fn(f64) -> bool) -> Vec<Vec3> {
-        let mut points = Vec::new();
+        let mut points = crate::walls::test_floor((-2.0, -1.0), (160, 40), solid);
         for i in 0..160 {
-            for j in 0..40 {
-                let (x, y) = (
-                    -2.0 + i as f64 * 0.05 + 0.025,
-                    -1.0 + j as f64 * 0.05 + 0.025,
-                );
-                if !solid(x, y) {
-                    points.push(Vec3::new(x as f32, y as f32, 0.0));
-                }
-            }
             let x = -2.0 + i as f64 * 0.05 + 0.025;
             if faced(x) {
                 for k in 0..9 {

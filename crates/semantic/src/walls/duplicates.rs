@@ -30,7 +30,7 @@ pub(super) fn merge_duplicates(
     kept
 }
 
-pub(super) fn duplicate(k: &WallFit, w: &WallFit, c: &WallConfig, max_angle_deg: f64) -> bool {
+fn duplicate(k: &WallFit, w: &WallFit, c: &WallConfig, max_angle_deg: f64) -> bool {
     if undirected_angle_deg(k.line.dir, w.line.dir) > max_angle_deg {
         return false;
     }

@@ -51,7 +51,7 @@ pub(crate) fn profile(
 }
 
 /// A fit's rise this close (as a fraction) to the rise of the flight below is the same rise.
-const SAME_RISE: f64 = 0.15;
+pub(super) const SAME_RISE: f64 = 0.15;
 
 /// [`profile`], for a flight whose risers should match `rise_hint` (the upper flight of a
 /// staircase whose lower flight was found: a staircase's risers are uniform). Its step count

@@ -3,7 +3,7 @@
 //! best along each of its straight faces in plan, each on its own (see `side_faces`).
 
 use super::plausible::finish;
-use super::profile::{profile, profile_other_count, Profile};
+use super::profile::{profile, profile_other_count, Profile, SAME_RISE};
 use super::{flights, side_faces, DetectedStairs, StairsConfig};
 use crate::scene::Scene;
 use glam::DVec2;
@@ -123,11 +123,13 @@ impl Search<'_> {
         });
         // The lone flight wins if it is along a wall's direction or the one flight is not,
         // and it found as large a share of its levels (on a tie: a staircase with a mid
-        // landing read as one flight misses a level).
+        // landing read as one flight misses a level), unless the one flight climbs on through
+        // its landing (see `climbs_through`).
         match (one, lone) {
             (Some((one_on_wall, one)), Some((lone_on_wall, lone)))
                 if (lone_on_wall || !one_on_wall)
-                    && lone.iter().all(|l| l.confidence >= one.confidence) =>
+                    && lone.iter().all(|l| l.confidence >= one.confidence)
+                    && !climbs_through(&one, &lone, self.c) =>
             {
                 Some(lone)
             }
@@ -135,6 +137,31 @@ impl Search<'_> {
             (None, lone) => lone.map(|l| l.1),
         }
     }
+}
+
+/// True if `one` (a flight read along all of a part) is the lone flight `lone` (a flight
+/// found ending on a landing, nothing beyond it climbing as a flight) continued, in the same
+/// steps, through what was read as its landing: `lone` is one flight from the floor, and `one`
+/// starts where it starts, climbs the same way with the same rise (within [`SAME_RISE`]), has
+/// more steps and a bin on every one of its levels. A mid landing read as steps would leave the
+/// levels on it empty (a landing is deeper than a tread, and level); here the "landing" was a
+/// tread with something beside the flight standing a rise over it (office-101 of seeds
+/// 101-105: a 1 m box beside the side face of a 7-step flight, over its third and fourth
+/// steps, held the running maximum level for 0.8 m, and the flight read as 6 steps).
+fn climbs_through(one: &DetectedStairs, lone: &[DetectedStairs], c: &StairsConfig) -> bool {
+    let [lone] = lone else {
+        return false;
+    };
+    let same_way = one.dir.dot(lone.dir) >= c.snap_direction_deg.to_radians().cos();
+    let same_start = (one.start - lone.start).dot(one.dir).abs() <= one.run.min(lone.run) / 2.0;
+    let same_rise = (one.rise - lone.rise).abs() <= SAME_RISE * lone.rise;
+    lone.base == 0.0
+        && one.base == 0.0
+        && same_way
+        && same_start
+        && same_rise
+        && one.steps > lone.steps
+        && one.confidence >= 1.0
 }
 
 /// The share of a profile's levels with a bin on them. Another step count must find as large a

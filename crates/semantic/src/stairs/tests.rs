@@ -175,6 +175,34 @@ fn a_side_face_joined_to_a_desk_in_front_of_it_is_still_its_flight() {
     assert_flight(search(&part, length), (rise, run, steps));
 }
 
+/// Regression: office-101 of seeds 101-105: a box 1 m tall beside the side face of a 7-step
+/// flight (seen from its side only), over its third and fourth steps, stood level with the
+/// sixth step's tread; the running maximum stayed there for 0.8 m, which read as a landing, and
+/// the flight below it (6 steps, every level seen) won over the 7 steps read along the whole
+/// part, every level seen too. Those 7 steps climb on through the "landing" in the same steps:
+/// it was none.
+#[test]
+fn a_box_beside_a_flight_level_with_a_higher_step_makes_no_landing() {
+    let (rise, run, steps) = (0.156, 0.31, 7u32);
+    let mut part = side_face(rise, run, steps);
+    // The box: x 0.80..1.15 (over the third and fourth steps), y -0.19..-0.05, its top 6
+    // rises up, seen on its top and its face towards the laser.
+    let top = 6.0 * rise;
+    for i in 0..18 {
+        let x = 0.80 + 0.02 * f64::from(i);
+        for j in 0..7 {
+            part.push((DVec2::new(x, -0.19 + 0.02 * f64::from(j)), top));
+        }
+        let mut z = top - 0.05;
+        while z > 0.02 {
+            part.push((DVec2::new(x, -0.19), z));
+            z -= 0.05;
+        }
+    }
+    let length = f64::from(steps) * run + 1.1;
+    assert_flight(search(&part, length), (rise, run, steps));
+}
+
 /// Regression: fresh garage-17's 4-step flight, seen from its side only, was crossed over its
 /// landing by a person walking past (returns 0.3 m over the landing over 4 cm along): the
 /// running maximum took them for its top level, and no count fitted. A spike narrower than a

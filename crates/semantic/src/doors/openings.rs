@@ -6,8 +6,9 @@
 //!   of a leaf open at a small angle that crosses the face plane), and *open* otherwise;
 //! - a run of open bins between blocked ones (blocked slivers up to `max_pier_m` inside it are
 //!   a door leaf crossing the face plane, and ignored; up to 40 cm where the open bins either
-//!   side hold the leaf's points near the face too, a leaf ajar) of `min_width_m..max_width_m`
-//!   is an opening candidate;
+//!   side hold the leaf's points near the face too, a leaf ajar, or where the sliver is sampled
+//!   at under a quarter of the wall's density, a person crossing the doorway) of
+//!   `min_width_m..max_width_m` is an opening candidate;
 //! - it is no opening where the wall's face goes on through it, seen sparsely at door level (a
 //!   glass pane returns some beams, too few to block a bin; see [`face_goes_on`]);
 //! - it is an opening if the wall continues above it (a lintel: face points above door level
@@ -208,10 +209,11 @@ fn reach_and_block_tol(w: &WallFit, c: &OpeningConfig, face_tol: f64) -> (f64, f
 }
 
 /// Runs `[a, b)` of open bins; slivers of blocked bins up to `max_pier_m` inside them are
-/// ignored, and up to [`LEAF_SLIVER_M`] where a leaf ajar crosses the face plane: the open bins
-/// either side of such a sliver hold the leaf's points near the face (behind it towards the
-/// hinge, in front of it beyond), as much as a third of the sliver's, where a pier between two
-/// doorways has empty openings beside it.
+/// ignored, and up to [`LEAF_SLIVER_M`] where a leaf ajar crosses the face plane (the open bins
+/// either side of such a sliver hold the leaf's points near the face, behind it towards the
+/// hinge, in front of it beyond, as much as a third of the sliver's, where a pier between two
+/// doorways has empty openings beside it) or where the sliver is sampled far more sparsely than
+/// the wall around it (see [`sparse_sliver`]).
 fn open_runs(bins: &[Bin], at_wall: &[u16], c: &OpeningConfig) -> Vec<(usize, usize)> {
     let n = bins.len();
     let pier = (c.max_pier_m / c.bin_m).round() as usize;
@@ -239,10 +241,41 @@ fn open_runs(bins: &[Bin], at_wall: &[u16], c: &OpeningConfig) -> Vec<(usize, us
         match runs.last_mut() {
             Some(r) if a - r.1 <= pier => r.1 = b,
             Some(r) if a - r.1 <= leaf_sliver && crossing_leaf(r.1, a) => r.1 = b,
+            Some(r) if a - r.1 <= leaf_sliver && sparse_sliver(bins, r.1, a, c) => r.1 = b,
             _ => runs.push((a, b)),
         }
     }
     runs
+}
+
+/// The share of the door-level face returns per bin of the wall around it (the median blocked
+/// bin within [`FACE_AROUND_M`] either side) under which a blocked sliver's median bin is no
+/// pier (see [`sparse_sliver`]).
+const SPARSE_SLIVER_SHARE: f64 = 0.25;
+
+/// True if the blocked sliver `bins[from..to]` holds fewer door-level face returns per bin (its
+/// median) than [`SPARSE_SLIVER_SHARE`] of the wall's own face around it. A pier between two
+/// doorways is wall, sampled as densely as the wall beside it (at the same range from the same
+/// scanners); a person crossing the doorway in the face plane during a scan leaves a streak of
+/// a few returns per bin over a body's width (mixed-100 of seeds 96-100: 2-10 per 5 cm bin over
+/// 0.3 m beside 20-59 in the wall, which split a 0.99 m doorway into two runs too narrow for a
+/// door).
+fn sparse_sliver(bins: &[Bin], from: usize, to: usize, c: &OpeningConfig) -> bool {
+    let near = (FACE_AROUND_M / c.bin_m).round() as usize;
+    let mut sliver: Vec<f64> = bins[from..to]
+        .iter()
+        .map(|x| f64::from(x.door_face))
+        .collect();
+    let mut around: Vec<f64> = bins[from.saturating_sub(near)..from]
+        .iter()
+        .chain(&bins[to..(to + near).min(bins.len())])
+        .filter(|x| x.blocked)
+        .map(|x| f64::from(x.door_face))
+        .collect();
+    match (median(&mut sliver), median(&mut around)) {
+        (Some(sliver), Some(wall)) => sliver < SPARSE_SLIVER_SHARE * wall,
+        _ => false,
+    }
 }
 
 /// The opening of the open run `bins[a..b]`, if it is bounded by the wall on both sides, of an
@@ -362,6 +395,26 @@ mod tests {
                 ..Bin::default()
             })
             .collect()
+    }
+
+    /// Regression: mixed-100 of seeds 96-100: a person crossing a 0.99 m doorway in the face
+    /// plane left 2-10 door-level returns per bin over 0.3 m of it, in a wall of 20-59 per bin;
+    /// the doorway is one run. A pier as dense as the wall between two doorways parts them.
+    #[test]
+    fn a_sparse_streak_across_a_doorway_is_no_pier_between_two() {
+        let c = OpeningConfig::default();
+        let row = |sliver: &[u16]| {
+            let mut face = vec![30u16, 45, 25, 50, 40, 35, 55, 20];
+            face.extend([0, 1, 0, 0, 2, 0, 0]);
+            face.extend(sliver);
+            face.extend([0, 0, 1, 0, 0, 0]);
+            face.extend([40, 30, 50, 35, 25, 45, 30, 20]);
+            face
+        };
+        let streak = row(&[5, 7, 4, 10, 5, 2]);
+        assert_eq!(open_runs(&bins(&streak), &streak, &c), vec![(8, 27)]);
+        let pier = row(&[30, 45, 25, 40, 35, 50]);
+        assert_eq!(open_runs(&bins(&pier), &pier, &c), vec![(8, 15), (21, 27)]);
     }
 
     /// A glass pane (office-54 of the bench's seeds 51-55: 1-6 returns per bin, a few bins

@@ -98,7 +98,7 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
     // A wall stands on the floor and hides what is behind it (see `support`): not a beam, a
     // row of pillars or a beam over them.
     let (standing, open, bare) = profile.fractions();
-    if standing == 0.0 || open + bare > standing {
+    if standing == 0.0 || open + bare > standing || profile.low_thing_under_a_high_one() {
         return None;
     }
     // Its face is a plane along it, not the sides of a corner it cuts through.

@@ -61,6 +61,15 @@ const UPPER_FACE_M: f64 = 1.5;
 /// such bins along at most 17 % of their length, and are seen between along more.)
 const NEVER_BETWEEN_SHARE: f64 = 0.1;
 
+/// The share of a candidate's length along which a high thing (a beam) is seen over a low
+/// one (see [`SupportProfile::low_thing_under_a_high_one`]).
+const HIGH_THING_SHARE: f64 = 1.0 / 3.0;
+/// The share of the bins where a low thing's face is seen under head height in which it must
+/// stand, nothing beside it, to be a wall under a high thing (see
+/// [`SupportProfile::low_thing_under_a_high_one`]): a parked car's front or flank has its body
+/// beside it wherever it is seen.
+const LOW_STANDS_SHARE: f64 = 0.5;
+
 /// A stretch at a wall's end seen through for this long, its face seen below head height in
 /// stray bins only, is no part of the wall (see [`SupportProfile::seen_through_ends`]): three bins,
 /// more than a stray return or a person's shadow leaves.
@@ -162,6 +171,24 @@ impl SupportProfile {
             share(&open),
             share(&|b| b & (STANDING | CLUTTER) == 0 && b & ABOVE_HEAD != 0 && !open(b)),
         )
+    }
+
+    /// True if the candidate is a low thing under a high one, the low one no wall: its face
+    /// is almost nowhere seen between [`UPPER_FACE_M`] and head height (see
+    /// [`NEVER_BETWEEN_SHARE`]), it is seen above head height along at least
+    /// [`HIGH_THING_SHARE`] of its length, and under head height it stands (nothing beside it,
+    /// see [`Self::fractions`]) in under [`LOW_STANDS_SHARE`] of the bins where it is seen
+    /// there. Two parked cars' fronts in line under a beam crossing them obliquely (garage-109
+    /// of seeds 106-110: seen under 1.0 m along 93 % of a 1.46 m line, the car bodies beside it
+    /// in all but 7 %, the beam above along 60 %) make such a line; a wall's face, seen from
+    /// the floor up, is seen between too, and a partial-height wall has nothing above it.
+    pub fn low_thing_under_a_high_one(&self) -> bool {
+        let n = self.bins.len() as f64;
+        let share = |f: &dyn Fn(u8) -> bool| self.bins.iter().filter(|&&b| f(b)).count() as f64 / n;
+        let low = share(&|b| b & STANDING != 0);
+        let never_between = share(&|b| b & STANDING_HIGH != 0) < NEVER_BETWEEN_SHARE * low;
+        let high = share(&|b| b & ABOVE_HEAD != 0);
+        never_between && high >= HIGH_THING_SHARE && self.fractions().0 < LOW_STANDS_SHARE * low
     }
 
     /// The bins to cut off at the start and at the end: a run of at least [`THROUGH_END_M`]
@@ -315,6 +342,44 @@ mod tests {
         }
         assert_eq!(car.fractions(), (0.0, 0.0, 0.0));
         assert_eq!(sparse.fractions(), (1.0, 0.0, 0.0));
+    }
+
+    /// Regression: garage-109 of seeds 106-110: two parked cars' fronts in line (their bodies
+    /// beside them) under a beam crossing the line obliquely stood as a 1.46 m wall, one bin
+    /// of it standing and one open. A wall behind the same cars, seen over them, is one; so is
+    /// a partial-height wall with desks against it and nothing above it.
+    #[test]
+    fn car_fronts_under_a_beam_are_no_wall_and_a_wall_behind_them_is() {
+        let mut fronts = SupportProfile::new(15, &[0.0], 0.0);
+        let mut wall = SupportProfile::new(15, &[0.0], 0.0);
+        let mut partition = SupportProfile::new(15, &[0.0], 0.0);
+        for k in 0..15 {
+            for p in [&mut fronts, &mut wall] {
+                if k != 1 {
+                    p.add(k, 0.0, 0.6, true); // a car's front on the line
+                    p.add(k, 0.3, 0.8, false); // its body beside it
+                } else {
+                    p.add(k, 0.0, 0.3, true); // a low return, nothing beside it
+                }
+                if (3..12).contains(&k) {
+                    p.add(k, 0.0, 2.3, true); // the beam (or the wall) above head height
+                }
+            }
+            wall.add(k, 0.0, 1.7, true); // the wall's face over the cars
+            partition.add(k, 0.0, 0.9, true); // a partition's face...
+            if k % 2 == 0 {
+                partition.add(k, 0.3, 0.7, false); // ... with desks against it
+            }
+        }
+        // (standing in one bin, open and bare in none: the other rules keep it)
+        let (standing, open, bare) = fronts.fractions();
+        assert!(
+            standing > 0.0 && open + bare <= standing,
+            "{standing} {open} {bare}"
+        );
+        assert!(fronts.low_thing_under_a_high_one());
+        assert!(!wall.low_thing_under_a_high_one());
+        assert!(!partition.low_thing_under_a_high_one());
     }
 
     /// Regression: garage-81's (seeds 81-85) lobby wall ran on along a beam's underside over the

@@ -163,7 +163,11 @@ pub struct IcpConfig {
     /// the defaults make it as wide as the gate (the grid is then exact).
     pub bucket_size_m: f64,
     /// Iteration limit; reaching it without meeting a stop criterion is
-    /// [`RegistrationError::NotConverged`].
+    /// [`RegistrationError::NotConverged`]. 100 by default: a scan that overlaps the map only
+    /// along a corridor slides along it a few millimetres an iteration as its new parts come
+    /// into the gate (generated office-106 of seeds 106-110: its 25th scan, a third of it
+    /// paired, settled on the 42nd iteration 1.0 cm from the truth; 30 failed the sequence).
+    /// A scan that converges stops long before; the limit bounds only the ones that do not.
     pub max_iterations: usize,
     /// Correspondence gate of the first iteration.
     pub max_correspondence_distance_m: f64,
@@ -219,7 +223,7 @@ impl Default for IcpConfig {
             method: Method::Gicp,
             nn: NnBackend::Grid,
             bucket_size_m: 1.0,
-            max_iterations: 30,
+            max_iterations: 100,
             max_correspondence_distance_m: 1.0,
             final_correspondence_distance_m: 0.15,
             reject_worst_fraction: 0.0,

@@ -105,6 +105,32 @@ fn a_pose_creeping_one_way_on_the_final_gate_is_no_cycle() {
     assert_eq!(result.iterations.len(), c.max_iterations);
 }
 
+/// Regression: office-106 of seeds 106-110: its 25th scan, paired over a third of it along a
+/// corridor, slid on by a few millimetres an iteration, less each time, and settled on the 42nd;
+/// the defaults' limit of 30 iterations failed its sequence.
+#[test]
+fn a_slow_slide_along_a_corridor_settles_within_the_default_iterations() {
+    let c = IcpConfig::default();
+    // The target pose slides on by 5 mm, then 10 % less each iteration (5 cm in all).
+    let mut pairs = Scripted {
+        source: lattice(),
+        target_at: |k: usize| {
+            DAffine3::from_translation(DVec3::X * 0.05 * (1.0 - 0.9f64.powi(k as i32 + 1)))
+        },
+        calls: 0,
+        extra: false,
+    };
+    let result = run_loop(&c, &lattice(), DAffine3::IDENTITY, &mut pairs).expect("the loop runs");
+    assert!(result.converged, "{} iterations", result.iterations.len());
+    assert!(
+        result.iterations.len() > 30,
+        "settled after {} iterations: the slide is no regression test if it settles sooner",
+        result.iterations.len()
+    );
+    let x = result.target_from_source.translation.x;
+    assert!((x - 0.05).abs() < 1e-3, "ended at {x} m of 0.05");
+}
+
 #[test]
 fn a_pose_going_round_three_on_the_final_gate_converges_early() {
     let c = IcpConfig::default();

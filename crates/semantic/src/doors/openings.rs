@@ -261,21 +261,29 @@ const SPARSE_SLIVER_SHARE: f64 = 0.25;
 /// 0.3 m beside 20-59 in the wall, which split a 0.99 m doorway into two runs too narrow for a
 /// door).
 fn sparse_sliver(bins: &[Bin], from: usize, to: usize, c: &OpeningConfig) -> bool {
+    match (median_face(&bins[from..to]), face_around(bins, from, to, c)) {
+        (Some(sliver), Some(wall)) => sliver < SPARSE_SLIVER_SHARE * wall,
+        _ => false,
+    }
+}
+
+/// The median bin's door-level face returns over `bins`; `None` for no bins.
+fn median_face(bins: &[Bin]) -> Option<f64> {
+    let mut faces: Vec<f64> = bins.iter().map(|x| f64::from(x.door_face)).collect();
+    median(&mut faces)
+}
+
+/// The wall's own face around `bins[from..to]`: the median door-level face returns of its
+/// blocked bins within [`FACE_AROUND_M`] either side; `None` where there are none.
+fn face_around(bins: &[Bin], from: usize, to: usize, c: &OpeningConfig) -> Option<f64> {
     let near = (FACE_AROUND_M / c.bin_m).round() as usize;
-    let mut sliver: Vec<f64> = bins[from..to]
-        .iter()
-        .map(|x| f64::from(x.door_face))
-        .collect();
     let mut around: Vec<f64> = bins[from.saturating_sub(near)..from]
         .iter()
         .chain(&bins[to..(to + near).min(bins.len())])
         .filter(|x| x.blocked)
         .map(|x| f64::from(x.door_face))
         .collect();
-    match (median(&mut sliver), median(&mut around)) {
-        (Some(sliver), Some(wall)) => sliver < SPARSE_SLIVER_SHARE * wall,
-        _ => false,
-    }
+    median(&mut around)
 }
 
 /// The opening of the open run `bins[a..b]`, if it is bounded by the wall on both sides, of an
@@ -359,7 +367,6 @@ const MAX_EMPTY_M: f64 = 0.15;
 /// the most face returns had a median of 0-2 per bin beside 20-78 around them; the runs in
 /// glass partitions 1-9 beside 4-18.
 fn face_goes_on(bins: &[Bin], a: usize, b: usize, c: &OpeningConfig) -> bool {
-    let near = (FACE_AROUND_M / c.bin_m).round() as usize;
     let run = &bins[a..b];
     let longest_empty = run
         .split(|x| x.door_face > 0)
@@ -369,80 +376,12 @@ fn face_goes_on(bins: &[Bin], a: usize, b: usize, c: &OpeningConfig) -> bool {
     if longest_empty as f64 * c.bin_m > MAX_EMPTY_M + 1e-9 {
         return false;
     }
-    let mut run: Vec<f64> = run.iter().map(|x| f64::from(x.door_face)).collect();
-    let mut around: Vec<f64> = bins[a.saturating_sub(near)..a]
-        .iter()
-        .chain(&bins[b..(b + near).min(bins.len())])
-        .filter(|x| x.blocked)
-        .map(|x| f64::from(x.door_face))
-        .collect();
-    match (median(&mut run), median(&mut around)) {
+    match (median_face(run), face_around(bins, a, b, c)) {
         (Some(run), Some(wall)) => run >= 1.0 && run >= SPARSE_FACE_SHARE * wall,
         _ => false,
     }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Bins with these door-level face returns, blocked where a bin would be (three or more).
-    fn bins(face: &[u16]) -> Vec<Bin> {
-        face.iter()
-            .map(|&k| Bin {
-                blocked: k >= 3,
-                door_face: k,
-                ..Bin::default()
-            })
-            .collect()
-    }
-
-    /// Regression: mixed-100 of seeds 96-100: a person crossing a 0.99 m doorway in the face
-    /// plane left 2-10 door-level returns per bin over 0.3 m of it, in a wall of 20-59 per bin;
-    /// the doorway is one run. A pier as dense as the wall between two doorways parts them.
-    #[test]
-    fn a_sparse_streak_across_a_doorway_is_no_pier_between_two() {
-        let c = OpeningConfig::default();
-        let row = |sliver: &[u16]| {
-            let mut face = vec![30u16, 45, 25, 50, 40, 35, 55, 20];
-            face.extend([0, 1, 0, 0, 2, 0, 0]);
-            face.extend(sliver);
-            face.extend([0, 0, 1, 0, 0, 0]);
-            face.extend([40, 30, 50, 35, 25, 45, 30, 20]);
-            face
-        };
-        let streak = row(&[5, 7, 4, 10, 5, 2]);
-        assert_eq!(open_runs(&bins(&streak), &streak, &c), vec![(8, 27)]);
-        let pier = row(&[30, 45, 25, 40, 35, 50]);
-        assert_eq!(open_runs(&bins(&pier), &pier, &c), vec![(8, 15), (21, 27)]);
-    }
-
-    /// A glass pane (office-54 of the bench's seeds 51-55: 1-6 returns per bin, a few bins
-    /// blocking) is its wall's face going on; a doorway with a leaf ajar crossing the face
-    /// plane over three bins (20-40 returns) in a wall of 50 per bin is no face.
-    #[test]
-    fn a_glass_pane_is_the_face_going_on_a_doorway_with_a_leaf_is_not() {
-        let c = OpeningConfig::default();
-        let mut glass = vec![5u16, 4, 6, 5, 3, 5];
-        glass.extend([1, 0, 2, 1, 2, 1, 0, 1, 2, 1, 0, 1]);
-        glass.extend([4, 5, 6, 3, 5, 5]);
-        assert!(face_goes_on(&bins(&glass), 6, 18, &c));
-        let mut doorway = vec![50u16; 20];
-        doorway.extend([0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 20, 40, 30, 0, 0]);
-        doorway.extend([50; 20]);
-        assert!(!face_goes_on(&bins(&doorway), 20, 36, &c));
-        // A doorway (0.35 m with no face return, a leaf's edge) beside a stretch of wall seen
-        // sparsely, in one run (the 3DTK corridor's, as `semsim run` maps it).
-        let mut beside = vec![8u16, 5, 4, 15, 10, 5, 5, 17, 4, 3];
-        beside.extend([
-            2, 3, 2, 4, 3, 7, 4, 2, 4, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 11, 16, 4, 0, 1,
-        ]);
-        beside.extend([6, 7, 7, 12, 8, 7, 4, 5, 5, 10]);
-        assert!(!face_goes_on(&bins(&beside), 10, 34, &c));
-        // A run with nothing in most bins is a gap, however sparse the wall around it.
-        let mut gap = vec![4u16; 10];
-        gap.extend([0, 0, 1, 0, 0, 2, 0, 0]);
-        gap.extend([4; 10]);
-        assert!(!face_goes_on(&bins(&gap), 10, 18, &c));
-    }
-}
+#[path = "openings_tests.rs"]
+mod tests;

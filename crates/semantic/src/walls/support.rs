@@ -156,12 +156,10 @@ impl SupportProfile {
     /// [`UPPER_FACE_M`] up to head height (see [`NEVER_BETWEEN_SHARE`]), a bin where it is
     /// seen under it and above head height.
     pub fn fractions(&self) -> (f64, f64, f64) {
-        let n = self.bins.len() as f64;
-        let share = |f: &dyn Fn(u8) -> bool| self.bins.iter().filter(|&&b| f(b)).count() as f64 / n;
+        let share = |f: &dyn Fn(u8) -> bool| self.share(f);
         let open =
             |b: u8| b & STANDING == 0 && (b & BETWEEN != 0 || b & (LEFT | RIGHT) == LEFT | RIGHT);
-        let never_between = share(&|b| b & STANDING_HIGH != 0)
-            < NEVER_BETWEEN_SHARE * share(&|b| b & STANDING != 0);
+        let never_between = self.never_between();
         let hidden_between = |b: u8| never_between && b & ABOVE_HEAD != 0;
         (
             share(&|b| {
@@ -183,12 +181,23 @@ impl SupportProfile {
     /// in all but 7 %, the beam above along 60 %) make such a line; a wall's face, seen from
     /// the floor up, is seen between too, and a partial-height wall has nothing above it.
     pub fn low_thing_under_a_high_one(&self) -> bool {
-        let n = self.bins.len() as f64;
-        let share = |f: &dyn Fn(u8) -> bool| self.bins.iter().filter(|&&b| f(b)).count() as f64 / n;
-        let low = share(&|b| b & STANDING != 0);
-        let never_between = share(&|b| b & STANDING_HIGH != 0) < NEVER_BETWEEN_SHARE * low;
-        let high = share(&|b| b & ABOVE_HEAD != 0);
-        never_between && high >= HIGH_THING_SHARE && self.fractions().0 < LOW_STANDS_SHARE * low
+        let low = self.share(&|b| b & STANDING != 0);
+        let high = self.share(&|b| b & ABOVE_HEAD != 0);
+        self.never_between()
+            && high >= HIGH_THING_SHARE
+            && self.fractions().0 < LOW_STANDS_SHARE * low
+    }
+
+    /// The share of the bins for which `f` holds.
+    fn share(&self, f: &dyn Fn(u8) -> bool) -> f64 {
+        self.bins.iter().filter(|&&b| f(b)).count() as f64 / self.bins.len() as f64
+    }
+
+    /// True if the face is seen from [`UPPER_FACE_M`] up to head height in fewer than
+    /// [`NEVER_BETWEEN_SHARE`] of the bins where it is seen under head height.
+    fn never_between(&self) -> bool {
+        self.share(&|b| b & STANDING_HIGH != 0)
+            < NEVER_BETWEEN_SHARE * self.share(&|b| b & STANDING != 0)
     }
 
     /// The bins to cut off at the start and at the end: a run of at least [`THROUGH_END_M`]

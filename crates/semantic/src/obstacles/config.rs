@@ -71,7 +71,8 @@ pub struct ObstacleConfig {
     pub partition_min_passage_m: f64,
     /// ... and the floor is seen beside it on both sides along at least this fraction of its
     /// length: it divides space, while the face of a block (a car, a crate, a cabinet seen from
-    /// one side) has the block's unseen footprint behind it.
+    /// one side) has the block's unseen footprint behind it. (A panel seen from one side and
+    /// round its free end needs the floor seen on its side along as much of it.)
     pub partition_min_floor_both_sides: f64,
     /// A cluster thicker than a partition may be one with things standing against it (a desk
     /// pushed against it, a chair's back touching it): the slab of its returns this thick

@@ -6,9 +6,11 @@
 //! the floor between the wheels; a shelf's or a desk's front stands on legs or a plinth set
 //! back; a row of things side by side has gaps. A partition divides space: the floor is seen
 //! beside it on both sides (`partition_min_floor_both_sides` of its length), while a face of a
-//! block (a car, a crate, a cabinet) has the block's unseen footprint behind it. A slab along a wall, nearer to it than a
-//! passage is wide (`partition_min_passage_m`), divides no space: it is the front of a cabinet
-//! or a shelf against that wall, seen from the room.
+//! block (a car, a crate, a cabinet) has the block's unseen footprint behind it. A panel seen
+//! from one side has its shadow behind it instead, but round its free end the laser sees the
+//! floor right behind its face, where a block's body would stand. A slab along a wall, nearer
+//! to it than a passage is wide (`partition_min_passage_m`), divides no space: it is the front
+//! of a cabinet or a shelf against that wall, seen from the room.
 
 use super::classify::set_box_rule;
 use super::cluster::BandGrid;
@@ -103,22 +105,73 @@ pub(super) fn partition_rule(
         || length < 4.0 * across
         || height < c.partition_min_height_m
         || faces_a_wall(o, sc, c.partition_min_passage_m)
-        || floor_both_sides(o, floor_seen, frame) < c.partition_min_floor_both_sides
     {
         return None;
     }
+    let divides = divides_space(o, floor_seen, frame, c)?;
     let standing = standing_fraction(o, sc, &points_in_box(o, sc, grids, frame), c);
     (standing >= c.partition_min_standing).then(|| format!(
-        "a partial-height wall: {length:.2} m long, {across:.2} m thick, {height:.2} m high; its face seen from within {:.2} m of the floor up to its top along {:.0} % of its length (a wall stands on the floor along {:.0} % at least)",
+        "a partial-height wall: {length:.2} m long, {across:.2} m thick, {height:.2} m high; its face seen from within {:.2} m of the floor up to its top along {:.0} % of its length (a wall stands on the floor along {:.0} % at least); {divides}",
         c.partition_max_bottom_m,
         100.0 * standing,
         100.0 * c.partition_min_standing
     ))
 }
 
-/// The fraction of `o`'s length (bins of [`BIN_M`]) where the floor was seen on both sides of
-/// it within [`BESIDE_M`] of its faces (cells of `frame`, `floor_seen`).
-fn floor_both_sides(o: &DetectedObstacle, floor_seen: &[bool], frame: &ImageFrame) -> f64 {
+/// How `o` divides space (see the module docs), or `None` if it may be a block's face: the
+/// floor seen on both sides of it along `partition_min_floor_both_sides` of its length, or, a
+/// panel seen from one side, the floor seen on that side along as much of it and round its
+/// free end right behind its face ([`seen_round_an_end`]).
+fn divides_space(
+    o: &DetectedObstacle,
+    floor_seen: &[bool],
+    frame: &ImageFrame,
+    c: &ObstacleConfig,
+) -> Option<String> {
+    let beside = floor_beside(o, floor_seen, frame, BESIDE_M);
+    let both = share(beside.iter().map(|[a, b]| *a && *b));
+    if both >= c.partition_min_floor_both_sides {
+        return Some(format!(
+            "the floor seen on both sides of it along {:.0} % of its length",
+            100.0 * both
+        ));
+    }
+    let one = share(beside.iter().map(|[a, b]| *a || *b));
+    let behind = floor_beside(o, floor_seen, frame, BEHIND_M);
+    (one >= c.partition_min_floor_both_sides && seen_round_an_end(&behind)).then(|| format!(
+        "a panel seen from one side: the floor seen beside it along {:.0} % of its length, and on both sides within {BEHIND_M:.2} m of its faces along its last {:.1} m or more at an end, where a block's body would stand",
+        100.0 * one,
+        ROUND_END_BINS as f64 * BIN_M
+    ))
+}
+
+/// How near behind a panel's face the floor is seen round its free end: nearer than a
+/// cabinet or a crate is deep (0.3 m and more), farther than a registered face's spread.
+const BEHIND_M: f64 = 0.15;
+
+/// The bins at an end of a panel in which the floor must be seen right behind it: 0.2 m, more
+/// than a block's corner lets the laser see behind its front by the mixed pixels at its edge.
+const ROUND_END_BINS: usize = 2;
+
+/// Whether the floor is seen on both sides of a panel within [`BEHIND_M`] of its faces along
+/// the first or the last [`ROUND_END_BINS`] bins of its length: seen from one side, the floor
+/// behind a panel is in its shadow, but the laser sees round its free end right behind it,
+/// where the footprint of a block seen from one side hides the floor to the block's depth.
+fn seen_round_an_end(behind: &[[bool; 2]]) -> bool {
+    let both = |b: &[bool; 2]| b[0] && b[1];
+    behind.len() > 2 * ROUND_END_BINS
+        && (behind[..ROUND_END_BINS].iter().all(both)
+            || behind[behind.len() - ROUND_END_BINS..].iter().all(both))
+}
+
+/// For each bin of `o`'s length ([`BIN_M`]), whether the floor was seen on either side of it
+/// within `beside_m` of its faces (cells of `frame`, `floor_seen`).
+fn floor_beside(
+    o: &DetectedObstacle,
+    floor_seen: &[bool],
+    frame: &ImageFrame,
+    beside_m: f64,
+) -> Vec<[bool; 2]> {
     let bins = (o.size[0] / BIN_M).ceil().max(1.0) as usize;
     let w = frame.width_px as usize;
     let seen = |q: DVec2| {
@@ -127,19 +180,24 @@ fn floor_both_sides(o: &DetectedObstacle, floor_seen: &[bool], frame: &ImageFram
             .is_some_and(|(col, row)| floor_seen[row as usize * w + col as usize])
     };
     let across = o.dir.perp();
-    let both = (0..bins)
-        .filter(|&k| {
+    let steps = (beside_m / frame.resolution_m).ceil().max(1.0) as usize;
+    (0..bins)
+        .map(|k| {
             let s = -o.size[0] / 2.0 + (k as f64 + 0.5) * BIN_M;
-            [-1.0, 1.0].iter().all(|side| {
-                let steps = (BESIDE_M / frame.resolution_m).ceil().max(1.0) as usize;
+            [-1.0, 1.0].map(|side| {
                 (1..=steps).any(|j| {
                     let d = o.size[1] / 2.0 + j as f64 * frame.resolution_m;
                     seen(o.center + o.dir * s + across * (side * d))
                 })
             })
         })
-        .count();
-    both as f64 / bins as f64
+        .collect()
+}
+
+/// The share of `bins` that hold.
+fn share(bins: impl ExactSizeIterator<Item = bool>) -> f64 {
+    let n = bins.len().max(1);
+    bins.filter(|b| *b).count() as f64 / n as f64
 }
 
 /// How far beside a partition's faces the floor is looked for: a laser at 0.5 m sees the floor
@@ -356,6 +414,30 @@ pub(super) mod tests {
         // the crate, was never seen.
         let mut points = floor(Some([1.0, 2.0, 3.0, 3.8]));
         points.extend(slab(1.0, 3.0, 2.0, 0.09, 1.5));
+        let found = classes_in(&points, &[]);
+        assert!(
+            found.iter().all(|(c, _)| *c != EntityClass::Wall),
+            "{found:?}"
+        );
+    }
+
+    #[test]
+    fn a_panel_seen_from_one_side_and_round_its_free_end_is_a_wall_and_a_block_is_not() {
+        // office-107 (seeds 106-110): a partial partition 1.6 m long from a room's far wall,
+        // scanned from one side only: the floor behind it lies in its shadow, but round its
+        // free end the laser sees it right behind the panel's face.
+        let panel = slab(1.0, 3.0, 2.0, 0.09, 1.4);
+        let mut points = floor(Some([1.0, 2.05, 2.75, 4.0]));
+        points.extend_from_slice(&panel);
+        let found = classes_in(&points, &[]);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
+        assert!(found[0].1.contains("seen from one side"), "{found:?}");
+        // A cabinet 0.4 m deep seen from the same side: round its end the floor is seen only
+        // beyond its back.
+        let mut points = floor(Some([1.0, 2.05, 3.05, 2.45]));
+        points.retain(|p| !(p.x <= 2.75 && p.y >= 2.45 && p.y <= 4.0));
+        points.extend_from_slice(&panel);
         let found = classes_in(&points, &[]);
         assert!(
             found.iter().all(|(c, _)| *c != EntityClass::Wall),

@@ -170,8 +170,8 @@ pub(super) fn drop_wall_slivers(
 }
 
 /// Whether another of `walls` crosses wall `k`'s line between the part of it found and a
-/// stretch `along` its line (metres from its origin) beyond it, within the other wall's
-/// extent: the wall found ends there, or meets that wall, and does not go on through it.
+/// stretch `along` its line (metres from its origin) beyond it: the wall found ends there, or
+/// meets that wall, and does not go on through it.
 pub(super) fn walled_off(k: usize, along: (f64, f64), walls: &[WallFit]) -> bool {
     let w = &walls[k];
     let gap = if along.1 < 0.0 {
@@ -189,7 +189,9 @@ pub(super) fn walled_off(k: usize, along: (f64, f64), walls: &[WallFit]) -> bool
         }
         let s = -x.line.coords(w.line.origin).1 / rate;
         let (t, _) = x.line.coords(w.line.at(s));
-        s > gap.0 && s < gap.1 && t >= -x.thickness / 2.0 && t <= x.length + x.thickness / 2.0
+        // (across it, not ending on it: a wall meeting `w`'s line at a corner or a T is no
+        // crossing, and `w` may go on past it)
+        s > gap.0 && s < gap.1 && t > w.thickness && t < x.length - w.thickness
     })
 }
 
@@ -404,9 +406,11 @@ mod tests {
         // Without the corridor's walls, it is the room's wall going on beyond its found end.
         let out = drop_wall_slivers(vec![partition.clone()], &[room_wall.clone()], 0.2, 0.25);
         assert!(out.is_empty(), "{out:#?}");
-        // A wall along the line's far side that ends short of it does not cross it.
-        let short = [room_wall, wall_fit([4.8, 1.0], true, 5.0)];
-        let out = drop_wall_slivers(vec![partition], &short, 0.2, 0.25);
-        assert!(out.is_empty(), "{out:#?}");
+        // A wall that ends short of the line, or on it (a T), does not cross it.
+        for origin in [[4.8, 1.0], [4.8, 0.075]] {
+            let short = [room_wall.clone(), wall_fit(origin, true, 5.0)];
+            let out = drop_wall_slivers(vec![partition.clone()], &short, 0.2, 0.25);
+            assert!(out.is_empty(), "{out:#?}");
+        }
     }
 }

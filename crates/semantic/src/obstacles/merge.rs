@@ -4,7 +4,6 @@
 
 use super::fit::{convex_hull, intersection_area, polygon_area, rect_corners};
 use super::{DetectedObstacle, ObstacleConfig};
-use crate::walls::WallFit;
 use glam::DVec2;
 
 /// Parallel: axes within 10 degrees (a beam's or duct's pieces, a wall's residue; farther
@@ -135,64 +134,6 @@ pub(super) fn join_collinear(
             return found;
         }
     }
-}
-
-/// The clusters without wall residue: those at most `max_across_m` thin, parallel to a wall
-/// (or as thin both ways) and lying wholly within `reach_m` of its faces' planes: points a
-/// wall's slab missed where its faces are rough, bent or blurred by mixed pixels, or where the
-/// wall goes on beyond the part of it found (a corridor's wall seen too sparsely far away, a
-/// door's jamb), not things standing there. A wall does not go on through another wall
-/// crossing its line ([`walled_off`]): a partition across the corridor from a room's wall, on
-/// its line, is no residue of it.
-pub(super) fn drop_wall_slivers(
-    found: Vec<DetectedObstacle>,
-    walls: &[WallFit],
-    max_across_m: f64,
-    reach_m: f64,
-) -> Vec<DetectedObstacle> {
-    found
-        .into_iter()
-        .filter(|o| {
-            o.size[1] > max_across_m
-                || !walls.iter().enumerate().any(|(k, w)| {
-                    let half = w.thickness / 2.0 + reach_m;
-                    let corners = rect_corners(o.center, o.dir, o.size).map(|q| w.line.coords(q));
-                    let along = corners.iter().fold((f64::MAX, f64::MIN), |(lo, hi), c| {
-                        (lo.min(c.0), hi.max(c.0))
-                    });
-                    // (a cluster thin both ways has no direction to compare)
-                    (o.size[0] <= max_across_m || w.line.dir.dot(o.dir).abs() >= PARALLEL_COS)
-                        && corners.iter().all(|c| c.1.abs() <= half)
-                        && !walled_off(k, along, walls)
-                })
-        })
-        .collect()
-}
-
-/// Whether another of `walls` crosses wall `k`'s line between the part of it found and a
-/// stretch `along` its line (metres from its origin) beyond it: the wall found ends there, or
-/// meets that wall, and does not go on through it.
-pub(super) fn walled_off(k: usize, along: (f64, f64), walls: &[WallFit]) -> bool {
-    let w = &walls[k];
-    let gap = if along.1 < 0.0 {
-        (along.1, 0.0)
-    } else if along.0 > w.length {
-        (w.length, along.0)
-    } else {
-        return false;
-    };
-    walls.iter().enumerate().any(|(j, x)| {
-        // Where `w`'s line meets `x`'s: the distance from `x`'s line changes by `rate` a metre.
-        let rate = w.line.dir.dot(x.line.normal());
-        if j == k || rate.abs() < (1.0 - PARALLEL_COS * PARALLEL_COS).sqrt() {
-            return false;
-        }
-        let s = -x.line.coords(w.line.origin).1 / rate;
-        let (t, _) = x.line.coords(w.line.at(s));
-        // (across it, not ending on it: a wall meeting `w`'s line at a corner or a T is no
-        // crossing, and `w` may go on past it)
-        s > gap.0 && s < gap.1 && t > w.thickness && t < x.length - w.thickness
-    })
 }
 
 /// `k` takes `o` in: the box along `dir` around both, their hulls, heights and points.
@@ -341,76 +282,5 @@ mod tests {
         assert_eq!(out.len(), 2, "{out:#?}");
         let d = out.iter().find(|o| o.size[0] > 20.0).expect("one duct");
         assert!((d.size[0] - 23.5).abs() < 1e-9 && (d.size[1] - 0.5).abs() < 1e-9);
-    }
-
-    #[test]
-    fn thin_clusters_along_a_wall_face_or_its_continuation_are_residue() {
-        let wall = WallFit {
-            line: crate::points::Line2 {
-                origin: DVec2::ZERO,
-                dir: DVec2::X,
-            },
-            length: 10.0,
-            thickness: 0.2,
-            measured: true,
-            faces: vec![0.1, -0.1],
-            free_side: 1.0,
-            z_range: (0.0, 2.5),
-            support: 1000,
-            coverage: 1.0,
-            rules: Vec::new(),
-        };
-        let sliver = cluster([3.0, 0.2], DVec2::X, [1.5, 0.05], (0.0, 2.0), false);
-        let shelf = cluster([6.0, 0.45], DVec2::X, [1.5, 0.5], (0.0, 2.0), false);
-        let post = cluster([3.0, 2.0], DVec2::X, [0.3, 0.05], (0.0, 2.0), false);
-        // A fragment of the same wall's face 4 m beyond its found end, thin both ways.
-        let beyond = cluster([14.0, 0.15], DVec2::Y, [0.08, 0.05], (0.0, 2.4), false);
-        let out = drop_wall_slivers(vec![sliver, shelf, post, beyond], &[wall], 0.1, 0.2);
-        assert_eq!(out.len(), 2, "{out:#?}");
-        assert!(out.iter().all(|o| o.center.y > 0.3));
-    }
-
-    /// A wall along x from 0 to `length`, 0.15 m thick, or along y from `origin` if `across`.
-    fn wall_fit(origin: [f64; 2], across: bool, length: f64) -> WallFit {
-        WallFit {
-            line: crate::points::Line2 {
-                origin: DVec2::from_array(origin),
-                dir: if across { DVec2::Y } else { DVec2::X },
-            },
-            length,
-            thickness: 0.15,
-            measured: true,
-            faces: vec![0.075, -0.075],
-            free_side: 1.0,
-            z_range: (0.0, 2.5),
-            support: 1000,
-            coverage: 1.0,
-            rules: Vec::new(),
-        }
-    }
-
-    #[test]
-    fn a_partition_on_a_walls_line_beyond_a_crossing_wall_is_no_residue_of_it() {
-        // office-97 (seeds 96-100): a room's wall ends at the corridor; across the corridor a
-        // partial partition 1.9 m long stands 0.1 m off its line. The corridor's walls cross
-        // the line between: the room's wall does not go on through them.
-        let room_wall = wall_fit([0.0, 0.0], false, 4.7);
-        let corridor = [
-            wall_fit([4.8, -6.0], true, 12.0),
-            wall_fit([7.5, -6.0], true, 12.0),
-        ];
-        let partition = cluster([10.0, 0.1], DVec2::X, [1.9, 0.08], (0.0, 1.4), false);
-        let walls = [room_wall.clone(), corridor[0].clone(), corridor[1].clone()];
-        let out = drop_wall_slivers(vec![partition.clone()], &walls, 0.2, 0.25);
-        assert_eq!(out.len(), 1, "{out:#?}");
-        // Without the corridor's walls, it is the room's wall going on beyond its found end.
-        let out = drop_wall_slivers(vec![partition.clone()], &[room_wall.clone()], 0.2, 0.25);
-        assert!(out.is_empty(), "{out:#?}");
-        // A wall that ends short of the line, or on it (a T), does not cross it.
-        for origin in [[4.8, 1.0], [4.8, 0.075]] {
-            let short = [room_wall.clone(), wall_fit(origin, true, 5.0)];
-            let out = drop_wall_slivers(vec![partition.clone()], &short, 0.2, 0.25);
-            assert!(out.is_empty(), "{out:#?}");
-        }
     }
 }

@@ -39,7 +39,8 @@
 //!    its body), and, if lower or if standing beside it and higher (a cabinet behind a desk),
 //!    inside its footprint's hull, is part of it; overhead pieces
 //!    continuing each other along one line across gaps up to `column_max_across_m` (a duct cut
-//!    where beams cross it) are one; thin clusters along a wall's face are its residue, dropped;
+//!    where beams cross it) are one; thin clusters along a wall's face are its residue,
+//!    dropped ([`residue`]; not beyond another wall crossing its line);
 //!    two thin clusters side by side a thing's depth apart, of one height, are its faces (a
 //!    seat seen along its front and back edges; or a backrest cut off a desk and the seat in
 //!    front of it, [`faces`]); a standing cluster along a wall
@@ -55,7 +56,8 @@
 //!    one may be one with a desk or a chair against it: the thin slab of its returns holding
 //!    the most of them is looked at so ([`slabs`]), and what lies beside the slab is fitted
 //!    again as obstacles. Thin pieces standing on one line across short gaps are looked at as
-//!    one partition seen in pieces ([`pieces`]).
+//!    one partition seen in pieces ([`pieces`]). Thin clusters along a partition found here
+//!    (a glass one's returns above head height) are its residue, dropped ([`residue`]).
 
 mod backing;
 mod classify;
@@ -77,6 +79,7 @@ mod necks;
 mod partitions;
 mod pieces;
 mod pillar_rows;
+mod residue;
 mod slabs;
 mod tops;
 
@@ -93,11 +96,12 @@ use frames::{split_frame, MAX_FRAME_FILL, MIN_FRAME_ACROSS_M};
 use fringe::without_fringe;
 use glam::{DVec2, Vec3};
 use levels::split_levels;
-use merge::{absorb_parts, drop_wall_slivers, join_collinear};
+use merge::{absorb_parts, join_collinear};
 use necks::split_at_necks;
 use partitions::classify_partition;
 use pieces::join_partition_pieces;
 use pillar_rows::{may_be_a_pillar_row, split_pillar_row};
+use residue::{drop_partition_residue, drop_wall_slivers};
 use tops::split_beside_tops;
 
 /// A surface the laser saw of a thing is at least this large (m²): a seat 0.45 m square seen in
@@ -301,7 +305,13 @@ pub(crate) fn find_obstacles(
     }
     out.extend(stood_against);
     // A partition seen in pieces along one line is one wall.
-    join_partition_pieces(out, sc, [&low_grid, &high_grid], &seen, &frame, c)
+    let out = join_partition_pieces(out, sc, [&low_grid, &high_grid], &seen, &frame, c);
+    // What a partition found here left along its top is its residue.
+    drop_partition_residue(
+        out,
+        c.sliver_max_across_m,
+        c.wall_margin_m + c.sliver_max_across_m,
+    )
 }
 
 /// A 10 x 6 m grid of 10 cm cells (the frames' and necks' tests).

@@ -1,0 +1,205 @@
+//! Tests of partial-height walls (`partitions`).
+
+use super::super::{find_obstacles, test_scene};
+use super::*;
+use glam::Vec3;
+
+/// Both faces of a slab 0.08 m thick along x from `x0` to `x1` at `y`, sampled every 2 cm
+/// from `z0` to `z1`.
+pub(crate) fn slab(x0: f32, x1: f32, y: f32, z0: f32, z1: f32) -> Vec<Vec3> {
+    let mut out = Vec::new();
+    let (nx, nz) = (((x1 - x0) / 0.02) as usize, ((z1 - z0) / 0.02) as usize);
+    for i in 0..=nx {
+        for k in 0..=nz {
+            for face in [-0.04, 0.04] {
+                out.push(Vec3::new(
+                    x0 + i as f32 * 0.02,
+                    y + face,
+                    z0 + k as f32 * 0.02,
+                ));
+            }
+        }
+    }
+    out
+}
+
+/// The floor of the 8 x 8 m test area sampled every 5 cm, but where `hidden` (x0, y0, x1,
+/// y1) covers it.
+fn floor(hidden: Option<[f32; 4]>) -> Vec<Vec3> {
+    let mut out = Vec::new();
+    for i in 0..160 {
+        for j in 0..160 {
+            let (x, y) = (i as f32 * 0.05, j as f32 * 0.05);
+            if hidden.is_some_and(|[x0, y0, x1, y1]| x >= x0 && x <= x1 && y >= y0 && y <= y1) {
+                continue;
+            }
+            out.push(Vec3::new(x, y, 0.0));
+        }
+    }
+    out
+}
+
+pub(crate) fn classes(points: &[Vec3]) -> Vec<(EntityClass, String)> {
+    classes_with_walls(points, &[])
+}
+
+/// The classes of what `points` (and the whole floor) hold, with `walls`.
+fn classes_with_walls(
+    points: &[Vec3],
+    walls: &[crate::walls::WallFit],
+) -> Vec<(EntityClass, String)> {
+    let mut all = floor(None);
+    all.extend_from_slice(points);
+    classes_in(&all, walls)
+}
+
+fn classes_in(points: &[Vec3], walls: &[crate::walls::WallFit]) -> Vec<(EntityClass, String)> {
+    found_in(points, walls)
+        .into_iter()
+        .map(|o| (o.class, o.rules.last().cloned().unwrap_or_default()))
+        .collect()
+}
+
+/// What the obstacle stage finds in `points` with `walls`.
+fn found_in(points: &[Vec3], walls: &[crate::walls::WallFit]) -> Vec<DetectedObstacle> {
+    let explained = vec![false; points.len()];
+    let image = ImageFrame {
+        origin_m: [0.0, 8.0],
+        resolution_m: 0.05,
+        width_px: 160,
+        height_px: 160,
+    };
+    let scene = test_scene(points, &explained, 3.0, &image, walls);
+    find_obstacles(&scene, &ObstacleConfig::default(), 1 << 20)
+}
+
+#[test]
+fn a_thin_slab_standing_on_the_floor_is_a_partial_height_wall() {
+    let found = classes(&slab(1.0, 3.0, 2.0, 0.09, 1.4));
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
+    assert!(found[0].1.contains("partial-height wall"), "{found:?}");
+}
+
+#[test]
+fn a_thin_slab_clear_of_the_floor_or_low_or_short_stays_an_obstacle() {
+    for (what, points) in [
+        // A car's side: its body 0.25 m above the floor between the wheels.
+        ("clear of the floor", slab(1.0, 4.0, 2.0, 0.25, 1.3)),
+        // A bench back or a kerb: under the partition height.
+        ("low", slab(1.0, 3.0, 2.0, 0.09, 0.8)),
+        // As long as it is thick: a post.
+        ("short", slab(1.0, 1.3, 2.0, 0.09, 1.4)),
+    ] {
+        let found = classes(&points);
+        assert_eq!(found.len(), 1, "{what}: {found:?}");
+        assert_eq!(found[0].0, EntityClass::Obstacle, "{what}: {found:?}");
+    }
+}
+
+#[test]
+fn a_slab_with_gaps_at_the_floor_is_no_wall() {
+    // A row of shelves on legs: the face comes down to the floor only at the legs.
+    let mut points = slab(1.0, 3.0, 2.0, 0.3, 1.6);
+    for x in [1.0, 1.5, 2.0, 2.5, 3.0] {
+        points.extend(slab(x, x + 0.04, 2.0, 0.09, 0.3));
+    }
+    let found = classes(&points);
+    assert!(
+        found.iter().all(|(c, _)| *c != EntityClass::Wall),
+        "{found:?}"
+    );
+}
+
+#[test]
+fn a_slab_along_a_wall_nearer_than_a_passage_is_a_cabinet_front() {
+    // A wall along y = 3 (0.15 m thick), x 0..6.
+    let wall = |y: f64| crate::walls::WallFit {
+        line: crate::points::Line2 {
+            origin: DVec2::new(0.0, y),
+            dir: DVec2::X,
+        },
+        length: 6.0,
+        thickness: 0.15,
+        measured: true,
+        faces: vec![-0.075, 0.075],
+        free_side: -1.0,
+        z_range: (0.0, 3.0),
+        support: 1000,
+        coverage: 1.0,
+        rules: Vec::new(),
+    };
+    // The front of a 0.45 m deep cabinet against it, and a partition 1.5 m from it.
+    let front = slab(1.0, 3.0, 2.5, 0.09, 1.4);
+    let found = classes_with_walls(&front, &[wall(3.0)]);
+    assert_eq!(found[0].0, EntityClass::Obstacle, "{found:?}");
+    let found = classes_with_walls(&front, &[wall(4.0)]);
+    assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
+}
+
+#[test]
+fn what_hangs_over_a_low_streak_does_not_raise_its_face_to_a_wall() {
+    // garage-64 (seeds 61-65): the foot of a person's streak left by the transients filter
+    // (0.09-0.4 m along 1.6 m), a few returns up to 1.3 m at one end, under a beam's
+    // returns at 2.4-2.6 m. The beam stands in the same cells, over the streak's top: it
+    // is no part of the streak's face.
+    let mut points = slab(1.0, 2.6, 2.0, 0.09, 0.4);
+    points.extend(slab(2.5, 2.56, 2.0, 1.2, 1.3));
+    points.extend(slab(1.0, 2.6, 2.0, 2.4, 2.6));
+    let found = classes(&points);
+    assert!(
+        found.iter().all(|(c, _)| *c != EntityClass::Wall),
+        "{found:?}"
+    );
+}
+
+#[test]
+fn the_face_of_a_block_is_no_wall() {
+    // A crate 1.5 m high seen from its south side only: the floor behind its face, under
+    // the crate, was never seen.
+    let mut points = floor(Some([1.0, 2.0, 3.0, 3.8]));
+    points.extend(slab(1.0, 3.0, 2.0, 0.09, 1.5));
+    let found = classes_in(&points, &[]);
+    assert!(
+        found.iter().all(|(c, _)| *c != EntityClass::Wall),
+        "{found:?}"
+    );
+}
+
+#[test]
+fn a_panel_seen_from_one_side_and_round_its_free_end_is_a_wall_and_a_block_is_not() {
+    // office-107 (seeds 106-110): a partial partition 1.6 m long from a room's far wall,
+    // scanned from one side only: the floor behind it lies in its shadow, but round its
+    // free end the laser sees it right behind the panel's face.
+    let panel = slab(1.0, 3.0, 2.0, 0.09, 1.4);
+    let mut points = floor(Some([1.0, 2.05, 2.75, 4.0]));
+    points.extend_from_slice(&panel);
+    let found = classes_in(&points, &[]);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
+    assert!(found[0].1.contains("seen from one side"), "{found:?}");
+    // A cabinet 0.4 m deep seen from the same side: round its end the floor is seen only
+    // beyond its back.
+    let mut points = floor(Some([1.0, 2.05, 3.05, 2.45]));
+    points.retain(|p| !(p.x <= 2.75 && p.y >= 2.45 && p.y <= 4.0));
+    points.extend_from_slice(&panel);
+    let found = classes_in(&points, &[]);
+    assert!(
+        found.iter().all(|(c, _)| *c != EntityClass::Wall),
+        "{found:?}"
+    );
+}
+
+#[test]
+fn a_foot_seen_in_every_other_bin_still_stands_on_the_floor() {
+    // At range the laser's rows leave 10 cm stretches of a partition's foot without a
+    // return here and there: its face stands on the floor all the same.
+    let mut points = slab(1.0, 3.0, 2.0, 0.16, 1.4);
+    for k in 0..10 {
+        let x = 1.0 + 0.2 * k as f32;
+        points.extend(slab(x, x + 0.06, 2.0, 0.09, 0.16));
+    }
+    let found = classes(&points);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
+}

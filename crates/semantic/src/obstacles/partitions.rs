@@ -8,8 +8,9 @@
 //! beside it on both sides (`partition_min_floor_both_sides` of its length), while a face of a
 //! block (a car, a crate, a cabinet) has the block's unseen footprint behind it. A panel seen
 //! from one side has its shadow behind it instead, but round its free end the laser sees the
-//! floor right behind its face, where a block's body would stand. A slab along a wall, nearer
-//! to it than a passage is wide (`partition_min_passage_m`), divides no space: it is the front
+//! floor right behind its face and nothing standing on it, where a block's body would stand
+//! (the foot of a block's end face is seen there, as low as the floor; a desk's top is not).
+//! A slab along a wall, nearer to it than a passage is wide (`partition_min_passage_m`), divides no space: it is the front
 //! of a cabinet or a shelf against that wall, seen from the room.
 
 use super::classify::set_box_rule;
@@ -108,7 +109,7 @@ pub(super) fn partition_rule(
     {
         return None;
     }
-    let divides = divides_space(o, floor_seen, frame, c)?;
+    let divides = divides_space(o, sc, floor_seen, grids[0], frame, c)?;
     let standing = standing_fraction(o, sc, &points_in_box(o, sc, grids, frame), c);
     (standing >= c.partition_min_standing).then(|| format!(
         "a partial-height wall: {length:.2} m long, {across:.2} m thick, {height:.2} m high; its face seen from within {:.2} m of the floor up to its top along {:.0} % of its length (a wall stands on the floor along {:.0} % at least); {divides}",
@@ -121,14 +122,19 @@ pub(super) fn partition_rule(
 /// How `o` divides space (see the module docs), or `None` if it may be a block's face: the
 /// floor seen on both sides of it along `partition_min_floor_both_sides` of its length, or, a
 /// panel seen from one side, the floor seen on that side along as much of it and round its
-/// free end right behind its face ([`seen_round_an_end`]).
+/// free end right behind its face, with nothing standing on it there ([`end_bins`]): the
+/// foot of a block's end face is seen as low as the floor (`low`: the low band's points by
+/// cell; a face stands on the floor where it comes down to within `partition_max_bottom_m` of
+/// it, while a desk's top over the floor seen between its legs does not).
 fn divides_space(
     o: &DetectedObstacle,
+    sc: &ObstacleScene,
     floor_seen: &[bool],
+    low: &BandGrid,
     frame: &ImageFrame,
     c: &ObstacleConfig,
 ) -> Option<String> {
-    let beside = floor_beside(o, floor_seen, frame, BESIDE_M);
+    let beside = floor_beside(o, |k| floor_seen[k], frame, BESIDE_M, &bin_centres(o));
     let both = share(beside.iter().map(|[a, b]| *a && *b));
     if both >= c.partition_min_floor_both_sides {
         return Some(format!(
@@ -137,9 +143,20 @@ fn divides_space(
         ));
     }
     let one = share(beside.iter().map(|[a, b]| *a || *b));
-    let behind = floor_beside(o, floor_seen, frame, BEHIND_M);
-    (one >= c.partition_min_floor_both_sides && seen_round_an_end(&behind)).then(|| format!(
-        "a panel seen from one side: the floor seen beside it along {:.0} % of its length, and on both sides within {BEHIND_M:.2} m of its faces along its last {:.1} m or more at an end, where a block's body would stand",
+    let stands = |k: usize| {
+        let foot = sc.floor + c.partition_max_bottom_m;
+        low.points(k)
+            .iter()
+            .any(|&i| (sc.points[i as usize].z as f64) <= foot)
+    };
+    let free = |k: usize| floor_seen[k] && !stands(k);
+    let round_an_end = o.size[0] > 2.0 * ROUND_END_BINS as f64 * BIN_M
+        && [-1.0, 1.0].into_iter().any(|end| {
+            let behind = floor_beside(o, free, frame, BEHIND_M, &end_bins(o, end));
+            behind.iter().all(|[a, b]| *a && *b)
+        });
+    (one >= c.partition_min_floor_both_sides && round_an_end).then(|| format!(
+        "a panel seen from one side: the floor seen beside it along {:.0} % of its length, and on both sides within {BEHIND_M:.2} m of its faces with nothing on it along its last {:.1} m or more at an end, where a block's body would stand",
         100.0 * one,
         ROUND_END_BINS as f64 * BIN_M
     ))
@@ -153,37 +170,44 @@ const BEHIND_M: f64 = 0.15;
 /// than a block's corner lets the laser see behind its front by the mixed pixels at its edge.
 const ROUND_END_BINS: usize = 2;
 
-/// Whether the floor is seen on both sides of a panel within [`BEHIND_M`] of its faces along
-/// the first or the last [`ROUND_END_BINS`] bins of its length: seen from one side, the floor
-/// behind a panel is in its shadow, but the laser sees round its free end right behind it,
-/// where the footprint of a block seen from one side hides the floor to the block's depth.
-fn seen_round_an_end(behind: &[[bool; 2]]) -> bool {
-    let both = |b: &[bool; 2]| b[0] && b[1];
-    behind.len() > 2 * ROUND_END_BINS
-        && (behind[..ROUND_END_BINS].iter().all(both)
-            || behind[behind.len() - ROUND_END_BINS..].iter().all(both))
+/// The centres of the [`ROUND_END_BINS`] bins of [`BIN_M`] at `o`'s end `end` (-1: its start,
+/// 1: its end), within its length, as offsets along it from its centre. Seen from one side, the
+/// floor behind a panel is in its shadow, but the laser sees round its free end right behind
+/// it, where the footprint of a block seen from one side hides the floor to the block's depth.
+fn end_bins(o: &DetectedObstacle, end: f64) -> Vec<f64> {
+    (0..ROUND_END_BINS)
+        .map(|k| end * (o.size[0] / 2.0 - (k as f64 + 0.5) * BIN_M))
+        .collect()
 }
 
-/// For each bin of `o`'s length ([`BIN_M`]), whether the floor was seen on either side of it
-/// within `beside_m` of its faces (cells of `frame`, `floor_seen`).
+/// The centres of the bins of [`BIN_M`] along `o`'s length, as offsets from its centre.
+fn bin_centres(o: &DetectedObstacle) -> Vec<f64> {
+    let bins = (o.size[0] / BIN_M).ceil().max(1.0) as usize;
+    (0..bins)
+        .map(|k| -o.size[0] / 2.0 + (k as f64 + 0.5) * BIN_M)
+        .collect()
+}
+
+/// For each offset `along` `o`'s length from its centre, whether the floor was seen on either
+/// side of it within `beside_m` of its faces (cells of `frame` for which `floor_seen` holds).
 fn floor_beside(
     o: &DetectedObstacle,
-    floor_seen: &[bool],
+    floor_seen: impl Fn(usize) -> bool,
     frame: &ImageFrame,
     beside_m: f64,
+    along: &[f64],
 ) -> Vec<[bool; 2]> {
-    let bins = (o.size[0] / BIN_M).ceil().max(1.0) as usize;
     let w = frame.width_px as usize;
     let seen = |q: DVec2| {
         frame
             .pixel_of(q.x, q.y)
-            .is_some_and(|(col, row)| floor_seen[row as usize * w + col as usize])
+            .is_some_and(|(col, row)| floor_seen(row as usize * w + col as usize))
     };
     let across = o.dir.perp();
     let steps = (beside_m / frame.resolution_m).ceil().max(1.0) as usize;
-    (0..bins)
-        .map(|k| {
-            let s = -o.size[0] / 2.0 + (k as f64 + 0.5) * BIN_M;
+    along
+        .iter()
+        .map(|&s| {
             [-1.0, 1.0].map(|side| {
                 (1..=steps).any(|j| {
                     let d = o.size[1] / 2.0 + j as f64 * frame.resolution_m;

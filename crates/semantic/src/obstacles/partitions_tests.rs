@@ -178,11 +178,48 @@ fn a_panel_seen_from_one_side_and_round_its_free_end_is_a_wall_and_a_block_is_no
     assert_eq!(found.len(), 1, "{found:?}");
     assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
     assert!(found[0].1.contains("seen from one side"), "{found:?}");
+    // office-108: a desk stands beside its free end, on the shadowed side; the floor is seen
+    // under the desk's top, between its legs, and nothing stands on it there.
+    let mut with_desk = points.clone();
+    for i in 0..=40 {
+        for j in 0..=35 {
+            let (x, y) = (2.6 + i as f32 * 0.02, 2.08 + j as f32 * 0.02);
+            with_desk.push(Vec3::new(x, y, 0.73));
+            if x >= 2.75 {
+                with_desk.push(Vec3::new(x, y, 0.0));
+            }
+        }
+    }
+    let found = classes_in(&with_desk, &[]);
+    assert!(
+        found
+            .iter()
+            .any(|(c, why)| *c == EntityClass::Wall && why.contains("one side")),
+        "{found:?}"
+    );
     // A cabinet 0.4 m deep seen from the same side: round its end the floor is seen only
     // beyond its back.
     let mut points = floor(Some([1.0, 2.05, 3.05, 2.45]));
     points.retain(|p| !(p.x <= 2.75 && p.y >= 2.45 && p.y <= 4.0));
     points.extend_from_slice(&panel);
+    let found = classes_in(&points, &[]);
+    assert!(
+        found.iter().all(|(c, _)| *c != EntityClass::Wall),
+        "{found:?}"
+    );
+    // A car 1.8 m deep seen from the same side and round its end (the walls_clutter car
+    // park): the foot of its end face is seen as low as the floor right behind its side.
+    let mut points = floor(Some([1.0, 2.05, 3.04, 3.8]));
+    points.extend_from_slice(&panel);
+    // (The laser's noise spreads the end face 2-3 cm about its plane, and the side's box
+    // reaches as far.)
+    for j in 0..=85 {
+        for k in 0..=70 {
+            let x = if (j + k) % 2 == 0 { 2.99 } else { 3.04 };
+            points.push(Vec3::new(x, 2.05 + j as f32 * 0.02, k as f32 * 0.02));
+        }
+    }
+    points.extend(slab(3.0, 3.04, 2.0, 0.09, 1.4));
     let found = classes_in(&points, &[]);
     assert!(
         found.iter().all(|(c, _)| *c != EntityClass::Wall),

@@ -10,8 +10,9 @@
 //! from one side has its shadow behind it instead, but round its free end the laser sees the
 //! floor right behind its face and nothing standing on it, where a block's body would stand
 //! (the foot of a block's end face is seen there, as low as the floor; a desk's top is not).
-//! A slab along a wall, nearer to it than a passage is wide (`partition_min_passage_m`), divides no space: it is the front
-//! of a cabinet or a shelf against that wall, seen from the room.
+//! A slab along a wall, nearer to it than a passage is wide (`partition_min_passage_m`),
+//! divides no space: it is the front of a cabinet or a shelf against that wall, seen from the
+//! room.
 
 use super::classify::set_box_rule;
 use super::cluster::BandGrid;
@@ -143,8 +144,8 @@ fn divides_space(
         ));
     }
     let one = share(beside.iter().map(|[a, b]| *a || *b));
+    let foot = sc.floor + c.partition_max_bottom_m;
     let stands = |k: usize| {
-        let foot = sc.floor + c.partition_max_bottom_m;
         low.points(k)
             .iter()
             .any(|&i| (sc.points[i as usize].z as f64) <= foot)

@@ -143,11 +143,16 @@ impl Search<'_> {
 /// found ending on a landing, nothing beyond it climbing as a flight) continued, in the same
 /// steps, through what was read as its landing: `lone` is one flight from the floor, and `one`
 /// starts where it starts, climbs the same way with the same rise (within [`SAME_RISE`]), has
-/// more steps and a bin on every one of its levels. A mid landing read as steps would leave the
+/// more steps, a bin on every one of its levels, and steps past the lone flight's top step (over
+/// what was read as its landing). A mid landing read as steps would leave the
 /// levels on it empty (a landing is deeper than a tread, and level); here the "landing" was a
 /// tread with something beside the flight standing a rise over it (office-101 of seeds
 /// 101-105: a 1 m box beside the side face of a 7-step flight, over its third and fourth
-/// steps, held the running maximum level for 0.8 m, and the flight read as 6 steps).
+/// steps, held the running maximum level for 0.8 m, and the flight read as 6 steps). A flight
+/// read along all of a part with more, lower steps over the lone flight's own length climbs
+/// through nothing: mixed pixels at the far edge of its top landing, a rise's fraction over it,
+/// had set its top high (office-117 of seeds 116-120: 5 steps of 0.172 m x 0.255 m, every level
+/// seen, lost to 6 of 0.160 m x 0.200 m whose top riser stood where the 5 steps' did).
 fn climbs_through(one: &DetectedStairs, lone: &[DetectedStairs], c: &StairsConfig) -> bool {
     let [lone] = lone else {
         return false;
@@ -155,12 +160,17 @@ fn climbs_through(one: &DetectedStairs, lone: &[DetectedStairs], c: &StairsConfi
     let same_way = one.dir.dot(lone.dir) >= c.snap_direction_deg.to_radians().cos();
     let same_start = (one.start - lone.start).dot(one.dir).abs() <= one.run.min(lone.run) / 2.0;
     let same_rise = (one.rise - lone.rise).abs() <= SAME_RISE * lone.rise;
+    // (its steps go on past the lone flight's top step, over what was read as its landing)
+    let top_front =
+        |f: &DetectedStairs| f.start.dot(one.dir) + f64::from(f.steps.saturating_sub(1)) * f.run;
+    let past_its_top = top_front(one) - top_front(lone) >= lone.run / 2.0;
     lone.base == 0.0
         && one.base == 0.0
         && same_way
         && same_start
         && same_rise
         && one.steps > lone.steps
+        && past_its_top
         && one.confidence >= 1.0
 }
 

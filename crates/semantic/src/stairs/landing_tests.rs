@@ -1,8 +1,9 @@
-//! Regressions of staircases with a mid landing (`flights`) and of what can pass for one:
-//! the returns over each, from the bench's maps, replayed through a part's staircase search.
+//! Regressions of staircases with a mid landing (`flights`), of what can pass for one, and of
+//! flights ending on their top landing: the returns over each, from the bench's maps, replayed
+//! through a part's staircase search.
 
 use super::tests::{
-    assert_two_flights, returns, returns_and_surface, search, search_as_mapped,
+    assert_flight, assert_two_flights, returns, returns_and_surface, search, search_as_mapped,
     search_as_mapped_on, search_as_mapped_with_surface,
 };
 use glam::DVec2;
@@ -197,4 +198,35 @@ fn mixed_pixels_over_a_landings_edge_leave_the_lower_flights_rise() {
     assert_eq!((lower.steps, upper.steps), (4, 5), "{found:?}");
     assert!((lower.rise - 0.184).abs() < 0.01, "rise {}", lower.rise);
     assert!((upper.base - 0.734).abs() < 0.03, "base {}", upper.base);
+}
+
+/// Regression: fresh office-117 of seeds 116-120: a 5-step flight (0.172 m x 0.255 m) seen
+/// from its side only, with mixed pixels up to 0.11 m over the far edge of its top landing,
+/// read as 6 steps of 0.160 m x 0.200 m climbing to them over the same length. The flight
+/// ending on its landing (fitted on the returns before that edge) wins: the 6 steps climb
+/// through no landing, their top riser standing where the 5 steps' does (`climbs_through`).
+/// (The part's returns, from the bench's map.)
+#[test]
+fn mixed_pixels_over_a_top_landings_far_edge_add_no_step() {
+    let (all, surface) = returns_and_surface(include_str!(
+        "../../tests/data/office117_top_landing_edge.txt"
+    ));
+    assert_eq!((all.len(), surface.len()), (945, 941));
+    let found = search_as_mapped_with_surface(&all, &surface, DVec2::new(2.3, 1.0));
+    assert_flight(found, (0.172, 0.255, 5));
+}
+
+/// Regression: office-43's 4-step flight (0.186 m x 0.282 m), scanned again on 2026-12-04 and
+/// seen from its side, with returns up to 0.12 m over its top landing just past its far edge,
+/// read as 5 steps of 0.172 m whose fifth stood on that landing: the flight ending on its
+/// landing lost to them as if they climbed on through it, though their fourth level lies 5 cm
+/// under it (`climbs_through`). (The part's returns, from the bench's map.)
+#[test]
+fn a_flight_in_other_steps_climbs_through_no_landing() {
+    let (all, surface) = returns_and_surface(include_str!(
+        "../../tests/data/office43_top_landing_edge.txt"
+    ));
+    assert_eq!((all.len(), surface.len()), (1037, 1036));
+    let found = search_as_mapped_with_surface(&all, &surface, DVec2::new(2.2, 1.25));
+    assert_flight(found, (0.186, 0.282, 4));
 }

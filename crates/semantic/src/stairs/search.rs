@@ -3,7 +3,7 @@
 //! best along each of its straight faces in plan, each on its own (see `side_faces`).
 
 use super::plausible::finish;
-use super::profile::{profile, profile_other_count, Profile, SAME_RISE};
+use super::profile::{profile, profile_other_count, Profile};
 use super::{flights, side_faces, DetectedStairs, StairsConfig};
 use crate::scene::Scene;
 use glam::DVec2;
@@ -139,27 +139,35 @@ impl Search<'_> {
     }
 }
 
+/// A level's tolerance, a share of the rise (as the grid of levels takes a plateau for a
+/// level, see `levels`).
+const ON_A_LEVEL: f64 = 0.25;
+
 /// True if `one` (a flight read along all of a part) is the lone flight `lone` (a flight
 /// found ending on a landing, nothing beyond it climbing as a flight) continued, in the same
 /// steps, through what was read as its landing: `lone` is one flight from the floor, and `one`
-/// starts where it starts, climbs the same way with the same rise (within [`SAME_RISE`]), has
-/// more steps, a bin on every one of its levels, and steps past the lone flight's top step (over
-/// what was read as its landing). A mid landing read as steps would leave the
-/// levels on it empty (a landing is deeper than a tread, and level); here the "landing" was a
-/// tread with something beside the flight standing a rise over it (office-101 of seeds
-/// 101-105: a 1 m box beside the side face of a 7-step flight, over its third and fourth
-/// steps, held the running maximum level for 0.8 m, and the flight read as 6 steps). A flight
-/// read along all of a part with more, lower steps over the lone flight's own length climbs
-/// through nothing: mixed pixels at the far edge of its top landing, a rise's fraction over it,
-/// had set its top high (office-117 of seeds 116-120: 5 steps of 0.172 m x 0.255 m, every level
-/// seen, lost to 6 of 0.160 m x 0.200 m whose top riser stood where the 5 steps' did).
+/// starts where it starts, climbs the same way in the same steps (the lone flight's landing is
+/// one of its levels, within [`ON_A_LEVEL`] of a rise), has more steps, a bin on every one of
+/// its levels, and steps past the lone flight's top step (over what was read as its landing).
+/// A mid landing read as steps would leave the levels on it empty (a landing is deeper than a
+/// tread, and level); here the "landing" was a tread with something beside the flight standing
+/// a rise over it (office-101 of seeds 101-105: a 1 m box beside the side face of a 7-step
+/// flight, over its third and fourth steps, held the running maximum level for 0.8 m, and the
+/// flight read as 6 steps). A flight read along all of a part in other steps climbs through
+/// nothing: returns over the far edge of the lone flight's top landing (mixed pixels where rays
+/// rising past it met the wall behind) set its top high, and the count climbing to them cut
+/// the flight into more, lower steps (office-117 of seeds 116-120: 5 steps of 0.172 m x
+/// 0.255 m, every level seen, lost to 6 of 0.160 m x 0.200 m whose top riser stood where the 5
+/// steps' did; office-43 scanned again on 2026-12-04: 4 steps of 0.185 m lost to 5 of 0.172
+/// m, whose fourth level lay 5 cm under the landing).
 fn climbs_through(one: &DetectedStairs, lone: &[DetectedStairs], c: &StairsConfig) -> bool {
     let [lone] = lone else {
         return false;
     };
     let same_way = one.dir.dot(lone.dir) >= c.snap_direction_deg.to_radians().cos();
     let same_start = (one.start - lone.start).dot(one.dir).abs() <= one.run.min(lone.run) / 2.0;
-    let same_rise = (one.rise - lone.rise).abs() <= SAME_RISE * lone.rise;
+    // (its level at the lone flight's top is that flight's landing)
+    let same_steps = (one.rise - lone.rise).abs() * f64::from(lone.steps) <= ON_A_LEVEL * lone.rise;
     // (its steps go on past the lone flight's top step, over what was read as its landing)
     let top_front =
         |f: &DetectedStairs| f.start.dot(one.dir) + f64::from(f.steps.saturating_sub(1)) * f.run;
@@ -168,7 +176,7 @@ fn climbs_through(one: &DetectedStairs, lone: &[DetectedStairs], c: &StairsConfi
         && one.base == 0.0
         && same_way
         && same_start
-        && same_rise
+        && same_steps
         && one.steps > lone.steps
         && past_its_top
         && one.confidence >= 1.0

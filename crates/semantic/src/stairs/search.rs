@@ -196,3 +196,43 @@ fn levels_share(p: &Profile) -> f64 {
 fn confidence(flights: &[DetectedStairs]) -> f64 {
     flights.iter().map(|f| f.confidence).fold(1.0, f64::min)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A flight climbing +X from x = 0 on the floor, every level seen.
+    fn flight(steps: u32, rise: f64, run: f64) -> DetectedStairs {
+        DetectedStairs {
+            steps,
+            rise,
+            run,
+            width: 1.0,
+            dir: DVec2::X,
+            start: DVec2::ZERO,
+            landing: 1.0,
+            base: 0.0,
+            support: 100,
+            confidence: 1.0,
+            rules: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn a_flight_climbs_through_a_landing_only_in_the_same_steps_and_past_its_top() {
+        let c = StairsConfig::default();
+        let lone = [flight(6, 0.156, 0.31)];
+        // office-101: the same steps, one more, its top riser a run past the lone flight's.
+        assert!(climbs_through(&flight(7, 0.156, 0.31), &lone, &c));
+        // office-43: one more step of a rise 7 % lower, its sixth level 6 cm under the landing.
+        assert!(!climbs_through(&flight(7, 0.146, 0.31), &lone, &c));
+        // Levels on the lone flight's, but the same length cut into more, shorter treads: its
+        // top riser stands where the lone flight's does (office-117's shape).
+        assert!(!climbs_through(&flight(7, 0.156, 0.258), &lone, &c));
+        // A level missed, or no more steps: no continuation either.
+        let mut missed = flight(7, 0.156, 0.31);
+        missed.confidence = 6.0 / 7.0;
+        assert!(!climbs_through(&missed, &lone, &c));
+        assert!(!climbs_through(&flight(6, 0.156, 0.31), &lone, &c));
+    }
+}

@@ -208,12 +208,12 @@ fn mixed_pixels_over_a_landings_edge_leave_the_lower_flights_rise() {
 /// (The part's returns, from the bench's map.)
 #[test]
 fn mixed_pixels_over_a_top_landings_far_edge_add_no_step() {
-    let (all, surface) = returns_and_surface(include_str!(
-        "../../tests/data/office117_top_landing_edge.txt"
-    ));
-    assert_eq!((all.len(), surface.len()), (945, 941));
-    let found = search_as_mapped_with_surface(&all, &surface, DVec2::new(2.3, 1.0));
-    assert_flight(found, (0.172, 0.255, 5));
+    assert_part_is_flight(
+        include_str!("../../tests/data/office117_top_landing_edge.txt"),
+        (945, 941),
+        DVec2::new(2.3, 1.0),
+        (0.172, 0.255, 5),
+    );
 }
 
 /// Regression: office-43's 4-step flight (0.186 m x 0.282 m), scanned again on 2026-12-04 and
@@ -223,10 +223,26 @@ fn mixed_pixels_over_a_top_landings_far_edge_add_no_step() {
 /// under it (`climbs_through`). (The part's returns, from the bench's map.)
 #[test]
 fn a_flight_in_other_steps_climbs_through_no_landing() {
-    let (all, surface) = returns_and_surface(include_str!(
-        "../../tests/data/office43_top_landing_edge.txt"
-    ));
-    assert_eq!((all.len(), surface.len()), (1037, 1036));
-    let found = search_as_mapped_with_surface(&all, &surface, DVec2::new(2.2, 1.25));
-    assert_flight(found, (0.186, 0.282, 4));
+    assert_part_is_flight(
+        include_str!("../../tests/data/office43_top_landing_edge.txt"),
+        (1037, 1036),
+        DVec2::new(2.2, 1.25),
+        (0.186, 0.282, 4),
+    );
+}
+
+/// The part in the test data `text` (`counts`: its returns, those on a surface), searched over
+/// a floor hidden under the staircase (`hidden`), is one flight of `(rise, run, steps)`.
+fn assert_part_is_flight(
+    text: &str,
+    counts: (usize, usize),
+    hidden: DVec2,
+    flight: (f64, f64, u32),
+) {
+    let (all, surface) = returns_and_surface(text);
+    assert_eq!((all.len(), surface.len()), counts);
+    assert_flight(
+        search_as_mapped_with_surface(&all, &surface, hidden),
+        flight,
+    );
 }

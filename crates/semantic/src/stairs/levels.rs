@@ -4,6 +4,10 @@
 use super::StairsConfig;
 use crate::points::linear_fit;
 
+/// A height within this share of the rise of a multiple of it lies on that level (the grid's
+/// tolerance; also where one flight's level is another's landing, see `search`).
+pub(super) const ON_A_LEVEL: f64 = 0.25;
+
 /// The rise and offset of a set of heights that pile up at whole multiples of one rise, and
 /// the highest multiple with a peak on it: the peaks of their histogram (1 cm bins, 3 cm
 /// window) fitted to the grid `offset + k rise`.
@@ -42,7 +46,8 @@ pub(super) fn level_grid(heights: &[f64], c: &StairsConfig) -> Option<(f64, f64,
                 .iter()
                 .filter_map(|&p| {
                     let k = ((p - offset) / rise).round();
-                    (k >= 1.0 && (p - offset - k * rise).abs() <= 0.25 * rise).then_some((k, p))
+                    (k >= 1.0 && (p - offset - k * rise).abs() <= ON_A_LEVEL * rise)
+                        .then_some((k, p))
                 })
                 .collect();
             ks = fit.iter().map(|f| f.0).collect();

@@ -2,6 +2,7 @@
 //! of one with a mid landing) along the part's candidate directions; where it shows none, the
 //! best along each of its straight faces in plan, each on its own (see `side_faces`).
 
+use super::levels::ON_A_LEVEL;
 use super::plausible::finish;
 use super::profile::{profile, profile_other_count, Profile};
 use super::{flights, side_faces, DetectedStairs, StairsConfig};
@@ -138,10 +139,6 @@ impl Search<'_> {
         }
     }
 }
-
-/// A level's tolerance, a share of the rise (as the grid of levels takes a plateau for a
-/// level, see `levels`).
-const ON_A_LEVEL: f64 = 0.25;
 
 /// True if `one` (a flight read along all of a part) is the lone flight `lone` (a flight
 /// found ending on a landing, nothing beyond it climbing as a flight) continued, in the same

@@ -1,15 +1,16 @@
-//! Rows of pillars: the Hough transform joins the faces of pillars in line into one segment,
-//! and the face tests see a wall face at every pillar (one pillar standing free is
-//! [`super::free_pier`]'s). What no wall shows is the floor
-//! seen deep inside its body (more than the faces' noise behind the face, where a wall's body
-//! would hide it) between the pillars, with no face in front of it (the floor is seen through
-//! a glass wall's body too, but so is its face); nor a stretch where the floor is seen right in
-//! front of the face line and nothing of the face from the floor to the ceiling (a doorway has
-//! its lintel above, a wall hidden behind something has the floor in front hidden too; the
-//! floor between pillars, seen at grazing angles through the gap, may leave no return in a
-//! thin measured body). So the candidate is cut wherever either is seen; if every piece is no
-//! longer than a column is wide and stands free at both ends (cut on both sides), the
-//! candidate is a row of columns.
+//! Rows of pillars: the Hough transform joins the faces of pillars in line into one segment, and
+//! the face tests see a wall face at every pillar (one pillar standing free is
+//! [`super::free_pier`]'s). What no wall shows is the floor seen deep inside its body (more than
+//! the faces' noise behind the face, where a wall's body would hide it) between the pillars, with
+//! no face in front of it (the floor is seen through a glass wall's body too, but so is its face)
+//! or with surfaces seen inside a measured body too (a pillar's side, seen through a gap narrower
+//! than two bins, puts returns on the face line in every bin over the gap; a glass wall's body
+//! shows nothing between its faces); nor a stretch where the floor is seen right in front of the face line and nothing of
+//! the face from the floor to the ceiling (a doorway has its lintel above, a wall hidden behind
+//! something has the floor in front hidden too; the floor between pillars, seen at grazing angles
+//! through the gap, may leave no return in a thin measured body). So the candidate is cut wherever
+//! either is seen; if every piece is no longer than a column is wide and stands free at both ends
+//! (cut on both sides), the candidate is a row of columns.
 
 use super::support::HEAD_HEIGHT_M;
 use super::WallFit;
@@ -34,7 +35,10 @@ const ROW_BIN_M: f64 = 0.1;
 /// Floor points a bin shows in the body to cut the wall there (one is a stray return) ...
 const MIN_CUT_POINTS: usize = 2;
 /// ... with fewer face points than this below head height (as many are a face seen: a glass
-/// wall's; fewer are mixed pixels or a pillar's edge).
+/// wall's; fewer are mixed pixels or a pillar's edge), or as many points above the floor and
+/// below head height deep inside a measured wall's faces (a surface inside the body: the body
+/// is open there; behind a one-sided face they may be a thin wall's back face, as a glass
+/// partition's, seen through it).
 const MAX_CUT_FACE_POINTS: usize = 5;
 /// The most bins looked at (a cap against absurd lengths).
 const MAX_BINS: usize = 1_000_000;
@@ -46,20 +50,22 @@ const CEILING_BAND_M: f64 = 0.15;
 const FRONT_M: (f64, f64) = (0.05, 0.35);
 
 /// True if `w` (before one-sided walls are moved to their centre lines) is a row of piers: cut
-/// wherever the floor is seen deep in its body and its face (within `face_tolerance_m`) is not
-/// seen below head height, or the floor is seen in front of it and its face at no height,
-/// every piece is at most a column wide and has such a cut on both sides (within the wall or
-/// up to a column's width past its ends).
+/// wherever the floor is seen deep in its body and its face (within `face_tolerance_m`) is not seen
+/// below head height or something else is seen deep in its measured body too, or the floor is seen in front
+/// of it and its face at no height, every piece is at most a column wide and has such a cut on both
+/// sides (within the wall or up to a column's width past its ends).
 pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) -> bool {
     // 1. Per bin, from a column's width before the start to as far past the end: floor points
     //    deep in the body and in front of the face line, face points below head height and at
-    //    any height under the ceiling's band.
+    //    any height under the ceiling's band, other points deep in a measured body below head
+    //    height.
     let reach = MAX_COLUMN_M;
     let n = (((w.length + 2.0 * reach) / ROW_BIN_M).ceil() as usize).clamp(1, MAX_BINS);
     let mut floor_in_body = vec![0usize; n];
     let mut face = vec![0usize; n];
     let mut floor_in_front = vec![0usize; n];
     let mut face_any_height = vec![0usize; n];
+    let mut seen_in_body = vec![0usize; n];
     let faces: Vec<f64> = if w.measured {
         w.faces.clone()
     } else {
@@ -90,6 +96,9 @@ pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) ->
             if inside && on_floor {
                 floor_in_body[k] += 1;
             }
+            if w.measured && inside && above_floor > 0.1 && above_floor < HEAD_HEIGHT_M {
+                seen_in_body[k] += 1;
+            }
             if on_floor && (FRONT_M.0..=FRONT_M.1).contains(&front) {
                 floor_in_front[k] += 1;
             }
@@ -117,7 +126,8 @@ pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) ->
     let unseen = MAX_CUT_FACE_POINTS.max(typical / 4);
     let cut: Vec<bool> = (0..n)
         .map(|k| {
-            (floor_in_body[k] >= MIN_CUT_POINTS && face[k] < MAX_CUT_FACE_POINTS)
+            (floor_in_body[k] >= MIN_CUT_POINTS
+                && (face[k] < MAX_CUT_FACE_POINTS || seen_in_body[k] >= MAX_CUT_FACE_POINTS))
                 || (floor_in_front[k] >= MIN_FLOOR_POINTS && face_any_height[k] < unseen)
         })
         .collect();
@@ -206,6 +216,65 @@ mod tests {
         let mut points = cloud(|x, y| y > 0.0 && y < 0.48 && x > 0.0 && x < 3.1, pillar);
         points.extend(above_head(0.0, 3.1));
         assert!(!row_of_piers(&points, &face(3.105)));
+    }
+
+    /// A wall `thickness_m` thick, both faces seen (at y = 0 and y = `thickness_m`), from x = 0
+    /// to `length`.
+    fn measured(length: f64, thickness_m: f64) -> WallFit {
+        let y = thickness_m / 2.0;
+        let mut w = WallFit::one_sided(DVec2::new(0.0, y), DVec2::new(length, y), -1.0);
+        (w.thickness, w.measured, w.faces) = (thickness_m, true, vec![-y, y]);
+        w
+    }
+
+    /// Points on `x` from y = 0 to 0.44 every 4 cm at heights 0.2..1.8 (a pillar's side face).
+    fn side_face(x: f64) -> impl Iterator<Item = Vec3> {
+        (0..12)
+            .flat_map(|i| (0..9).map(move |h| (i, h)))
+            .map(move |(i, h)| Vec3::new(x as f32, 0.04 * i as f32, 0.2 + 0.2 * h as f32))
+    }
+
+    #[test]
+    fn pillars_whose_gaps_are_narrower_than_two_bins_are_no_wall() {
+        // Four 0.44 m pillars with 0.16 m gaps (hall-123's row), seen from both sides, every
+        // gap starting 2 cm into a bin: each bin over a gap holds a pillar's side face, seen
+        // through the gap from one face line to the other, with returns on both. The floor is
+        // seen deep in the gaps' bodies too: the body is open there, whatever stands on the
+        // face lines.
+        let pillar = |x: f64| (0..4).any(|k| (x - 0.2 - k as f64 * 0.6).abs() <= 0.22);
+        let mut points = cloud(|x, y| y > 0.0 && y < 0.44 && pillar(x), pillar);
+        for k in 0..4 {
+            let x0 = k as f64 * 0.6 - 0.02;
+            points.extend(side_face(x0).chain(side_face(x0 + 0.44)));
+            points.extend((0..9).flat_map(|i| {
+                (0..9).map(move |h| {
+                    Vec3::new(
+                        (x0 + 0.025 + 0.05 * i as f64) as f32,
+                        0.44,
+                        0.2 + 0.2 * h as f32,
+                    )
+                })
+            }));
+        }
+        assert!(row_of_piers(&points, &measured(2.24, 0.44)));
+    }
+
+    #[test]
+    fn a_glass_partitions_back_pane_seen_through_its_face_is_no_gap() {
+        // A 0.15 m glass partition seen from one side: its face and its back pane (in the body
+        // a one-sided face assumes) are seen along all of it, the floor through it in 0.6 m of
+        // every metre (hidden behind desks elsewhere). office-3's partition was cut into short
+        // pieces where its back pane counted as something seen inside a body.
+        let mut points = cloud(
+            |x, y| y > 0.0 && x.rem_euclid(1.0) >= 0.6,
+            |x| (0.0..=5.0).contains(&x),
+        );
+        points.extend((0..100).flat_map(|i| {
+            (0..9).map(move |h| {
+                Vec3::new((0.025 + 0.05 * i as f64) as f32, 0.15, 0.2 + 0.2 * h as f32)
+            })
+        }));
+        assert!(!row_of_piers(&points, &face(5.0)));
     }
 
     /// Face points on y = 0 at heights 2.0..2.8 from x0 to x1, every 5 cm.

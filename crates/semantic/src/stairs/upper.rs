@@ -10,9 +10,11 @@
 //! one).
 //!
 //! So for each lone flight found, the parts beyond its top, in line with it and standing
-//! above its top level, that show no staircase of their own, are read together as the flight
-//! on its landing (see `flights::flight_above`): heights from the landing, the lone flight's
-//! rise as the hint, and the same checks as any flight's.
+//! above its top level, that show no staircase of their own, are read together (with the lone
+//! flight's part's own returns beyond its top step: its landing, and the upper flight's first
+//! riser where that joined it) as the flight on its landing (see `flights::flight_above`):
+//! heights from the landing, the lone flight's rise as the hint, and the same checks as any
+//! flight's.
 
 use super::extend::COVER_BIN_M;
 use super::flights::flight_above;
@@ -61,19 +63,23 @@ pub(super) fn join_upper_flights(
         if beyond.is_empty() {
             continue;
         }
-        // 2. The flight on the lone flight's landing, from the returns of those parts, where
-        //    they span its width as risers do.
-        let joined = |of: fn(&Part) -> &Vec<usize>| -> Vec<usize> {
+        // 2. The flight on the lone flight's landing, where those parts' returns span its
+        //    width as risers do: from their returns and the lone flight's part's own beyond
+        //    its top step (its landing, and the upper flight's first riser where that joined
+        //    its part; office-126 of seeds 126-130: a 5-step upper flight whose first step,
+        //    all in the lower flight's part, was left with no support).
+        let joined = |of: fn(&Part) -> &Vec<usize>, own: bool| -> Vec<usize> {
             beyond
                 .iter()
+                .chain(own.then_some(&i))
                 .flat_map(|&j| of(&parts[j]).iter().copied())
                 .collect()
         };
-        let pts = part_points(sc, &joined(|p| &p.surface));
-        let all = part_points(sc, &joined(|p| &p.members));
-        if !spans_width(&all, &lone) {
+        if !spans_width(&part_points(sc, &joined(|p| &p.members, false)), &lone) {
             continue;
         }
+        let pts = part_points(sc, &joined(|p| &p.surface, true));
+        let all = part_points(sc, &joined(|p| &p.members, true));
         if let Some(second) = flight_above(&lone, &pts, &all, sc, c) {
             found[i] = Some(vec![lone, second]);
         }

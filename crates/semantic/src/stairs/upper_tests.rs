@@ -129,3 +129,25 @@ fn a_landing_read_under_its_flights_top_step_leaves_the_flight() {
     );
     assert!(found[1..].iter().all(Option::is_none));
 }
+
+/// Regression: fresh office-126's staircase with a mid landing (flights of 4 and 5 steps of
+/// 0.158 m; the landing 0.63 m up, above the laser), seen from its side, showed its lower
+/// flight alone: the upper flight's first riser joined the lower flight's part (with the
+/// landing's side face), and read from the other parts' returns alone its first step had none
+/// and the flight was dropped. With the lower flight's part's own returns beyond its top step,
+/// every step of it is seen. (The parts' returns, from the bench's map.)
+#[test]
+fn an_upper_flights_first_riser_in_the_lower_flights_part_is_one_of_its_steps() {
+    let (returns, part_of) =
+        returns_by_part(include_str!("../../tests/data/office126_upper_flight.txt"));
+    assert_eq!(returns.len(), 739);
+    let found = search_parts(&returns, &part_of, 4.8);
+    let flights = found[0].as_ref().expect("the lower flight");
+    assert_eq!(flights.len(), 2, "{flights:?}");
+    let (lower, upper) = (&flights[0], &flights[1]);
+    assert_eq!((lower.steps, upper.steps), (4, 5), "{flights:?}");
+    assert!((upper.rise - 0.158).abs() < 0.01, "rise {}", upper.rise);
+    // Its first riser 2.26 m along (17.90 m in the map), past the landing.
+    assert!((upper.start.x - 2.26).abs() < 0.06, "start {}", upper.start);
+    assert!(found[1..].iter().all(Option::is_none));
+}

@@ -56,19 +56,29 @@ fn search_parts(
 /// flight. (The parts' returns, from the bench's map.)
 #[test]
 fn an_upper_flights_risers_parted_from_the_lower_flight_are_its_flight() {
-    let (returns, part_of) =
-        returns_by_part(include_str!("../../tests/data/office66_upper_flight.txt"));
-    assert_eq!(returns.len(), 868);
-    let found = search_parts(&returns, &part_of, 4.0);
-    let flights = found[0].as_ref().expect("the lower flight");
-    assert_eq!(flights.len(), 2, "{flights:?}");
-    let (lower, upper) = (&flights[0], &flights[1]);
-    assert_eq!((lower.steps, upper.steps), (3, 4), "{flights:?}");
+    let (lower, upper) = two_flights_of(
+        include_str!("../../tests/data/office66_upper_flight.txt"),
+        868,
+        4.0,
+    );
+    assert_eq!((lower.steps, upper.steps), (3, 4), "{lower:?} {upper:?}");
     assert!((upper.base - 0.537).abs() < 0.03, "base {}", upper.base);
     assert!((upper.rise - 0.179).abs() < 0.01, "rise {}", upper.rise);
     // Its first riser 2.25 m along, past the landing.
     assert!((upper.start.x - 2.25).abs() < 0.06, "start {}", upper.start);
-    assert!(found[1..].iter().all(Option::is_none));
+}
+
+/// The two flights read from the parts' returns in `text` (`count` of them; the staircase
+/// over x 0..`hidden_x`): both of the first part's, none of the others'.
+fn two_flights_of(text: &str, count: usize, hidden_x: f64) -> (DetectedStairs, DetectedStairs) {
+    let (returns, part_of) = returns_by_part(text);
+    assert_eq!(returns.len(), count);
+    let found = search_parts(&returns, &part_of, hidden_x);
+    assert!(found[1..].iter().all(Option::is_none), "{found:?}");
+    match found[0].as_deref() {
+        Some([lower, upper]) => (lower.clone(), upper.clone()),
+        other => panic!("not two flights: {other:?}"),
+    }
 }
 
 /// The same risers beside the lower flight's line (moved 1.5 m across it) are no flight of it.
@@ -138,16 +148,13 @@ fn a_landing_read_under_its_flights_top_step_leaves_the_flight() {
 /// every step of it is seen. (The parts' returns, from the bench's map.)
 #[test]
 fn an_upper_flights_first_riser_in_the_lower_flights_part_is_one_of_its_steps() {
-    let (returns, part_of) =
-        returns_by_part(include_str!("../../tests/data/office126_upper_flight.txt"));
-    assert_eq!(returns.len(), 739);
-    let found = search_parts(&returns, &part_of, 4.8);
-    let flights = found[0].as_ref().expect("the lower flight");
-    assert_eq!(flights.len(), 2, "{flights:?}");
-    let (lower, upper) = (&flights[0], &flights[1]);
-    assert_eq!((lower.steps, upper.steps), (4, 5), "{flights:?}");
+    let (lower, upper) = two_flights_of(
+        include_str!("../../tests/data/office126_upper_flight.txt"),
+        739,
+        4.8,
+    );
+    assert_eq!((lower.steps, upper.steps), (4, 5), "{lower:?} {upper:?}");
     assert!((upper.rise - 0.158).abs() < 0.01, "rise {}", upper.rise);
     // Its first riser 2.26 m along (17.90 m in the map), past the landing.
     assert!((upper.start.x - 2.26).abs() < 0.06, "start {}", upper.start);
-    assert!(found[1..].iter().all(Option::is_none));
 }

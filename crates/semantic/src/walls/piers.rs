@@ -5,12 +5,12 @@
 //! no face in front of it (the floor is seen through a glass wall's body too, but so is its face)
 //! or with surfaces seen inside a measured body too (a pillar's side, seen through a gap narrower
 //! than two bins, puts returns on the face line in every bin over the gap; a glass wall's body
-//! shows nothing between its faces); nor a stretch where the floor is seen right in front of the face line and nothing of
-//! the face from the floor to the ceiling (a doorway has its lintel above, a wall hidden behind
-//! something has the floor in front hidden too; the floor between pillars, seen at grazing angles
-//! through the gap, may leave no return in a thin measured body). So the candidate is cut wherever
-//! either is seen; if every piece is no longer than a column is wide and stands free at both ends
-//! (cut on both sides), the candidate is a row of columns.
+//! shows nothing between its faces); nor a stretch where the floor is seen right in front of the
+//! face line and nothing of the face from the floor to the ceiling (a doorway has its lintel above,
+//! a wall hidden behind something has the floor in front hidden too; the floor between pillars,
+//! seen at grazing angles through the gap, may leave no return in a thin measured body). So the
+//! candidate is cut wherever either is seen; if every piece is no longer than a column is wide and
+//! stands free at both ends (cut on both sides), the candidate is a row of columns.
 
 use super::support::HEAD_HEIGHT_M;
 use super::WallFit;
@@ -51,9 +51,9 @@ const FRONT_M: (f64, f64) = (0.05, 0.35);
 
 /// True if `w` (before one-sided walls are moved to their centre lines) is a row of piers: cut
 /// wherever the floor is seen deep in its body and its face (within `face_tolerance_m`) is not seen
-/// below head height or something else is seen deep in its measured body too, or the floor is seen in front
-/// of it and its face at no height, every piece is at most a column wide and has such a cut on both
-/// sides (within the wall or up to a column's width past its ends).
+/// below head height or something else is seen deep in its measured body too, or the floor is seen
+/// in front of it and its face at no height, every piece is at most a column wide and has such a
+/// cut on both sides (within the wall or up to a column's width past its ends).
 pub(crate) fn is_row_of_piers(w: &WallFit, sc: &Scene, face_tolerance_m: f64) -> bool {
     // 1. Per bin, from a column's width before the start to as far past the end: floor points
     //    deep in the body and in front of the face line, face points below head height and at

@@ -88,6 +88,7 @@ pub fn run(a: MapArgs, cfg: &Config) -> anyhow::Result<()> {
         a.max_range_m,
         &a.read.options(),
         &cfg.outliers,
+        &cfg.mixed_pixels,
         &cfg.transients,
     )?;
     if let Some(v) = a.voxel_m {

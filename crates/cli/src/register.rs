@@ -151,7 +151,7 @@ fn run_sequence(a: &RegisterArgs, cfg: &Config) -> anyhow::Result<()> {
     )?;
     let outputs = ["poses.txt", "map.pcd", "registration.json", "config.toml"].map(|f| out.join(f));
     pipeline::refuse_overwriting_inputs(&outputs, &input.read)?;
-    let scans = pipeline::read_scans_with(&input.scans, None, &cfg.outliers)?;
+    let scans = pipeline::read_scans_with(&input.scans, None, &cfg.outliers, &cfg.mixed_pixels)?;
     std::fs::create_dir_all(&out).map_err(|e| cloud::CloudError::io(&out, e))?;
     let mut registrar = open_device(&cfg.registration.icp)?;
     let bar = crate::progress::scan_bar(scans.len(), "registering");

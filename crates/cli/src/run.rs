@@ -41,7 +41,12 @@ pub fn run(a: RunArgs, cfg: &Config) -> anyhow::Result<()> {
     pipeline::check_output_dir(&a.out)?;
     let scenario = ScenarioChoice::from_file_or_plan(a.scenario.as_deref(), &cfg.plan)?;
     let input = read_sequence(&a.inputs, a.odometry.as_deref(), None, &a.read.options())?;
-    let scans = pipeline::read_scans_with(&input.scans, a.max_range_m, &cfg.outliers)?;
+    let scans = pipeline::read_scans_with(
+        &input.scans,
+        a.max_range_m,
+        &cfg.outliers,
+        &cfg.mixed_pixels,
+    )?;
     crate::interrupt::install();
     let mut printer = crate::print::Printer::default();
     let outcome = scans_to_verdict(&input, scans, &scenario, cfg, &a.out, &mut printer)?;

@@ -25,6 +25,9 @@ pub struct Config {
     pub plan: sim::PlanConfig,
     /// Statistical outlier removal of every scan read (isolated returns in mid-air).
     pub outliers: crate::OutlierConfig,
+    /// Mixed-pixel removal of every organised scan read (returns between two surfaces at a
+    /// depth edge).
+    pub mixed_pixels: crate::MixedPixelConfig,
     /// Moving things (people walking past) seen by one scan of a sequence, dropped when the
     /// scans are merged.
     pub transients: crate::TransientConfig,
@@ -73,6 +76,9 @@ impl Config {
         self.outliers
             .validate()
             .map_err(|e| section("outliers", &e))?;
+        self.mixed_pixels
+            .validate()
+            .map_err(|e| section("mixed_pixels", &e))?;
         self.transients
             .validate()
             .map_err(|e| section("transients", &e))?;
@@ -167,6 +173,28 @@ mod tests {
             ("[outliers]\nneighbours_k = 0\n", "neighbours_k"),
             ("[outliers]\nmin_ratio = 0.5\n", "min_ratio"),
             ("[outliers]\nsigma = 3.0\n", "sigma"),
+        ] {
+            let bad = dir.path().join("bad.toml");
+            std::fs::write(&bad, body).expect("write");
+            let e = Config::load(&bad).expect_err(body).to_string();
+            assert!(e.contains("bad.toml") && e.contains(what), "{e}");
+        }
+    }
+    #[test]
+    fn the_mixed_pixels_section_is_read_checked_and_written_back() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        assert!(Config::default().mixed_pixels.enabled);
+        let off = dir.path().join("off.toml");
+        std::fs::write(&off, "[mixed_pixels]\nenabled = false\nmin_gap_m = 0.1\n").expect("write");
+        let c = Config::load(&off).expect("reads");
+        assert!(!c.mixed_pixels.enabled);
+        assert_eq!(c.mixed_pixels.min_gap_m, 0.1);
+        c.write_beside(dir.path()).expect("written");
+        let back = Config::load(&dir.path().join("config.toml")).expect("reads back");
+        assert_eq!(back.mixed_pixels, c.mixed_pixels);
+        for (body, what) in [
+            ("[mixed_pixels]\nmin_jump_ratio = 0.5\n", "min_jump_ratio"),
+            ("[mixed_pixels]\ngap_m = 3.0\n", "gap_m"),
         ] {
             let bad = dir.path().join("bad.toml");
             std::fs::write(&bad, body).expect("write");

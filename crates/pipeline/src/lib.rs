@@ -5,7 +5,8 @@
 //!   sequence by [`read_sequence`] (real sequences too: 3DTK `.pose` files, `--odometry`, a
 //!   multi-scan E57 or a ROS 2 bag, read by the `interop` crate with [`ReadOptions`]).
 //! - [`read_scans`], [`place_and_merge`]: scans read with a range limit, without no-echo
-//!   readings ([`find_no_echo`]) and isolated points ([`find_outliers`], [`OutlierConfig`]),
+//!   readings ([`find_no_echo`]), mixed pixels ([`find_mixed_pixels`], [`MixedPixelConfig`])
+//!   and isolated points ([`find_outliers`], [`OutlierConfig`]),
 //!   placed by their poses and merged.
 //! - The stages: [`register_scans`], [`build_map`], [`simulate`], each with a writer of its
 //!   files; [`scans_to_verdict`] runs all three in memory (no stage reads what the one before
@@ -51,6 +52,7 @@ mod export;
 mod guard;
 mod guess;
 mod map;
+mod mixed_pixels;
 mod no_echo;
 mod outliers;
 mod plot;
@@ -72,6 +74,7 @@ pub use guess::{guess_from_text, parse_guess};
 pub use interop::ExportFormat;
 pub use interop::ReadOptions;
 pub use map::{build_map, map_summary, write_map, MAP_PICTURES};
+pub use mixed_pixels::{find_mixed_pixels, remove_mixed_pixels, MixedPixelConfig};
 pub use no_echo::{
     drop_no_echo, find_no_echo, NoEcho, NO_ECHO_BAND_M, NO_ECHO_MIN_POINTS, NO_ECHO_MIN_SHARE,
 };

@@ -50,12 +50,22 @@ pub fn find_no_echo(scan: &PointCloud) -> Option<NoEcho> {
     })
 }
 
-/// The scan without its no-echo readings, and what was dropped.
+/// The scan without its no-echo readings, and what was dropped. An organised scan keeps its
+/// shape: they become NaN (the missing-return convention); from other scans they are deleted.
 pub fn drop_no_echo(scan: &PointCloud) -> (PointCloud, Option<NoEcho>) {
     let Some(found) = find_no_echo(scan) else {
         return (scan.clone(), None);
     };
     let limit = found.range_m - NO_ECHO_BAND_M;
+    if scan.organized.is_some() {
+        let mut out = scan.clone();
+        for p in &mut out.points {
+            if p.is_finite() && p.distance(scan.sensor_origin) >= limit {
+                *p = glam::Vec3::NAN;
+            }
+        }
+        return (out, Some(found));
+    }
     let keep: Vec<usize> = (0..scan.len())
         .filter(|&i| {
             let p = scan.points[i];

@@ -1,7 +1,8 @@
-//! Scans read for mapping: missing returns, no-echo readings, isolated points and far points dropped, each placed by its pose
-//! and all merged into one cloud in the world frame.
+//! Scans read for mapping: missing returns, no-echo readings, mixed pixels, isolated points and
+//! far points dropped, each placed by its pose and all merged into one cloud in the world frame.
 
 use crate::error::{PipelineError, Result};
+use crate::mixed_pixels::MixedPixelConfig;
 use crate::outliers::OutlierConfig;
 use crate::scan_folder::{expand_files, ScanSource};
 use cloud::{NamedPose, PointCloud};
@@ -10,23 +11,32 @@ use registration::TransientConfig;
 use std::path::{Path, PathBuf};
 
 /// Reads scans, dropping missing returns, no-echo readings (a sensor's fixed range for "no
-/// echo", found by [`crate::find_no_echo`]; reported on standard error with their count),
-/// statistical outliers with the default [`OutlierConfig`] (see [`read_scans_with`]) and
-/// points farther than `max_range_m` from their scan's sensor. Files read in a local frame (georeferenced LAS/LAZ: see
-/// [`interop::ScanSet::local_origin_m`]) are moved into the first such file's frame, which is
-/// reported on standard error.
+/// echo", found by [`crate::find_no_echo`]; reported on standard error with their count), an
+/// organised scan's mixed pixels with the default [`MixedPixelConfig`], statistical outliers
+/// with the default [`OutlierConfig`] (see [`read_scans_with`]) and points farther than
+/// `max_range_m` from their scan's sensor. Files read in a local frame (georeferenced LAS/LAZ:
+/// see [`interop::ScanSet::local_origin_m`]) are moved into the first such file's frame, which
+/// is reported on standard error.
 pub fn read_scans(sources: &[ScanSource], max_range_m: Option<f64>) -> Result<Vec<PointCloud>> {
-    read_scans_with(sources, max_range_m, &OutlierConfig::default())
+    read_scans_with(
+        sources,
+        max_range_m,
+        &OutlierConfig::default(),
+        &MixedPixelConfig::default(),
+    )
 }
 
-/// [`read_scans`] with the run's outlier removal (`[outliers]` of the configuration): after
-/// the no-echo readings, each scan loses its isolated points ([`crate::remove_outliers`]),
-/// reported on standard error with their count when there are any; every point returned is
-/// finite (a scan that lost points also loses its organised shape, as `without_invalid` does).
+/// [`read_scans`] with the run's mixed-pixel and outlier removal (`[mixed_pixels]` and
+/// `[outliers]` of the configuration): after the no-echo readings, an organised scan loses its
+/// mixed pixels ([`crate::remove_mixed_pixels`]) and each scan its isolated points
+/// ([`crate::remove_outliers`]), each reported on standard error with their count when there
+/// are any; every point returned is finite (a scan that lost points also loses its organised
+/// shape, as `without_invalid` does).
 pub fn read_scans_with(
     sources: &[ScanSource],
     max_range_m: Option<f64>,
     outliers: &OutlierConfig,
+    mixed_pixels: &MixedPixelConfig,
 ) -> Result<Vec<PointCloud>> {
     if let Some(r) = max_range_m {
         if !(r.is_finite() && r > 0.0) {
@@ -42,8 +52,9 @@ pub fn read_scans_with(
             let scan = match &source.loaded {
                 Some(cloud) => cloud.clone(),
                 None => read_one(&source.file, &mut origin)?,
-            }
-            .without_invalid();
+            };
+            // An organised scan keeps its grid until its mixed pixels are found (what is
+            // dropped before becomes NaN), then loses its missing returns.
             let (scan, no_echo) = crate::no_echo::drop_no_echo(&scan);
             if let Some(found) = no_echo {
                 eprintln!(
@@ -52,9 +63,20 @@ pub fn read_scans_with(
                     source.name,
                     found.count,
                     found.range_m,
-                    100.0 * found.count as f64 / (scan.len() + found.count).max(1) as f64
+                    100.0 * found.count as f64 / (scan.valid_count() + found.count).max(1) as f64
                 );
             }
+            let (scan, mixed) = crate::mixed_pixels::remove_mixed_pixels(&scan, mixed_pixels);
+            if mixed > 0 {
+                eprintln!(
+                    "note: {} ({}): {} mixed pixels (returns between two surfaces at a depth edge, {:.2} % of the points) removed",
+                    source.file.display(),
+                    source.name,
+                    mixed,
+                    100.0 * mixed as f64 / (scan.valid_count() + mixed).max(1) as f64
+                );
+            }
+            let scan = scan.without_invalid();
             let before = scan.valid_count();
             let (scan, removed) = crate::outliers::remove_outliers(&scan, outliers);
             if removed > 0 {
@@ -215,6 +237,7 @@ pub fn merge_scan_files(
     max_range_m: Option<f64>,
     options: &interop::ReadOptions,
     outliers: &OutlierConfig,
+    mixed_pixels: &MixedPixelConfig,
     transients: &TransientConfig,
 ) -> Result<PointCloud> {
     let expanded = expand_files(files, options)?;
@@ -222,7 +245,7 @@ pub fn merge_scan_files(
         Some(p) => Some(cloud::read_poses(p)?),
         None => recorded_poses(&expanded.scans, &expanded.own_poses),
     };
-    let scans = read_scans_with(&expanded.scans, max_range_m, outliers)?;
+    let scans = read_scans_with(&expanded.scans, max_range_m, outliers, mixed_pixels)?;
     place_and_merge(&expanded.scans, scans, named.as_deref(), transients).map_err(|e| {
         match (e, poses) {
             (PipelineError::BadInput(msg), Some(p)) => {

@@ -49,7 +49,13 @@ pub fn score_map_file(
         None
     } else {
         // Every return, moving or not, as the scans saw them: the truth is what was seen.
+        // (A single return on a step's tread seen at grazing incidence, between the risers,
+        // may read as a mixed pixel: it is kept here.)
         let every_return = crate::TransientConfig {
+            enabled: false,
+            ..Default::default()
+        };
+        let no_mixed_pixels_dropped = crate::MixedPixelConfig {
             enabled: false,
             ..Default::default()
         };
@@ -59,6 +65,7 @@ pub fn score_map_file(
             None,
             &Default::default(),
             &Default::default(),
+            &no_mixed_pixels_dropped,
             &every_return,
         )?;
         evaluate::check_ground_truth_in_frame(&merged, &building, input_from_building.inverse())?;

@@ -44,13 +44,19 @@ fn no_echo_readings_of_the_real_laser_are_dropped_by_the_scan_reader() {
         "{at_no_echo} no-echo readings of {}",
         written.len()
     );
-    // (Outlier removal off: this is about the no-echo readings; `tests/outliers.rs` measures
-    // what it takes from the realistic laser.)
+    // (Outlier and mixed-pixel removal off: this is about the no-echo readings;
+    // `tests/outliers.rs` and `tests/mixed_pixels.rs` measure what they take from the
+    // realistic laser.)
     let no_outliers = pipeline::OutlierConfig {
         enabled: false,
         ..Default::default()
     };
-    let read = read_scans_with(&[ScanSource::file(&file)], None, &no_outliers).expect("read");
+    let no_mixed = pipeline::MixedPixelConfig {
+        enabled: false,
+        ..Default::default()
+    };
+    let read =
+        read_scans_with(&[ScanSource::file(&file)], None, &no_outliers, &no_mixed).expect("read");
     assert_eq!(read.len(), 1);
     assert_eq!(read[0].len(), returns, "the reader keeps every return");
     assert!(read[0].points.iter().all(|p| p.length() < no_echo - 1.0));

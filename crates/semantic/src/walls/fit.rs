@@ -70,6 +70,16 @@ fn settle<X>(
 
 /// Measures the wall along one prerequisite segment; `None` if it is no wall.
 pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<WallFit> {
+    fit_wall_noting(seg, sc, c, &mut None)
+}
+
+/// [`fit_wall`], noting in `settled` the line and extent its fit settled on, if it did.
+pub(super) fn fit_wall_noting(
+    seg: &Segment,
+    sc: &Scene,
+    c: &WallConfig,
+    settled: &mut Option<(Line2, f64, f64)>,
+) -> Option<WallFit> {
     let len0 = seg.length_m();
     // Refit the line on the faces over the extent found, and the extent on the refitted line,
     // until both settle.
@@ -81,6 +91,7 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
             let (lo, hi, crossing) = find_extent(&l, &faces, a, b, sc, c)?;
             Some((l, lo, hi, (faces, crossing)))
         })?;
+    *settled = Some((line, lo, hi));
     // Face points over the final extent (corners left out): support, coverage, heights, free
     // sides.
     let FacePass {

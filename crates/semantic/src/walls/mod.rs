@@ -56,6 +56,7 @@ mod measure;
 mod orientation;
 mod own_points;
 mod piers;
+mod rests;
 mod support;
 mod top;
 
@@ -65,7 +66,6 @@ use crate::points::{median, undirected_angle_deg, Line2};
 use crate::scene::Scene;
 use cloud::check_range;
 use duplicates::merge_duplicates;
-use fit::fit_wall;
 use free_pier::is_free_standing_pier;
 use glam::DVec2;
 use glimpses::extend_to_glimpses;
@@ -73,6 +73,7 @@ use joins::merge_through_gaps;
 use own_points::retain_walls_with_own_points;
 use piers::is_row_of_piers;
 use rayon::prelude::*;
+use rests::fit_walls_along;
 use serde::{Deserialize, Serialize};
 
 /// Configuration of wall identification.
@@ -324,7 +325,7 @@ pub(crate) fn identify_walls(
     }
     let walls: Vec<WallFit> = unique
         .par_iter()
-        .filter_map(|s| fit_wall(s, sc, c))
+        .flat_map_iter(|s| fit_walls_along(s, sc, c))
         .collect();
     let mut kept = merge_duplicates(walls, c, max_angle_deg, "a duplicate prerequisite");
     merge_through_gaps(&mut kept, sc, c, max_angle_deg);

@@ -1,0 +1,342 @@
+//! Mixed pixels in an organised scan: where a beam's footprint straddles a depth edge, part of
+//! its light comes back from the foreground and part from the background, and a sensor that
+//! cannot separate the two echoes reports a range in between (Ye and Borenstein, ICRA 2002, for
+//! the SICK LMS 200). The point floats in the air past the edge, along its own beam. Over the
+//! edge of a raised level seen from below (a landing, a desk, a car's roof) these points stand
+//! a few centimetres above the level, where nothing else is ever seen, and they read as the
+//! level's top.
+//!
+//! The statistical outlier removal cannot find them: one per scan line crossing an edge, they
+//! make a streak at the sample spacing, which looks like a cable (see `outliers.rs`). The grid
+//! finds them. Along a row or a column of the grid, a mixed pixel is
+//!
+//! 1. **between** its two neighbours' ranges, farther than [`MixedPixelConfig::min_gap_m`]
+//!    from either (a thin thing in front of both, a pipe or a chair leg, is in front, not
+//!    between), and
+//! 2. **on neither side's surface**: from each side's nearer sample it jumps more than
+//!    [`MixedPixelConfig::min_jump_ratio`] times that side's own sample spacing (the distance
+//!    between its two samples), and it does not continue the line through them.
+//!
+//! A surface seen at grazing incidence (the floor far from the sensor) has range steps as large
+//! as an edge's between neighbouring beams, but its samples lie on one line within the beam's
+//! plane, so each continues its neighbours' line: the second test keeps them. A depth edge
+//! with no sample between the two surfaces has none to drop: the last foreground sample
+//! continues the foreground's line.
+//!
+//! What it cannot find: a mixed pixel past a foreground surface seen at grazing incidence lies
+//! on that surface's line (it extends the surface by at most the gap), and one next to a
+//! missing return has no neighbour to be compared with; both are kept. Unorganised scans have
+//! no grid and are left as they are.
+
+use cloud::{check_range, PointCloud};
+use glam::Vec3;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+/// Mixed-pixel removal (`[mixed_pixels]` of the configuration).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct MixedPixelConfig {
+    /// Whether organised scans lose their mixed pixels when read.
+    pub enabled: bool,
+    /// The least range difference from each neighbour of a mixed pixel (metres).
+    pub min_gap_m: f64,
+    /// The least jump from a mixed pixel to each neighbour, as a multiple of that side's own
+    /// sample spacing (the distance between its two samples).
+    pub min_jump_ratio: f64,
+    /// How far a sample may lie from the line through the two before it (or after it) and
+    /// still continue that surface (metres)...
+    pub line_tolerance_m: f64,
+    /// ... or, where larger, this share of its distance from the nearer of those two.
+    pub line_tolerance_ratio: f64,
+}
+
+impl Default for MixedPixelConfig {
+    fn default() -> Self {
+        MixedPixelConfig {
+            enabled: true,
+            // Five times a laser scanner's centimetre range noise: neighbouring samples of one
+            // surface facing the sensor are closer than that.
+            min_gap_m: 0.05,
+            // Twice the spacing: a surface's samples are evenly spaced, or (at grazing
+            // incidence) their spacing grows by a few percent from one to the next; an edge's
+            // jump is many spacings.
+            min_jump_ratio: 2.0,
+            // Three times that noise, for a surface's samples off their neighbours' line.
+            line_tolerance_m: 0.03,
+            // A sample may turn by up to about 11 degrees from its neighbours' line (a curved
+            // surface, a sensor's angular jitter); a mixed pixel past an edge lies along its
+            // beam, at a steep angle to the line of the surface it left.
+            line_tolerance_ratio: 0.2,
+        }
+    }
+}
+
+impl MixedPixelConfig {
+    /// Checks the parameters.
+    pub fn validate(&self) -> Result<(), cloud::InvalidParameter> {
+        check_range("min_gap_m", self.min_gap_m, 1e-3, 10.0, "within 1 mm..10 m")?;
+        check_range(
+            "min_jump_ratio",
+            self.min_jump_ratio,
+            1.0,
+            100.0,
+            "within 1..100",
+        )?;
+        check_range(
+            "line_tolerance_m",
+            self.line_tolerance_m,
+            0.0,
+            1.0,
+            "within 0..1 m",
+        )?;
+        check_range(
+            "line_tolerance_ratio",
+            self.line_tolerance_ratio,
+            0.0,
+            1.0,
+            "within 0..1",
+        )?;
+        Ok(())
+    }
+}
+
+/// The indices of an organised scan's mixed pixels (ascending); none when the filter is
+/// disabled or the scan has no grid. Ranges are measured from the scan's sensor origin.
+pub fn find_mixed_pixels(scan: &PointCloud, config: &MixedPixelConfig) -> Vec<usize> {
+    let Some(grid) = scan.organized else {
+        return Vec::new();
+    };
+    if !config.enabled || grid.rows * grid.cols != scan.len() {
+        return Vec::new();
+    }
+    let (rows, cols) = (grid.rows, grid.cols);
+    let point = |j: isize, i: isize| -> Option<Vec3> {
+        let inside = (0..rows as isize).contains(&j) && (0..cols as isize).contains(&i);
+        let p = inside.then(|| scan.points[(j as usize) * cols + i as usize])?;
+        p.is_finite().then_some(p)
+    };
+    (0..scan.len())
+        .into_par_iter()
+        .filter(|&k| {
+            let (j, i) = ((k / cols) as isize, (k % cols) as isize);
+            let Some(p) = point(j, i) else {
+                return false;
+            };
+            // Along the row (one line scan's beams), then along the column (rotation steps).
+            [(0, 1), (1, 0)].iter().any(|&(dj, di)| {
+                let side = |s: isize| {
+                    Some([
+                        point(j + s * dj, i + s * di)?,
+                        point(j + 2 * s * dj, i + 2 * s * di)?,
+                    ])
+                };
+                match (side(-1), side(1)) {
+                    (Some(before), Some(after)) => {
+                        mixed_between(p, before, after, scan.sensor_origin, config)
+                    }
+                    _ => false,
+                }
+            })
+        })
+        .collect()
+}
+
+/// Whether `p` is a mixed pixel between its neighbours on one axis, `before` and `after`
+/// (each the nearer neighbour first): between their ranges and on neither's line.
+fn mixed_between(
+    p: Vec3,
+    before: [Vec3; 2],
+    after: [Vec3; 2],
+    sensor: Vec3,
+    config: &MixedPixelConfig,
+) -> bool {
+    let gap = config.min_gap_m as f32;
+    let (r, ra, rb) = (
+        p.distance(sensor),
+        before[0].distance(sensor),
+        after[0].distance(sensor),
+    );
+    let between = r > ra.min(rb) + gap && r < ra.max(rb) - gap;
+    between && apart(p, before, config) && apart(p, after, config)
+}
+
+/// Whether `p` is apart from the surface of `side` (`side[0]` next to `p`, `side[1]` beyond
+/// it): a jump of many of its sample spacings away, off its line.
+fn apart(p: Vec3, side: [Vec3; 2], config: &MixedPixelConfig) -> bool {
+    let spacing = side[0].distance(side[1]);
+    p.distance(side[0]) > config.min_jump_ratio as f32 * spacing && !continues(p, side, config)
+}
+
+/// Whether `p` continues the line through `side`.
+fn continues(p: Vec3, side: [Vec3; 2], config: &MixedPixelConfig) -> bool {
+    let along = side[0] - side[1];
+    let len = along.length();
+    if len <= f32::EPSILON {
+        return false;
+    }
+    let off = (p - side[0]).reject_from_normalized(along / len).length();
+    let step = p.distance(side[0]);
+    off <= (config.line_tolerance_m as f32).max(config.line_tolerance_ratio as f32 * step)
+}
+
+/// The scan without its mixed pixels (an organised scan keeps its shape: they become NaN, the
+/// missing-return convention), and how many were removed.
+pub fn remove_mixed_pixels(scan: &PointCloud, config: &MixedPixelConfig) -> (PointCloud, usize) {
+    let mixed = find_mixed_pixels(scan, config);
+    if mixed.is_empty() {
+        return (scan.clone(), 0);
+    }
+    let mut out = scan.clone();
+    for &k in &mixed {
+        out.points[k] = Vec3::NAN;
+    }
+    (out, mixed.len())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cloud::{Organized, Rng};
+
+    /// Angular step between beams and between rotation steps (about a SICK LMS's 0.33 deg).
+    const STEP_RAD: f32 = 0.0058;
+
+    /// The unit beam at yaw `yaw` and elevation `el` (radians), x forward, z up.
+    fn beam(yaw: f32, el: f32) -> Vec3 {
+        Vec3::new(el.cos() * yaw.cos(), el.cos() * yaw.sin(), el.sin())
+    }
+
+    /// An organised scan of `rows` rotation steps (yaw from 0) by `cols` beams (elevation from
+    /// `el0`), each beam's range `range(yaw, el)`, with 1 cm of range noise.
+    fn scan(rows: usize, cols: usize, el0: f32, range: impl Fn(f32, f32) -> f32) -> PointCloud {
+        let mut rng = Rng::new(3);
+        let mut points = Vec::new();
+        for j in 0..rows {
+            for i in 0..cols {
+                let (yaw, el) = (j as f32 * STEP_RAD, el0 + i as f32 * STEP_RAD);
+                let noise = 0.01 * rng.gaussian() as f32;
+                points.push(beam(yaw, el) * (range(yaw, el) + noise));
+            }
+        }
+        let mut cloud = PointCloud::from_points(points);
+        cloud.organized = Some(Organized { rows, cols });
+        cloud
+    }
+
+    /// A riser 2 m ahead whose top edge is 0.1 m above the sensor, and a wall 4 m ahead.
+    fn riser_before_wall(_: f32, el: f32) -> f32 {
+        let to_riser = 2.0 / el.cos();
+        if to_riser * el.sin() < 0.1 {
+            to_riser
+        } else {
+            4.0 / el.cos()
+        }
+    }
+
+    /// The first beam of each line scan over the riser's edge.
+    fn first_over_edge(cols: usize, el0: f32) -> usize {
+        (0..cols)
+            .find(|&i| {
+                let el = el0 + i as f32 * STEP_RAD;
+                2.0 * el.tan() >= 0.1
+            })
+            .expect("the edge is in view")
+    }
+
+    #[test]
+    fn a_return_between_a_raised_edge_and_the_wall_behind_is_a_mixed_pixel() {
+        let (rows, cols, el0) = (5, 40, -0.05);
+        let mut s = scan(rows, cols, el0, riser_before_wall);
+        // One line scan's beam over the edge comes back from 3 m: between the two surfaces.
+        let k = 2 * cols + first_over_edge(cols, el0);
+        s.points[k] = s.points[k].normalize() * 3.0;
+        assert_eq!(find_mixed_pixels(&s, &MixedPixelConfig::default()), vec![k]);
+        // Without it, the edge's last and first samples on either surface are no mixed pixels.
+        let clean = scan(rows, cols, el0, riser_before_wall);
+        assert!(find_mixed_pixels(&clean, &MixedPixelConfig::default()).is_empty());
+        // Filtered, it is a missing return: the grid keeps its shape.
+        let (kept, removed) = remove_mixed_pixels(&s, &MixedPixelConfig::default());
+        assert_eq!(
+            (removed, kept.organized, kept.valid_count()),
+            (1, s.organized, s.len() - 1)
+        );
+    }
+
+    #[test]
+    fn a_floor_seen_at_grazing_incidence_is_no_mixed_pixel() {
+        // The floor 0.5 m below the sensor from 2.5 m out to 25 m: range steps between beams
+        // from 0.07 m to several metres, each sample between its neighbours.
+        let (el0, el1) = (-0.2f32, -0.02f32);
+        let cols = ((el1 - el0) / STEP_RAD) as usize;
+        let s = scan(5, cols, el0, |_, el| 0.5 / (-el).sin());
+        assert!(find_mixed_pixels(&s, &MixedPixelConfig::default()).is_empty());
+    }
+
+    #[test]
+    fn a_thin_pole_in_front_of_a_wall_is_no_mixed_pixel() {
+        // One rotation step sees a pole 2 m ahead, its neighbours the wall 4 m ahead.
+        let s = scan(5, 20, -0.05, |yaw, el| {
+            let pole = (yaw - 2.0 * STEP_RAD).abs() < STEP_RAD / 2.0;
+            if pole {
+                2.0
+            } else {
+                4.0 / el.cos()
+            }
+        });
+        assert!(find_mixed_pixels(&s, &MixedPixelConfig::default()).is_empty());
+    }
+
+    #[test]
+    fn an_unorganised_scan_or_a_disabled_filter_finds_none() {
+        let (rows, cols, el0) = (5, 40, -0.05);
+        let mut s = scan(rows, cols, el0, riser_before_wall);
+        let k = 2 * cols + first_over_edge(cols, el0);
+        s.points[k] = s.points[k].normalize() * 3.0;
+        let off = MixedPixelConfig {
+            enabled: false,
+            ..Default::default()
+        };
+        assert!(find_mixed_pixels(&s, &off).is_empty());
+        s.organized = None;
+        assert!(find_mixed_pixels(&s, &MixedPixelConfig::default()).is_empty());
+    }
+
+    #[test]
+    fn bad_parameters_are_named() {
+        for (c, name) in [
+            (
+                MixedPixelConfig {
+                    min_gap_m: 0.0,
+                    ..Default::default()
+                },
+                "min_gap_m",
+            ),
+            (
+                MixedPixelConfig {
+                    min_jump_ratio: 0.5,
+                    ..Default::default()
+                },
+                "min_jump_ratio",
+            ),
+            (
+                MixedPixelConfig {
+                    line_tolerance_m: -1.0,
+                    ..Default::default()
+                },
+                "line_tolerance_m",
+            ),
+            (
+                MixedPixelConfig {
+                    line_tolerance_ratio: f64::NAN,
+                    ..Default::default()
+                },
+                "line_tolerance_ratio",
+            ),
+        ] {
+            let e = c.validate().expect_err(name);
+            assert!(e.to_string().contains(name), "{e}");
+        }
+        assert!(MixedPixelConfig::default().validate().is_ok());
+    }
+}

@@ -234,26 +234,26 @@ mod tests {
         }
     }
 
-    /// The first beam of each line scan over the riser's edge.
-    fn first_over_edge(cols: usize, el0: f32) -> usize {
-        (0..cols)
-            .find(|&i| {
-                let el = el0 + i as f32 * STEP_RAD;
-                2.0 * el.tan() >= 0.1
-            })
-            .expect("the edge is in view")
+    /// The riser and the wall in a 5 x 40 grid from 0.05 rad below the sensor's level, one
+    /// line scan's first beam over the riser's edge coming back from 3 m (between the two
+    /// surfaces); and that beam's index.
+    fn riser_scan_with_a_mixed_pixel() -> (PointCloud, usize) {
+        let (cols, el0) = (40, -0.05);
+        let mut s = scan(5, cols, el0, riser_before_wall);
+        let over_edge = (0..cols)
+            .find(|&i| 2.0 * (el0 + i as f32 * STEP_RAD).tan() >= 0.1)
+            .expect("the edge is in view");
+        let k = 2 * cols + over_edge;
+        s.points[k] = s.points[k].normalize() * 3.0;
+        (s, k)
     }
 
     #[test]
     fn a_return_between_a_raised_edge_and_the_wall_behind_is_a_mixed_pixel() {
-        let (rows, cols, el0) = (5, 40, -0.05);
-        let mut s = scan(rows, cols, el0, riser_before_wall);
-        // One line scan's beam over the edge comes back from 3 m: between the two surfaces.
-        let k = 2 * cols + first_over_edge(cols, el0);
-        s.points[k] = s.points[k].normalize() * 3.0;
+        let (s, k) = riser_scan_with_a_mixed_pixel();
         assert_eq!(find_mixed_pixels(&s, &MixedPixelConfig::default()), vec![k]);
         // Without it, the edge's last and first samples on either surface are no mixed pixels.
-        let clean = scan(rows, cols, el0, riser_before_wall);
+        let clean = scan(5, 40, -0.05, riser_before_wall);
         assert!(find_mixed_pixels(&clean, &MixedPixelConfig::default()).is_empty());
         // Filtered, it is a missing return: the grid keeps its shape.
         let (kept, removed) = remove_mixed_pixels(&s, &MixedPixelConfig::default());
@@ -289,10 +289,7 @@ mod tests {
 
     #[test]
     fn an_unorganised_scan_or_a_disabled_filter_finds_none() {
-        let (rows, cols, el0) = (5, 40, -0.05);
-        let mut s = scan(rows, cols, el0, riser_before_wall);
-        let k = 2 * cols + first_over_edge(cols, el0);
-        s.points[k] = s.points[k].normalize() * 3.0;
+        let (mut s, _) = riser_scan_with_a_mixed_pixel();
         let off = MixedPixelConfig {
             enabled: false,
             ..Default::default()

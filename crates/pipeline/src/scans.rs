@@ -67,27 +67,16 @@ pub fn read_scans_with(
                 );
             }
             let (scan, mixed) = crate::mixed_pixels::remove_mixed_pixels(&scan, mixed_pixels);
-            if mixed > 0 {
-                eprintln!(
-                    "note: {} ({}): {} mixed pixels (returns between two surfaces at a depth edge, {:.2} % of the points) removed",
-                    source.file.display(),
-                    source.name,
-                    mixed,
-                    100.0 * mixed as f64 / (scan.valid_count() + mixed).max(1) as f64
-                );
-            }
+            note_removed(
+                source,
+                mixed,
+                scan.valid_count() + mixed,
+                "mixed pixels (returns between two surfaces at a depth edge",
+            );
             let scan = scan.without_invalid();
             let before = scan.valid_count();
             let (scan, removed) = crate::outliers::remove_outliers(&scan, outliers);
-            if removed > 0 {
-                eprintln!(
-                    "note: {} ({}): {} isolated points (statistical outliers, {:.2} % of the points) removed",
-                    source.file.display(),
-                    source.name,
-                    removed,
-                    100.0 * removed as f64 / before.max(1) as f64
-                );
-            }
+            note_removed(source, removed, before, "isolated points (statistical outliers");
             // The chain takes finite points only (as `without_invalid` leaves them): an
             // organised scan whose isolated points became NaN loses them here, and its shape.
             let scan = if removed > 0 {
@@ -101,6 +90,19 @@ pub fn read_scans_with(
             })
         })
         .collect()
+}
+
+/// Reports on standard error that `count` of a scan's `of` points, `what` (an open
+/// parenthesis the share closes), were removed; nothing when none were.
+fn note_removed(source: &ScanSource, count: usize, of: usize, what: &str) {
+    if count > 0 {
+        eprintln!(
+            "note: {} ({}): {count} {what}, {:.2} % of the points) removed",
+            source.file.display(),
+            source.name,
+            100.0 * count as f64 / of.max(1) as f64
+        );
+    }
 }
 
 /// Reads a one-scan file, moving it from its local frame into the sequence's (the first local

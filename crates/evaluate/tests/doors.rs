@@ -127,3 +127,59 @@ fn a_glass_partition_is_no_row_of_door_openings() {
     );
     assert!(ev.door_openings.recall >= 0.9, "{:?}", ev.door_openings);
 }
+
+/// Regression: office-123 of seeds 121-125: a 0.69 m crate standing in a doorway against its
+/// hinge-side jamb blocked the bins it stands in (its top and back face lie within half a wall
+/// of the face), so the opening's edge was put at the crate's far side, 0.32 m into it; the
+/// leaf, open 98 degrees, was looked for from there and missed, and became a 2 m tall
+/// partial-height wall. A wall's face is seen up to door height; the crate stands lower.
+#[test]
+fn a_crate_against_a_doorways_jamb_leaves_the_opening_its_full_width() {
+    let mut b = Building::default_building().expect("default building");
+    let wall = &mut b.walls[4];
+    let (start, face_y) = (wall.start_m, wall.start_m[1] - wall.thickness_m / 2.0);
+    let door = &mut wall.doors[2];
+    let leaf = door
+        .leaf
+        .as_mut()
+        .expect("the stair room's door has a leaf");
+    leaf.open_deg = 95.0;
+    // The crate: in the corridor, 2 cm off the wall's face, from 2 cm past the hinge jamb.
+    let (jamb_x, size) = (start[0] + door.offset_m, 0.3);
+    b.boxes.push(scanner::Furniture {
+        name: "doorway crate".into(),
+        class: cloud::EntityClass::Furniture,
+        material: scanner::Material::default(),
+        center_m: [
+            jamb_x + 0.02 + size / 2.0,
+            face_y - 0.02 - size / 2.0,
+            0.345,
+        ],
+        size_m: [size, size, 0.69],
+        yaw_deg: 0.0,
+    });
+    let poses = Building::default_survey_poses();
+    let cloud = fixtures::scan_building(&b, &poses, &scanner::LaserConfig::default(), 0.03);
+    let out = build_semantic_map(&cloud, &SemanticConfig::default()).expect("map");
+    let ev = evaluate(&out.map, &b, Some(&cloud));
+    let m = ev
+        .door_matches
+        .iter()
+        .find(|m| m.truth == "walls[4].doors[2]")
+        .unwrap_or_else(|| panic!("the door is found: missed {:?}", ev.missed));
+    eprintln!("{m:?}; walls {:?}", ev.walls);
+    assert!(
+        m.width_error_m.abs() < 0.1,
+        "width off by {}",
+        m.width_error_m
+    );
+    let angle = m
+        .open_angle_error_deg
+        .expect("the leaf's angle is measured");
+    assert!(angle.abs() < 5.0, "angle off by {angle} deg");
+    assert_eq!(
+        ev.walls.detected, ev.walls.matched,
+        "no wall where the leaf stands: {:?}",
+        ev.spurious
+    );
+}

@@ -122,7 +122,7 @@ pub fn find_mixed_pixels(scan: &PointCloud, config: &MixedPixelConfig) -> Vec<us
     let Some(grid) = scan.organized else {
         return Vec::new();
     };
-    if !config.enabled || grid.rows * grid.cols != scan.len() {
+    if !config.enabled || grid.rows.checked_mul(grid.cols) != Some(scan.len()) {
         return Vec::new();
     }
     let (rows, cols) = (grid.rows, grid.cols);

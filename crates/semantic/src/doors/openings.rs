@@ -130,6 +130,9 @@ fn bin_wall(
     let top = w.z_range.1;
     let (reach, block_tol) = reach_and_block_tol(w, c, face_tol);
     let mut blocking = vec![0u16; n];
+    // Of them, those in the door level's upper half (see the end of this function).
+    let mut blocking_high = vec![0u16; n];
+    let mid_level = (level.lo + level.hi) / 2.0;
     // Door-level points within half a wall of a face, behind or in front of it: a bin's wall
     // surface, a closed leaf recessed behind it (whose noise tail reaches the face), or a leaf
     // open at a small angle, crossing the face plane near its hinge.
@@ -148,6 +151,9 @@ fn bin_wall(
                 if level.contains(z) {
                     if w.faces.iter().any(|f| (d - f).abs() <= block_tol) {
                         blocking[b] = blocking[b].saturating_add(1);
+                        if z >= mid_level {
+                            blocking_high[b] = blocking_high[b].saturating_add(1);
+                        }
                         bin.face_s = (bin.face_s.0.min(s), bin.face_s.1.max(s));
                     }
                 } else if z > level.hi && z < top - LINTEL_TOP_MARGIN_M {
@@ -182,10 +188,15 @@ fn bin_wall(
         });
     // A bin is blocked by three face points at door level (one is noise) that are at least a
     // third of its door-level points at the wall (else they are the noise tail of a closed
-    // leaf recessed behind the face).
-    for ((bin, &k), &m) in bins.iter_mut().zip(&blocking).zip(&at_wall) {
+    // leaf recessed behind the face), one of them in the door level's upper half: a wall's
+    // face is seen up to door height, while clutter standing in a doorway against its jamb (a
+    // crate, a bin: office-123's 0.69 m crate set its door's edge 0.32 m into the opening, and
+    // its leaf, searched from there, was missed) stands lower. (Over clutter in front of a
+    // wall, the face is seen above it.)
+    for (b, bin) in bins.iter_mut().enumerate() {
+        let (k, m) = (blocking[b], at_wall[b]);
         bin.door_face = k;
-        bin.blocked = k >= 3 && 3 * k >= m;
+        bin.blocked = k >= 3 && 3 * k >= m && blocking_high[b] > 0;
     }
     (bins, at_wall)
 }

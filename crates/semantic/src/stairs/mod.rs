@@ -54,6 +54,7 @@
 //! is still a straight, dense face in plan (see `side_faces`).
 
 use crate::image_frame::ImageFrame;
+mod climbs_on;
 mod config;
 mod envelope;
 mod extend;

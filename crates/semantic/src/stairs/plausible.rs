@@ -2,6 +2,7 @@
 //! from the blob's points, and the checks that make it one people could climb (rise, run and
 //! steps in the building codes' ranges, every step supported, no floor seen under it).
 
+use super::climbs_on::face_climbs_on;
 use super::profile::Profile;
 use super::{DetectedStairs, StairsConfig};
 use crate::points::quantile;
@@ -123,6 +124,10 @@ pub(crate) fn finish(
             return None;
         }
         if !side_face_is_one_plane(pts, &p, c.min_step_points) {
+            return None;
+        }
+        // Its face ends level past its top step; a ramp's climbs on (see `climbs_on`).
+        if face_climbs_on(sc, dir, face, p.front1 + length, p.rise) {
             return None;
         }
         width_rule = format!(

@@ -73,12 +73,26 @@ pub(crate) fn fit_wall(seg: &Segment, sc: &Scene, c: &WallConfig) -> Option<Wall
     fit_wall_noting(seg, sc, c, &mut None)
 }
 
-/// [`fit_wall`], noting in `settled` the line and extent its fit settled on, if it did.
+/// Where a fit settled (see [`fit_wall_noting`]).
+pub(super) struct Settled {
+    /// The face line and the extent along it.
+    pub line: Line2,
+    pub lo: f64,
+    pub hi: f64,
+    /// How far across the line its faces reach (and their tolerance).
+    pub half_width: f64,
+    /// True if the fit was dropped as a beam: more of it seen through or bare below head
+    /// height than standing.
+    pub beam: bool,
+}
+
+/// [`fit_wall`], noting in `settled` the line and extent its fit settled on, if it did, and
+/// whether it was dropped as a beam.
 pub(super) fn fit_wall_noting(
     seg: &Segment,
     sc: &Scene,
     c: &WallConfig,
-    settled: &mut Option<(Line2, f64, f64)>,
+    settled: &mut Option<Settled>,
 ) -> Option<WallFit> {
     let len0 = seg.length_m();
     // Refit the line on the faces over the extent found, and the extent on the refitted line,
@@ -91,7 +105,13 @@ pub(super) fn fit_wall_noting(
             let (lo, hi, crossing) = find_extent(&l, &faces, a, b, sc, c)?;
             Some((l, lo, hi, (faces, crossing)))
         })?;
-    *settled = Some((line, lo, hi));
+    let noted = settled.insert(Settled {
+        line,
+        lo,
+        hi,
+        half_width: faces.iter().fold(0.0, |m: f64, f| m.max(f.abs())) + c.face_tolerance_m,
+        beam: false,
+    });
     // Face points over the final extent (corners left out): support, coverage, heights, free
     // sides.
     let FacePass {
@@ -110,6 +130,8 @@ pub(super) fn fit_wall_noting(
     // row of pillars or a beam over them.
     let (standing, open, bare) = profile.fractions();
     if standing == 0.0 || open + bare > standing || profile.low_thing_under_a_high_one() {
+        // (a wall in line with the beam can stand past its end: see `rests`)
+        noted.beam = open + bare > standing;
         return None;
     }
     // Its face is a plane along it, not the sides of a corner it cuts through.

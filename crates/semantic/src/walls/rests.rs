@@ -5,8 +5,16 @@
 //! the one whose face holds the most returns and measures it alone; the other would have no
 //! prerequisite left. So each part of the segment beyond the settled extent, long enough to be
 //! more than the ends a corner trims, is fitted as a segment of its own.
+//!
+//! The fit can also settle on both, and be dropped as a beam, more of its length seen through
+//! or bare below head height than standing (garage-132 of seeds 131-135: one 19.25 m segment
+//! along a 17 m beam over pillars and the 2.4 m lobby wall in its line; the beam's two faces
+//! set the fit's, and the wall's face, between them, read as seen through). Each stretch of it
+//! where something stands below head height all along, long enough as above, is then fitted
+//! on its own: the wall's; a pillar under the beam is too short.
 
-use super::fit::{fit_wall, fit_wall_noting};
+use super::fit::{fit_wall, fit_wall_noting, Settled};
+use super::support::{BIN_M, HEAD_HEIGHT_M};
 use super::{WallConfig, WallFit};
 use crate::merge::Segment;
 use crate::points::Line2;
@@ -16,6 +24,17 @@ use crate::scene::Scene;
 /// longer than the ends a corner trims (a wall's thickness or two) and than a pillar's side.
 const MIN_REST_M: f64 = 1.0;
 
+/// Returns this high over the floor and up to head height stand (see `standing_stretches`):
+/// over the floor's noise and what lies on it.
+const STANDING_FROM_M: f64 = 0.3;
+
+/// Empty bins running for at most this many stay within a standing stretch (a wall's face seen
+/// with gaps from afar).
+const MAX_GAP_BINS: usize = 2;
+
+/// The most bins along a fit (a cap against absurd lengths: 100 km).
+const MAX_BINS: f64 = 1e6;
+
 /// The walls along one prerequisite segment: the wall its fit settles on, if any, and those
 /// along the parts of the segment the settled extent left out (see the module docs).
 pub(super) fn fit_walls_along(seg: &Segment, sc: &Scene, c: &WallConfig) -> Vec<WallFit> {
@@ -23,12 +42,62 @@ pub(super) fn fit_walls_along(seg: &Segment, sc: &Scene, c: &WallConfig) -> Vec<
     let mut walls: Vec<WallFit> = fit_wall_noting(seg, sc, c, &mut settled)
         .into_iter()
         .collect();
-    if let Some((line, lo, hi)) = settled {
-        for rest in rests(seg, &line, (lo, hi)) {
+    if let Some(s) = settled {
+        for rest in rests(seg, &s.line, (s.lo, s.hi)) {
             walls.extend(fit_wall(&rest, sc, c));
+        }
+        // A fit dropped as a beam: the stretches of it where something stands.
+        if s.beam {
+            for (from, to) in standing_stretches(sc, &s) {
+                let part = Segment {
+                    a_m: s.line.at(from).to_array(),
+                    b_m: s.line.at(to).to_array(),
+                };
+                walls.extend(fit_wall(&part, sc, c));
+            }
         }
     }
     walls
+}
+
+/// The stretches `(from, to)` along a fit dropped as a beam (`s`) where something stands
+/// within its faces' reach: returns between [`STANDING_FROM_M`] and head height over the floor
+/// in every [`BIN_M`] bin but gaps of [`MAX_GAP_BINS`], at least [`MIN_REST_M`] long. Under a
+/// beam the floor is seen between its pillars; a wall in its line stands along all of its
+/// length.
+fn standing_stretches(sc: &Scene, s: &Settled) -> Vec<(f64, f64)> {
+    let n = ((s.hi - s.lo) / BIN_M).ceil().clamp(1.0, MAX_BINS) as usize;
+    let mut occupied = vec![false; n];
+    let (z0, z1) = (sc.floor + STANDING_FROM_M, sc.floor + HEAD_HEIGHT_M);
+    sc.upright
+        .for_each_near_line(&s.line, s.lo, s.hi, s.half_width, |_, t, _, z| {
+            if z >= z0 && z <= z1 {
+                let k = (((t - s.lo) / BIN_M).max(0.0) as usize).min(n - 1);
+                occupied[k] = true;
+            }
+        });
+    let mut out = Vec::new();
+    let mut run: Option<(usize, usize)> = None; // [from, to)
+    for (k, &o) in occupied.iter().enumerate() {
+        match (o, run) {
+            (true, Some((from, to))) if k - to <= MAX_GAP_BINS => run = Some((from, k + 1)),
+            (true, _) => {
+                out.extend(run);
+                run = Some((k, k + 1));
+            }
+            (false, _) => {}
+        }
+    }
+    out.extend(run);
+    out.into_iter()
+        .map(|(from, to)| {
+            (
+                s.lo + from as f64 * BIN_M,
+                (s.lo + to as f64 * BIN_M).min(s.hi),
+            )
+        })
+        .filter(|(from, to)| to - from >= MIN_REST_M)
+        .collect()
 }
 
 /// The parts of `seg` beyond the extent `(lo, hi)` along `line`, each at least
@@ -83,13 +152,13 @@ mod tests {
         }
     }
 
+    /// The ceiling of [`lobby_wall_and_beam`].
+    const CEILING: f32 = 2.9;
+
     /// garage-5 (seeds 1-10): a lobby's wall meets its south wall at a corner, and a beam over
-    /// the garage runs on from that corner in the wall's line. One segment along both; the fit
-    /// settles on the beam (its two faces' returns outnumber the wall's one face's) and drops
-    /// it as no wall. The lobby's wall is the rest of the segment, fitted on its own.
-    #[test]
-    fn a_wall_in_line_with_a_beam_past_its_corner_is_found_along_their_one_segment() {
-        let (ceiling, step) = (2.9f32, 0.05);
+    /// the garage runs on from that corner in the wall's line (see the test below).
+    fn lobby_wall_and_beam() -> Vec<Vec3> {
+        let (ceiling, step) = (CEILING, 0.05);
         // The lobby's wall: x 0..0.25, y 18..20.25, its face x = 0 seen from the lobby (x < 0).
         // Its south wall: y 17.75..18, x -3..0.25. The beam: x -0.25..0.25, y 0..17.75, from
         // 2.5 m up, seen from both sides with the floor under it, on pillars.
@@ -137,8 +206,22 @@ mod tests {
                 (0.005 * rng.gaussian()) as f32,
             );
         }
+        points
+    }
+
+    /// The scene of `points` over [`lobby_wall_and_beam`]'s area.
+    fn scene<'a>(points: &'a [Vec3], index: &'a XyIndex) -> Scene<'a> {
+        Scene::with_one_index(points, index, 0.0, f64::from(CEILING))
+    }
+
+    /// garage-5 (seeds 1-10): one segment along the lobby's wall and the beam; the fit settles
+    /// on the beam (its two faces' returns outnumber the wall's one face's) and drops it as no
+    /// wall. The lobby's wall is the rest of the segment, fitted on its own.
+    #[test]
+    fn a_wall_in_line_with_a_beam_past_its_corner_is_found_along_their_one_segment() {
+        let points = lobby_wall_and_beam();
         let index = XyIndex::new(&points, DVec2::new(-3.5, -0.5), DVec2::new(3.5, 21.0), 0.25);
-        let sc = Scene::with_one_index(&points, &index, 0.0, f64::from(ceiling));
+        let sc = scene(&points, &index);
         let c = WallConfig::default();
         let seg = Segment {
             a_m: [0.0, 0.1],
@@ -149,5 +232,32 @@ mod tests {
         let ys = [walls[0].start().y, walls[0].end().y];
         let (s, e) = (ys[0].min(ys[1]), ys[0].max(ys[1]));
         assert!((s - 18.0).abs() < 0.2 && (e - 20.25).abs() < 0.2, "{s} {e}");
+    }
+
+    /// garage-132 (seeds 131-135): where the fit settles on the beam and the lobby's wall both
+    /// (the beam's faces set its faces; the wall's face, between them, reads as seen through)
+    /// and drops them as a beam, the wall is the one stretch along them where something stands
+    /// below head height all along; the beam's pillars (0.5 m) are too short.
+    #[test]
+    fn along_a_fit_dropped_as_a_beam_a_wall_in_its_line_stands() {
+        let points = lobby_wall_and_beam();
+        let index = XyIndex::new(&points, DVec2::new(-3.5, -0.5), DVec2::new(3.5, 21.0), 0.25);
+        let sc = scene(&points, &index);
+        let settled = Settled {
+            line: Line2::through(DVec2::new(0.0, 0.1), DVec2::new(0.0, 20.2)),
+            lo: 0.0,
+            hi: 20.1,
+            half_width: 0.28,
+            beam: true,
+        };
+        let stretches = standing_stretches(&sc, &settled);
+        assert_eq!(stretches.len(), 1, "{stretches:?}");
+        let (from, to) = stretches[0];
+        // Along the line from y = 0.1: the wall from y 18.0 (its south wall's face at 17.75
+        // stands too) to 20.25.
+        assert!(
+            (from - 17.65).abs() < 0.15 && (to - 20.1).abs() < 0.05,
+            "{from} {to}"
+        );
     }
 }

@@ -231,6 +231,41 @@ fn a_flight_in_other_steps_climbs_through_no_landing() {
     );
 }
 
+/// Regression: fresh hall-125's 11-step flight (0.157 m x 0.266 m), seen mostly from its side,
+/// read as its upper 5 steps on a landing 6 rises up, the flight below it taken as hidden:
+/// mixed pixels 0.22 m over its fourth tread along 0.2 m held the running maximum level until
+/// the sixth tread, 6 cm higher, and the two read as a landing in two voxel layers. The profile
+/// along all of the part finds all 11 levels, the landing's too: it climbs up to that landing
+/// (`climbs_up_to`). (The part's returns, from the bench's map.)
+#[test]
+fn mixed_pixels_over_a_tread_make_no_landing_of_it() {
+    assert_part_is_flight(
+        include_str!("../../tests/data/hall125_mixed_pixels_on_a_tread.txt"),
+        (3138, 3136),
+        DVec2::new(4.9, 1.5),
+        (0.157, 0.266, 11),
+    );
+}
+
+/// Regression: fresh office-145's 4-step flight (0.159 m x 0.263 m), seen from its side only
+/// in sparse returns, its side face's top edge read 3-4 cm under the treads and its landing's
+/// plateau at 0.60 m, with a few returns up to 0.68 m over the landing's near edge: the count
+/// from the top height (0.66 m) missed every level but the first, and the flight was read as 3
+/// steps of 0.22 m, too steep to climb, and dropped. The count up to the plateau is fitted too.
+/// (The part's returns, from the bench's map.)
+#[test]
+fn returns_over_a_side_seen_landings_edge_leave_its_count() {
+    let (all, surface) =
+        returns_and_surface(include_str!("../../tests/data/office145_side_face_sparse.txt"));
+    assert_eq!((all.len(), surface.len()), (568, 567));
+    let found = search_as_mapped_with_surface(&all, &surface, DVec2::new(2.3, 1.2));
+    let flight = &found.expect("a staircase")[0];
+    assert_eq!(flight.steps, 4, "{flight:?}");
+    // (the rise from the plateau, read on the side face's top edge a few centimetres low)
+    assert!((flight.rise - 0.159).abs() < 0.012, "rise {}", flight.rise);
+    assert!((flight.run - 0.263).abs() < 0.02, "run {}", flight.run);
+}
+
 /// The part in the test data `text` (`counts`: its returns, those on a surface), searched over
 /// a floor hidden under the staircase (`hidden`), is one flight of `(rise, run, steps)`.
 fn assert_part_is_flight(

@@ -125,12 +125,13 @@ impl Search<'_> {
         // The lone flight wins if it is along a wall's direction or the one flight is not,
         // and it found as large a share of its levels (on a tie: a staircase with a mid
         // landing read as one flight misses a level), unless the one flight climbs on through
-        // its landing (see `climbs_through`).
+        // its landing (see `climbs_through`) or up to it (see `climbs_up_to`).
         match (one, lone) {
             (Some((one_on_wall, one)), Some((lone_on_wall, lone)))
                 if (lone_on_wall || !one_on_wall)
                     && lone.iter().all(|l| l.confidence >= one.confidence)
-                    && !climbs_through(&one, &lone, self.c) =>
+                    && !climbs_through(&one, &lone, self.c)
+                    && !climbs_up_to(&one, &lone, self.c) =>
             {
                 Some(lone)
             }
@@ -176,6 +177,40 @@ fn climbs_through(one: &DetectedStairs, lone: &[DetectedStairs], c: &StairsConfi
         && same_steps
         && one.steps > lone.steps
         && past_its_top
+        && one.confidence >= 1.0
+}
+
+/// True if `one` (a flight read along all of a part, from the floor) is the lone flight `lone`
+/// (a flight found on a landing, the flight below it hidden or only glimpsed) with the steps
+/// below it seen after all: `one` climbs the same way in the same steps, the landing is one of
+/// its levels (within [`ON_A_LEVEL`] of a rise), it ends at the lone flight's top level, starts
+/// before it, and has a bin on every one of its levels, those under the landing too. A mid
+/// landing read as steps would leave the levels on it empty, and a hidden flight's levels have
+/// none; here the "landing" was a tread with something over it (hall-125 of seeds 121-125: a
+/// 0.2 m stretch of mixed pixels 0.22 m over the fourth tread of an 11-step flight, seen from
+/// its side, and the sixth tread beyond it, 6 cm higher, read as a landing in two voxel layers;
+/// the flight read as its upper 5 steps on a landing with the flight below it hidden, though the
+/// profile along all of it found all 11 levels).
+fn climbs_up_to(one: &DetectedStairs, lone: &[DetectedStairs], c: &StairsConfig) -> bool {
+    let [lone] = lone else {
+        return false;
+    };
+    let same_way = one.dir.dot(lone.dir) >= c.snap_direction_deg.to_radians().cos();
+    let same_steps = (one.rise - lone.rise).abs() * f64::from(lone.steps) <= ON_A_LEVEL * lone.rise;
+    // (the landing on one of its levels, and the two tops one level)
+    let on_a_level = |h: f64| (h / one.rise - (h / one.rise).round()).abs() <= ON_A_LEVEL;
+    let one_top = one.rise * f64::from(one.steps);
+    let lone_top = lone.base + lone.rise * f64::from(lone.steps);
+    let same_top = (one_top - lone_top).abs() <= ON_A_LEVEL * one.rise;
+    let starts_before = (lone.start - one.start).dot(one.dir) >= one.run;
+    lone.base > 0.0
+        && one.base == 0.0
+        && same_way
+        && same_steps
+        && on_a_level(lone.base)
+        && same_top
+        && starts_before
+        && one.steps > lone.steps
         && one.confidence >= 1.0
 }
 
@@ -231,5 +266,33 @@ mod tests {
         missed.confidence = 6.0 / 7.0;
         assert!(!climbs_through(&missed, &lone, &c));
         assert!(!climbs_through(&flight(6, 0.156, 0.31), &lone, &c));
+    }
+
+    #[test]
+    fn a_flight_climbs_up_to_a_landing_only_in_the_same_steps_to_the_same_top() {
+        let c = StairsConfig::default();
+        // hall-125: the upper 5 of 11 steps read on a "landing" 6 rises up.
+        let mut upper = flight(5, 0.158, 0.22);
+        (upper.base, upper.start) = (0.932, DVec2::new(1.59, 0.0));
+        let lone = [upper.clone()];
+        assert!(climbs_up_to(&flight(11, 0.157, 0.266), &lone, &c));
+        // A real mid landing: the flight from the floor misses the levels on it.
+        let mut missed = flight(11, 0.157, 0.266);
+        missed.confidence = 9.0 / 11.0;
+        assert!(!climbs_up_to(&missed, &lone, &c));
+        // Other steps, or a top a rise away, are no such flight.
+        assert!(!climbs_up_to(&flight(13, 0.133, 0.22), &lone, &c));
+        assert!(!climbs_up_to(&flight(10, 0.157, 0.266), &lone, &c));
+        // A landing between two of its levels, the steps on it of another rise.
+        let mut between = upper;
+        between.base = 0.85;
+        between.rise = 0.1745;
+        assert!(!climbs_up_to(&flight(11, 0.157, 0.266), &[between], &c));
+        // A flight on the floor is no lone flight on a landing.
+        assert!(!climbs_up_to(
+            &flight(11, 0.157, 0.266),
+            &[flight(5, 0.157, 0.266)],
+            &c
+        ));
     }
 }

@@ -9,8 +9,12 @@
 //! wall it would be a piece of) and its body is no deeper than a column: the floor is seen
 //! behind it within a column's width (a one-sided wall's back is not seen; a pillar's is, from
 //! the poses on its other side, a body thicker than any wall).
+//!
+//! Under a beam, the Hough segment and the wall's extent follow the beam's face past the pillar:
+//! the stretch of the candidate where its face is seen below head height is looked at so then.
 
 use super::piers::{BODY_DEPTH_M, FLOOR_TOL_M, MAX_COLUMN_M, MIN_FLOOR_POINTS};
+use super::support::HEAD_HEIGHT_M;
 use super::WallFit;
 use crate::scene::Scene;
 
@@ -27,22 +31,97 @@ const MIN_BEHIND_SHARE: f64 = 0.5;
 /// True if `w` (before one-sided walls are moved to their centre lines: `w.line` is the face
 /// of a one-sided wall) is no longer than a column and stands free: the floor is seen where its
 /// body would continue past both ends, or past one end while no other wall of `walls` meets the
-/// other and its back is seen (see the module docs).
-pub(crate) fn is_free_standing_pier(w: &WallFit, walls: &[WallFit], sc: &Scene) -> bool {
-    if w.length > MAX_COLUMN_M {
+/// other and its back is seen (see the module docs). So is `w` if the stretch of it where its
+/// face is seen below head height is such a column, the rest of it seen above head height only
+/// (see [`standing_stretch`]).
+pub(crate) fn is_free_standing_pier(
+    w: &WallFit,
+    walls: &[WallFit],
+    sc: &Scene,
+    face_tolerance_m: f64,
+) -> bool {
+    stands_free(w, w, walls, sc)
+        || standing_stretch(w, sc, face_tolerance_m)
+            .is_some_and(|stretch| stands_free(&stretch, w, walls, sc))
+}
+
+/// True if `piece` (of the wall `own` in `walls`, or all of it) is no longer than a column
+/// and stands free (see [`is_free_standing_pier`]).
+fn stands_free(piece: &WallFit, own: &WallFit, walls: &[WallFit], sc: &Scene) -> bool {
+    if piece.length > MAX_COLUMN_M {
         return false;
     }
     let (b0, b1) = BEYOND_M;
-    let free_start = free_past(w, -b1, -b0, sc);
-    let free_end = free_past(w, w.length + b0, w.length + b1, sc);
+    let free_start = free_past(piece, -b1, -b0, sc);
+    let free_end = free_past(piece, piece.length + b0, piece.length + b1, sc);
     if free_start == free_end {
         return free_start;
     }
-    let hidden = if free_start { w.end() } else { w.start() };
+    let hidden = if free_start {
+        piece.end()
+    } else {
+        piece.start()
+    };
     let met = walls
         .iter()
-        .any(|o| !std::ptr::eq(o, w) && meets(o, hidden));
-    !met && back_seen(w, sc)
+        .any(|o| !std::ptr::eq(o, own) && meets(o, hidden));
+    !met && back_seen(piece, sc)
+}
+
+/// Face points below head height in a bin of [`BEHIND_BIN_M`] this many at least stand there
+/// (fewer are a stray return or a person's passing).
+const MIN_STANDING_POINTS: usize = 2;
+
+/// The stretch of `w` from the first to the last bin where its face is seen below head height,
+/// as a wall of its own, where it is shorter than `w` by a bin or more (the rest of `w` is its
+/// face seen above head height only: the Hough segment and the extent follow a beam's face
+/// past the pillar under it) and no longer than a column. A pillar under a beam, a parked car
+/// beside each, the floor past its ends and under the beam hidden (garage-144 of seeds 141-145:
+/// 0.6 m of a pillar's face and 0.8 m of the beam's beyond it, a 1.37 m wall), stands free as
+/// the pillar it is. A wall hidden below head height along most of its length by what stands
+/// before it does not: where it goes on, its body hides the floor past the stretch's end, and
+/// its face is seen above what stands before it (a car, a cabinet) below head height too.
+fn standing_stretch(w: &WallFit, sc: &Scene, face_tolerance_m: f64) -> Option<WallFit> {
+    if w.length <= BEHIND_BIN_M {
+        return None;
+    }
+    let faces: Vec<f64> = if w.measured {
+        w.faces.clone()
+    } else {
+        vec![0.0]
+    };
+    let n = ((w.length / BEHIND_BIN_M).ceil() as usize).max(1);
+    let mut standing = vec![0usize; n];
+    sc.index.for_each_near_line(
+        &w.line,
+        0.0,
+        w.length,
+        w.thickness / 2.0 + face_tolerance_m,
+        |_, s, d, z| {
+            let above_floor = z - sc.floor;
+            if above_floor > 0.1
+                && above_floor < HEAD_HEIGHT_M
+                && faces.iter().any(|f| (d - f).abs() <= face_tolerance_m)
+            {
+                let k = ((s / BEHIND_BIN_M).floor().max(0.0) as usize).min(n - 1);
+                standing[k] += 1;
+            }
+        },
+    );
+    let stands = |k: &usize| standing[*k] >= MIN_STANDING_POINTS;
+    let first = (0..n).find(stands)?;
+    let last = (0..n).rev().find(stands)?;
+    let (s0, s1) = (
+        first as f64 * BEHIND_BIN_M,
+        ((last + 1) as f64 * BEHIND_BIN_M).min(w.length),
+    );
+    if s1 - s0 > MAX_COLUMN_M || s1 - s0 > w.length - BEHIND_BIN_M {
+        return None;
+    }
+    let mut stretch = w.clone();
+    stretch.line.origin = w.line.at(s0);
+    stretch.length = s1 - s0;
+    Some(stretch)
 }
 
 /// True if the floor is seen in the wall's footprint between `s0` and `s1` along it.
@@ -112,7 +191,7 @@ mod tests {
         let sc = Scene::with_one_index(points, &index, 0.0, 3.0);
         let mut walls = vec![w.clone()];
         walls.extend_from_slice(others);
-        is_free_standing_pier(&walls[0], &walls, &sc)
+        is_free_standing_pier(&walls[0], &walls, &sc, 0.03)
     }
 
     /// A 0.5 m pillar's face on y = 0 from x = 0 to 0.5, seen from y < 0.
@@ -134,6 +213,46 @@ mod tests {
         // Hidden past both ends: nothing says it stands free.
         let points = floor(|x, y| pillar(x, y) || car(x, y) || car(x + 1.6, y));
         assert!(!pier(&points, &face(), &[]));
+    }
+
+    /// Face points on y = 0 every 5 cm from `x0` to `x1` and from `z0` to `z1` (m).
+    fn face_points(x: (f64, f64), z: (f64, f64)) -> Vec<Vec3> {
+        let mut points = Vec::new();
+        let mut xi = x.0 + 0.025;
+        while xi < x.1 {
+            let mut zi = z.0;
+            while zi <= z.1 {
+                points.push(Vec3::new(xi as f32, 0.0, zi as f32));
+                zi += 0.05;
+            }
+            xi += 0.05;
+        }
+        points
+    }
+
+    /// Regression (garage-144 of seeds 141-145): a pillar under a beam, a car parked beside
+    /// each, was a 1.37 m wall from the floor to the ceiling: the beam's face past the pillar
+    /// made it longer than a column, the floor under the beam hidden by the cars. The stretch
+    /// where its face is seen below head height, the pillar's, stands free.
+    #[test]
+    fn a_pillar_under_a_beam_with_a_car_beside_it_is_no_wall() {
+        let car = |x: f64, y: f64| (0.55..1.5).contains(&x) && (-0.5..1.5).contains(&y);
+        let mut points = floor(|x, y| pillar(x, y) || car(x, y));
+        points.extend(face_points((0.0, 0.5), (0.2, 2.6)));
+        points.extend(face_points((0.5, 1.3), (2.3, 2.6)));
+        let beam_and_pillar = WallFit::one_sided(DVec2::ZERO, DVec2::new(1.3, 0.0), -1.0);
+        assert!(pier(&points, &beam_and_pillar, &[]));
+        // A wall that goes on past the stretch, its body hiding the floor there and nothing
+        // seen behind it, stays a wall.
+        let wall = |x: f64, y: f64| (0.0..1.3).contains(&x) && (0.0..1.5).contains(&y);
+        let mut points = floor(|x, y| wall(x, y) || car(x, y));
+        points.extend(face_points((0.0, 0.5), (0.2, 2.6)));
+        points.extend(face_points((0.5, 1.3), (2.3, 2.6)));
+        assert!(!pier(&points, &beam_and_pillar, &[]));
+        // Its face seen below head height along more than a column's width: no pillar.
+        let mut points = floor(|x, y| pillar(x, y) || car(x, y));
+        points.extend(face_points((0.0, 1.3), (0.2, 2.6)));
+        assert!(!pier(&points, &beam_and_pillar, &[]));
     }
 
     #[test]

@@ -336,7 +336,7 @@ pub(crate) fn identify_walls(
     // seen and no wall meeting the other) is a column.
     let piers: Vec<bool> = kept
         .iter()
-        .map(|w| is_free_standing_pier(w, &kept, sc))
+        .map(|w| is_free_standing_pier(w, &kept, sc, c.face_tolerance_m))
         .collect();
     let mut pier = piers.into_iter();
     kept.retain(|_| !pier.next().unwrap_or(false));

@@ -255,8 +255,9 @@ fn mixed_pixels_over_a_tread_make_no_landing_of_it() {
 /// (The part's returns, from the bench's map.)
 #[test]
 fn returns_over_a_side_seen_landings_edge_leave_its_count() {
-    let (all, surface) =
-        returns_and_surface(include_str!("../../tests/data/office145_side_face_sparse.txt"));
+    let (all, surface) = returns_and_surface(include_str!(
+        "../../tests/data/office145_side_face_sparse.txt"
+    ));
     assert_eq!((all.len(), surface.len()), (568, 567));
     let found = search_as_mapped_with_surface(&all, &surface, DVec2::new(2.3, 1.2));
     let flight = &found.expect("a staircase")[0];

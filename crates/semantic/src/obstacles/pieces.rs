@@ -25,12 +25,14 @@ pub(super) fn join_partition_pieces(
     frame: &ImageFrame,
     c: &ObstacleConfig,
 ) -> Vec<DetectedObstacle> {
-    // 1. The pieces: thin obstacles standing on the floor, partition-high.
+    // 1. The pieces: thin obstacles standing on the floor, partition-high (up to the ceiling
+    //    too: a glass partition's sparse returns fall into thin slabs from the floor to the
+    //    ceiling, each narrow enough for a column's face).
     let piece: Vec<usize> = (0..found.len())
         .filter(|&i| {
             let o = &found[i];
             !o.overhead
-                && o.class == EntityClass::Obstacle
+                && matches!(o.class, EntityClass::Obstacle | EntityClass::Column)
                 && o.size[1] <= c.partition_max_thickness_m
                 && o.z_range.0 - sc.floor <= c.partition_max_bottom_m
                 && o.z_range.1 - sc.floor >= c.partition_min_height_m
@@ -70,13 +72,22 @@ pub(super) fn join_partition_pieces(
             .copied()
             .max_by(|&a, &b| found[a].size[0].total_cmp(&found[b].size[0]))
             .unwrap_or(members[0]);
+        let dir = line_of(&members, &found).unwrap_or(found[longest].dir);
         let mut wall = found[longest].clone();
         for &m in &members {
             if m != longest {
-                absorb(&mut wall, &found[m], found[longest].dir);
+                absorb(&mut wall, &found[m], dir);
             }
         }
-        let Some(why) = partition_rule(&wall, sc, grids, floor_seen, frame, c) else {
+        let Some(why) = partition_rule(
+            &wall,
+            sc,
+            grids,
+            floor_seen,
+            frame,
+            c,
+            full_height_length(&members, &found, sc, c),
+        ) else {
             continue;
         };
         wall.class = EntityClass::Wall;
@@ -98,10 +109,58 @@ pub(super) fn join_partition_pieces(
     kept
 }
 
+/// The length of the pieces of `members` that each stand from the floor to the ceiling (within
+/// `partition_max_bottom_m` and `max_vertical_gap_m`), all of them, or 0. A glass partition
+/// returns few of the beams that meet it (soda-lime glass passes ~90 % at a laser's 905 nm):
+/// its returns fall into thin slabs from the floor to the ceiling, each seen standing as a
+/// whole, while in a bin of 10 cm its foot's band of a few centimetres often holds no return
+/// (office-133 of seeds 131-135: a 4.2 m glass partition in five pieces, covering 94 % of
+/// their line; its foot seen in 56 % of its bins).
+fn full_height_length(
+    members: &[usize],
+    found: &[DetectedObstacle],
+    sc: &ObstacleScene,
+    c: &ObstacleConfig,
+) -> f64 {
+    let full_height = |o: &DetectedObstacle| {
+        o.z_range.0 - sc.floor <= c.partition_max_bottom_m
+            && sc.ceiling - o.z_range.1 <= c.max_vertical_gap_m
+    };
+    if members.iter().all(|&m| full_height(&found[m])) {
+        members.iter().map(|&m| found[m].size[0]).sum()
+    } else {
+        0.0
+    }
+}
+
+/// The direction of the line through the centres of the two pieces of `members` farthest
+/// apart, where they are farther apart than the longest piece is long: a partition's line,
+/// where any one piece's box may lean a few degrees off it (and a box along that lean, around
+/// all of them, is too thick for a partition); `None` otherwise.
+fn line_of(members: &[usize], found: &[DetectedObstacle]) -> Option<glam::DVec2> {
+    let longest = members
+        .iter()
+        .map(|&m| found[m].size[0])
+        .fold(0.0, f64::max);
+    let mut far = (0.0, None);
+    for (i, &a) in members.iter().enumerate() {
+        for &b in &members[i + 1..] {
+            let d = found[b].center - found[a].center;
+            if d.length() > far.0 {
+                far = (d.length(), d.try_normalize());
+            }
+        }
+    }
+    far.1.filter(|_| far.0 > longest)
+}
+
 /// Whether pieces `a` and `b` continue each other along one line: the shorter parallel to the
 /// longer or too short to have a direction, its centre within half a partition's slab of the
-/// longer's centre line, at most [`MAX_GAP_M`] beyond its end, their tops within
-/// `max_vertical_gap_m`.
+/// longer's centre line (or, where it has a direction, the longer's centre within as much of
+/// its own: a piece's box leans a few degrees off its partition's line, and over a metre or
+/// two that moves the other's centre off it by more than its slab: office-133 of seeds
+/// 131-135, a partition's 0.88 m piece 4.7 degrees off), at most [`MAX_GAP_M`] beyond its end,
+/// their tops within `max_vertical_gap_m`.
 fn continues(a: &DetectedObstacle, b: &DetectedObstacle, c: &ObstacleConfig) -> bool {
     let (long, short) = if a.size[0] >= b.size[0] {
         (a, b)
@@ -110,8 +169,10 @@ fn continues(a: &DetectedObstacle, b: &DetectedObstacle, c: &ObstacleConfig) -> 
     };
     let r = short.center - long.center;
     let gap = r.dot(long.dir).abs() - (long.size[0] + short.size[0]) / 2.0;
-    (short.size[0] <= 2.0 * short.size[1] || short.dir.dot(long.dir).abs() >= PARALLEL_COS)
-        && r.dot(long.dir.perp()).abs() <= c.partition_slab_m / 2.0
+    let directionless = short.size[0] <= 2.0 * short.size[1];
+    let on_line = |dir: glam::DVec2| r.dot(dir.perp()).abs() <= c.partition_slab_m / 2.0;
+    (directionless || short.dir.dot(long.dir).abs() >= PARALLEL_COS)
+        && (on_line(long.dir) || !directionless && on_line(short.dir))
         && gap <= MAX_GAP_M
         && (long.z_range.1 - short.z_range.1).abs() <= c.max_vertical_gap_m
 }
@@ -140,6 +201,67 @@ mod tests {
         assert_eq!(found.len(), 1, "{found:?}");
         assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
         assert!(found[0].1.contains("partial-height wall"), "{found:?}");
+    }
+
+    /// Pieces `piece_m` long, `gap_m` apart along x at y = 2 from x = 1, from the floor up to
+    /// `top_m`, their foot (under 0.15 m) seen in every fourth bin of 10 cm only, as glass
+    /// returns few of the beams that meet it.
+    fn sparse_foot_pieces(n: usize, piece_m: f32, gap_m: f32, top_m: f32) -> Vec<glam::Vec3> {
+        pieces_to(n, piece_m, gap_m, top_m)
+            .into_iter()
+            .filter(|p| p.z > 0.15 || (((p.x - 1.0) / 0.1).floor() as i32) % 4 == 0)
+            .collect()
+    }
+
+    fn pieces_to(n: usize, piece_m: f32, gap_m: f32, top_m: f32) -> Vec<glam::Vec3> {
+        (0..n)
+            .flat_map(|k| {
+                let x = 1.0 + k as f32 * (piece_m + gap_m);
+                slab(x, x + piece_m, 2.0, 0.02, top_m)
+            })
+            .collect()
+    }
+
+    /// Regression (office-133 of seeds 131-135): a glass partition's returns fell into thin
+    /// slabs from the floor to the ceiling, each taken for a column, its foot seen in too few
+    /// bins for a partition's; in pieces each standing whole, it is one wall.
+    #[test]
+    fn a_glass_partition_in_pieces_from_the_floor_to_the_ceiling_is_one_wall() {
+        let found = classes(&sparse_foot_pieces(3, 0.6, 0.25, 2.9));
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
+        // Partition-high only, the foot seen as sparsely is not enough to stand on.
+        let found = classes(&sparse_foot_pieces(3, 0.6, 0.25, 1.4));
+        assert!(
+            found.iter().all(|(c, _)| *c != EntityClass::Wall),
+            "{found:?}"
+        );
+    }
+
+    /// Regression (office-133 of seeds 131-135): a partial partition in three pieces, the
+    /// longest's box 4.7 degrees off their line: the farther pieces' centres lay off its line
+    /// by more than a partition's slab, and a box along it around all three was too thick for
+    /// a partition. The pieces' own lines and the line through their centres join them.
+    #[test]
+    fn a_partition_in_pieces_one_leaning_off_its_line_is_one_wall() {
+        let lean = 8.0f32.to_radians();
+        let (cx, cy) = (1.45f32, 2.0f32);
+        let mut points: Vec<glam::Vec3> = slab(1.0, 1.9, 2.0, 0.02, 1.26)
+            .into_iter()
+            .map(|p| {
+                let (dx, dy) = (p.x - cx, p.y - cy);
+                glam::Vec3::new(
+                    cx + dx * lean.cos() - dy * lean.sin(),
+                    cy + dx * lean.sin() + dy * lean.cos(),
+                    p.z,
+                )
+            })
+            .collect();
+        points.extend(slab(2.15, 2.75, 2.0, 0.02, 1.26));
+        points.extend(slab(3.0, 3.7, 2.0, 0.02, 1.26));
+        let found = classes(&points);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
     }
 
     #[test]

@@ -12,6 +12,10 @@ use glam::DVec2;
 /// Returns up to this far above the grid's top level still lie on it (the levels' tolerance).
 const ABOVE_TOP_M: f64 = 0.035;
 
+/// The envelope's bins (1 cm) over the top level's plateau that are a few returns over its
+/// edge (mixed pixels, a voxel's centroid), not more of the profile climbing: 5 cm of them.
+const FEW_OVER_PLATEAU: usize = 5;
+
 /// A staircase profile along one direction.
 pub(crate) struct Profile {
     pub dir: DVec2,
@@ -67,7 +71,7 @@ pub(crate) fn profile_near(
     c: &StairsConfig,
     rise_hint: Option<f64>,
 ) -> Option<Profile> {
-    fit_profile(pts, all, dir, c, rise_hint, None)
+    fit_profile(pts, all, dir, c, rise_hint, Counts::Grid)
 }
 
 /// A fit of another step count than [`profile`]'s along `dir` that scores more than its fit
@@ -92,7 +96,38 @@ pub(crate) fn profile_other_count(
     found: f64,
     c: &StairsConfig,
 ) -> Option<Profile> {
-    fit_profile(pts, all, dir, c, None, Some(found))
+    fit_profile(pts, all, dir, c, None, Counts::Beat(found))
+}
+
+/// The counts [`fit_profile`] fits.
+#[derive(Clone, Copy)]
+enum Counts {
+    /// Those the grid of levels and the top height point to ([`profile`], [`profile_near`]).
+    Grid,
+    /// Every other count that scores more than this ([`profile_other_count`]).
+    Beat(f64),
+    /// The count up to the top level's plateau only ([`profile_up_to_plateau`]).
+    Plateau,
+}
+
+/// The count up to the top level's plateau along `dir`, where a few returns over that plateau
+/// set the top height over it by more than the levels' tolerance (`None` otherwise, or where
+/// it has no fit). A flight seen from its side only, in sparse returns: a few returns over its
+/// top landing's edge (mixed pixels, a voxel's centroid) set the top height, the count from it
+/// gets a rise the levels, read low on the side face's top edge, fall short of, and the best
+/// fit left is no stair (office-145 of seeds 141-145: a 4-step flight of 0.159 m, its landing's
+/// plateau at 0.60 m and the top height at 0.66 m, read as 3 steps of 0.22 m, too steep). A
+/// search fits this count where the profile's own makes no staircase along a wall's direction
+/// (see `search`): a ramp read along a direction oblique to it has such a plateau too, where
+/// the strip across it reaches its top end, and a count up to it fits its rise (the evaluate
+/// crate's wheelchair ramp read as 3 steps of 0.110 m).
+pub(crate) fn profile_up_to_plateau(
+    pts: &[(DVec2, f64)],
+    all: &[(DVec2, f64)],
+    dir: DVec2,
+    c: &StairsConfig,
+) -> Option<Profile> {
+    fit_profile(pts, all, dir, c, None, Counts::Plateau)
 }
 
 /// A coarse fit this far under the score to beat may still beat it on the fine grid.
@@ -106,7 +141,7 @@ fn fit_profile(
     dir: DVec2,
     c: &StairsConfig,
     rise_hint: Option<f64>,
-    beat: Option<f64>,
+    which: Counts,
 ) -> Option<Profile> {
     let bin = 0.01;
     let mut s: Vec<f64> = all.iter().map(|(q, _)| q.dot(dir)).collect();
@@ -180,18 +215,6 @@ fn fit_profile(
         .filter(|&h| h < top_height - rise0 / 2.0);
     let under_end: Vec<(f64, f64)> = end.map_or_else(Vec::new, |h| up_to(fit_env, h));
     let n_end = end.map_or(0.0, |h| ((h - offset) / rise0).round());
-    // A flight seen from its side only, in sparse returns: a few over its top landing's edge
-    // (mixed pixels, a voxel's centroid) can set the top height over the top level's plateau
-    // by more than the levels' tolerance, the count from it gets a rise the levels, read low
-    // on the side face's top edge, fall short of, and its own count has no fit (office-145 of
-    // seeds 141-145: a 4-step flight of 0.159 m, its landing's plateau at 0.60 m and the top
-    // height at 0.66 m, read as 3 steps of 0.22 m). The count up to the plateau is fitted then.
-    let top_mode = plateau_mode(env, top_height, rise0);
-    let (n_mode, mode_top) = if top_height - top_mode > ABOVE_TOP_M {
-        (((top_mode - offset) / rise0).round(), top_mode)
-    } else {
-        (n0, top_height)
-    };
     let mut counts: Vec<Count> = vec![
         (n0, top_height, fit_env),
         (n0 - 1.0, top_height, fit_env),
@@ -201,7 +224,6 @@ fn fit_profile(
         (n_half, top_height, fit_env),
         (n_hint, top_height, fit_env),
         (n_end, end.unwrap_or(top_height), &under_end),
-        (n_mode, mode_top, fit_env),
     ];
     // (each count once: a fit is a grid search, and the stairs stage is the map's slowest)
     let mut seen = Vec::new();
@@ -238,10 +260,23 @@ fn fit_profile(
             .filter(|f| f.found as f64 >= 0.6 * f.n as f64 && f.best > 0.0 && f.best > floor)
             .collect()
     };
-    // (the top level's plateau is a second top for the counts below too)
-    let mut fits = match beat {
-        None => fit_all(counts, f64::NEG_INFINITY),
-        Some(floor) => {
+    // (the top level's plateau: a second top for the counts below)
+    let top_mode = plateau_mode(env, top_height, rise0);
+    let mut fits = match which {
+        Counts::Grid => fit_all(counts, f64::NEG_INFINITY),
+        Counts::Plateau => {
+            // (a few bins over the plateau: more are the profile climbing on, as a ramp's)
+            let over = env.iter().filter(|e| e.1 > top_mode + ABOVE_TOP_M).count();
+            if top_height - top_mode <= ABOVE_TOP_M || over > FEW_OVER_PLATEAU {
+                return None;
+            }
+            let n_mode = ((top_mode - offset) / rise0).round();
+            return fit_all(vec![(n_mode, top_mode, fit_env)], f64::NEG_INFINITY)
+                .into_iter()
+                .next()
+                .map(|f| Profile::of(dir, f));
+        }
+        Counts::Beat(floor) => {
             // Every other count in the range of rises, up to either top.
             let mut others: Vec<Count> = Vec::new();
             for top in [top_height, top_mode] {

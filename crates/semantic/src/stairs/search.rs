@@ -4,7 +4,7 @@
 
 use super::levels::ON_A_LEVEL;
 use super::plausible::finish;
-use super::profile::{profile, profile_other_count, Profile};
+use super::profile::{profile, profile_other_count, profile_up_to_plateau, Profile};
 use super::{flights, side_faces, DetectedStairs, StairsConfig};
 use crate::scene::Scene;
 use glam::DVec2;
@@ -116,7 +116,14 @@ impl Search<'_> {
             // `profile_other_count`)
             let (dir, fit_score) = (p.dir, p.fit_score);
             let share = levels_share(&p);
-            let one = finish(self.pts, p, self.sc, self.c)?;
+            // (where it makes no staircase along a wall's direction, the count up to its top
+            // level's plateau may: see `profile_up_to_plateau`)
+            let one = finish(self.pts, p, self.sc, self.c).or_else(|| {
+                on_wall
+                    .then(|| profile_up_to_plateau(self.pts, self.all, dir, self.c))
+                    .flatten()
+                    .and_then(|q| finish(self.pts, q, self.sc, self.c))
+            })?;
             let other = profile_other_count(self.pts, self.all, dir, fit_score, self.c)
                 .filter(|o| levels_share(o) >= share)
                 .and_then(|o| finish(self.pts, o, self.sc, self.c));

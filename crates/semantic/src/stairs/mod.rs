@@ -63,6 +63,7 @@ mod flights;
 mod landing;
 mod levels;
 mod parts;
+mod plateau;
 mod plausible;
 mod profile;
 mod risers;

@@ -4,13 +4,11 @@
 use super::envelope::{envelope, of_flight};
 use super::fit::{fit_steps, Fit, COARSE, FINE};
 use super::levels::level_grid;
+use super::plateau::{end_plateau, plateau_mode, up_to, ABOVE_TOP_M};
 use super::risers::{RiserBands, RISER_WEIGHT};
 use super::StairsConfig;
 use crate::points::quantile;
 use glam::DVec2;
-
-/// Returns up to this far above the grid's top level still lie on it (the levels' tolerance).
-const ABOVE_TOP_M: f64 = 0.035;
 
 /// The envelope's bins (1 cm) over the top level's plateau that are a few returns over its
 /// edge (mixed pixels, a voxel's centroid), not more of the profile climbing: 5 cm of them.
@@ -363,49 +361,6 @@ impl Profile {
             fit_score: best,
         }
     }
-}
-
-/// The most frequent height (1 cm bins) of the envelope's bins within half a rise under the top
-/// height: the top level's plateau, where a few returns above it (mixed pixels at its far
-/// edge) set the top height a few centimetres high.
-fn plateau_mode(env: &[(f64, f64)], top_height: f64, rise: f64) -> f64 {
-    let mut counts = [0usize; 64];
-    let lo = top_height - rise / 2.0;
-    for e in env {
-        let k = ((e.1 - lo) / 0.01).floor();
-        if (0.0..64.0).contains(&k) {
-            counts[k as usize] += 1;
-        }
-    }
-    let smooth = |k: usize| {
-        counts[k.saturating_sub(1)..(k + 2).min(64)]
-            .iter()
-            .sum::<usize>()
-    };
-    let best = (0..64).max_by_key(|&k| (smooth(k), k)).unwrap_or(0);
-    lo + (best as f64 + 0.5) * 0.01
-}
-
-/// The envelope's bins at most [`ABOVE_TOP_M`] over `top` (a count's top level): those
-/// above it are no part of the flight it fits.
-fn up_to(env: &[(f64, f64)], top: f64) -> Vec<(f64, f64)> {
-    env.iter()
-        .copied()
-        .filter(|e| e.1 <= top + ABOVE_TOP_M)
-        .collect()
-}
-
-/// The height of the envelope's last `along_m`: the most frequent (see [`plateau_mode`])
-/// within half a `rise` under the stretch's highest bin; `None` for an empty envelope.
-fn end_plateau(env: &[(f64, f64)], along_m: f64, rise: f64) -> Option<f64> {
-    let last = env.last()?.0;
-    let from = env.partition_point(|e| e.0 < last - along_m);
-    let stretch = &env[from..];
-    let highest = stretch
-        .iter()
-        .map(|e| e.1)
-        .fold(f64::NEG_INFINITY, f64::max);
-    Some(plateau_mode(stretch, highest, rise))
 }
 
 /// A step count to fit, the top height it climbs to and the envelope it is fitted to.

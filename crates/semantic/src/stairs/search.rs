@@ -169,19 +169,15 @@ fn climbs_through(one: &DetectedStairs, lone: &[DetectedStairs], c: &StairsConfi
     let [lone] = lone else {
         return false;
     };
-    let same_way = one.dir.dot(lone.dir) >= c.snap_direction_deg.to_radians().cos();
     let same_start = (one.start - lone.start).dot(one.dir).abs() <= one.run.min(lone.run) / 2.0;
-    // (its level at the lone flight's top is that flight's landing)
-    let same_steps = (one.rise - lone.rise).abs() * f64::from(lone.steps) <= ON_A_LEVEL * lone.rise;
     // (its steps go on past the lone flight's top step, over what was read as its landing)
     let top_front =
         |f: &DetectedStairs| f.start.dot(one.dir) + f64::from(f.steps.saturating_sub(1)) * f.run;
     let past_its_top = top_front(one) - top_front(lone) >= lone.run / 2.0;
     lone.base == 0.0
         && one.base == 0.0
-        && same_way
+        && same_way_and_steps(one, lone, c)
         && same_start
-        && same_steps
         && one.steps > lone.steps
         && past_its_top
         && one.confidence >= 1.0
@@ -202,8 +198,6 @@ fn climbs_up_to(one: &DetectedStairs, lone: &[DetectedStairs], c: &StairsConfig)
     let [lone] = lone else {
         return false;
     };
-    let same_way = one.dir.dot(lone.dir) >= c.snap_direction_deg.to_radians().cos();
-    let same_steps = (one.rise - lone.rise).abs() * f64::from(lone.steps) <= ON_A_LEVEL * lone.rise;
     // (the landing on one of its levels, and the two tops one level)
     let on_a_level = |h: f64| (h / one.rise - (h / one.rise).round()).abs() <= ON_A_LEVEL;
     let one_top = one.rise * f64::from(one.steps);
@@ -212,13 +206,21 @@ fn climbs_up_to(one: &DetectedStairs, lone: &[DetectedStairs], c: &StairsConfig)
     let starts_before = (lone.start - one.start).dot(one.dir) >= one.run;
     lone.base > 0.0
         && one.base == 0.0
-        && same_way
-        && same_steps
+        && same_way_and_steps(one, lone, c)
         && on_a_level(lone.base)
         && same_top
         && starts_before
         && one.steps > lone.steps
         && one.confidence >= 1.0
+}
+
+/// True if `one` climbs the way `lone` does in its steps: their directions within the
+/// snapping angle, and their rises so near that `one`'s level at the lone flight's top (its
+/// landing, or its top level) lies within [`ON_A_LEVEL`] of a rise of it.
+fn same_way_and_steps(one: &DetectedStairs, lone: &DetectedStairs, c: &StairsConfig) -> bool {
+    let same_way = one.dir.dot(lone.dir) >= c.snap_direction_deg.to_radians().cos();
+    let same_steps = (one.rise - lone.rise).abs() * f64::from(lone.steps) <= ON_A_LEVEL * lone.rise;
+    same_way && same_steps
 }
 
 /// The share of a profile's levels with a bin on them. Another step count must find as large a

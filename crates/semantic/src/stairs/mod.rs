@@ -46,7 +46,8 @@
 //! the side face unseen there, so the blobs part it from the flight) gets that step back (see
 //! `extend`). An upper flight whose risers, seen from below with no tread or landing between
 //! them, are parts of their own beyond a lone flight's top is read as the flight on its landing
-//! (see `upper`).
+//! (see `upper`). A flight from the floor where another flight's landing stands, climbing to
+//! its top, is that landing's side face, dropped (see `landing_faces`).
 //!
 //! The search over a part's directions is `search`. A part that shows no staircase is tried
 //! again face by face: a flight seen from its side only that clutter joins into one part with
@@ -61,6 +62,7 @@ mod extend;
 mod fit;
 mod flights;
 mod landing;
+mod landing_faces;
 mod levels;
 mod parts;
 mod plateau;
@@ -265,6 +267,8 @@ pub(crate) fn find_stairs(
         .collect();
     // An upper flight parted from the flight below it (see `upper`).
     upper::join_upper_flights(&blob_parts, &mut found, sc, c);
+    // A landing's side face read as a flight of its own (see `landing_faces`).
+    landing_faces::drop_landing_faces(&mut found, c);
     found
         .into_iter()
         .flatten()

@@ -14,7 +14,7 @@
 //! the stretch of the candidate where its face is seen below head height is looked at so then.
 
 use super::piers::{BODY_DEPTH_M, FLOOR_TOL_M, MAX_COLUMN_M, MIN_FLOOR_POINTS};
-use super::support::HEAD_HEIGHT_M;
+use super::support::{HEAD_HEIGHT_M, UPPER_FACE_M};
 use super::WallFit;
 use crate::scene::Scene;
 
@@ -73,7 +73,8 @@ fn stands_free(piece: &WallFit, own: &WallFit, walls: &[WallFit], sc: &Scene) ->
 const MIN_STANDING_POINTS: usize = 2;
 
 /// The stretch of `w` from the first to the last bin where its face is seen below head height,
-/// as a wall of its own, where it is shorter than `w` by a bin or more (the rest of `w` is its
+/// up to [`UPPER_FACE_M`] at least (a parked car's flank or wheel on the face's line, seen
+/// under it only, is no face: see `support`), as a wall of its own, where it is shorter than `w` by a bin or more (the rest of `w` is its
 /// face seen above head height only: the Hough segment and the extent follow a beam's face
 /// past the pillar under it) and no longer than a column. A pillar under a beam, a parked car
 /// beside each, the floor past its ends and under the beam hidden (garage-144 of seeds 141-145:
@@ -81,6 +82,8 @@ const MIN_STANDING_POINTS: usize = 2;
 /// the pillar it is. A wall hidden below head height along most of its length by what stands
 /// before it does not: where it goes on, its body hides the floor past the stretch's end, and
 /// its face is seen above what stands before it (a car, a cabinet) below head height too.
+/// Cars parked either side of the beam's line past the pillar (garage-153 of seeds 151-155),
+/// a wheel and flank on the line seen up to 1.2 m, stretched the pillar's 0.6 m to 1.7 m.
 fn standing_stretch(w: &WallFit, sc: &Scene, face_tolerance_m: f64) -> Option<WallFit> {
     if w.length <= BEHIND_BIN_M {
         return None;
@@ -91,7 +94,8 @@ fn standing_stretch(w: &WallFit, sc: &Scene, face_tolerance_m: f64) -> Option<Wa
         vec![0.0]
     };
     let n = ((w.length / BEHIND_BIN_M).ceil() as usize).max(1);
-    let mut standing = vec![0usize; n];
+    // (face points below head height per bin, and those of them from `UPPER_FACE_M` up)
+    let (mut standing, mut high) = (vec![0usize; n], vec![0usize; n]);
     sc.index.for_each_near_line(
         &w.line,
         0.0,
@@ -105,10 +109,11 @@ fn standing_stretch(w: &WallFit, sc: &Scene, face_tolerance_m: f64) -> Option<Wa
             {
                 let k = ((s / BEHIND_BIN_M).floor().max(0.0) as usize).min(n - 1);
                 standing[k] += 1;
+                high[k] += usize::from(above_floor >= UPPER_FACE_M);
             }
         },
     );
-    let stands = |k: &usize| standing[*k] >= MIN_STANDING_POINTS;
+    let stands = |k: &usize| standing[*k] >= MIN_STANDING_POINTS && high[*k] > 0;
     let first = (0..n).find(stands)?;
     let last = (0..n).rev().find(stands)?;
     let (s0, s1) = (
@@ -249,6 +254,14 @@ mod tests {
         points.extend(face_points((0.0, 0.5), (0.2, 2.6)));
         points.extend(face_points((0.5, 1.3), (2.3, 2.6)));
         assert!(!pier(&points, &beam_and_pillar, &[]));
+        // A car's wheel and flank on the beam's line past the pillar, seen up to 1.2 m only
+        // (garage-153 of seeds 151-155), leave it the pillar it is.
+        let mut points = floor(|x, y| pillar(x, y) || car(x, y) || (0.5..2.5).contains(&x));
+        points.extend(face_points((0.0, 0.5), (0.2, 2.6)));
+        points.extend(face_points((0.5, 2.5), (2.3, 2.6)));
+        points.extend(face_points((0.9, 1.6), (0.3, 1.2)));
+        let longer = WallFit::one_sided(DVec2::ZERO, DVec2::new(2.5, 0.0), -1.0);
+        assert!(pier(&points, &longer, &[]));
         // Its face seen below head height along more than a column's width: no pillar.
         let mut points = floor(|x, y| pillar(x, y) || car(x, y));
         points.extend(face_points((0.0, 1.3), (0.2, 2.6)));

@@ -50,7 +50,7 @@ const CLUTTER_MIN_HEIGHT_M: f64 = 0.1;
 /// beside one (parked cars, 1.4-1.6 m; desks, chairs, crates). A face seen only lower, with
 /// something standing right beside it, may be that thing's own side: a parked car's flank along
 /// a beam line reads as a face from the floor to 1.3 m under the beam's face (fresh garage-44).
-const UPPER_FACE_M: f64 = 1.5;
+pub(crate) const UPPER_FACE_M: f64 = 1.5;
 
 /// A face seen under [`UPPER_FACE_M`] and above head height but between them in fewer than this
 /// share of the bins where it is seen under head height is two things, a low one under a high

@@ -317,17 +317,9 @@ mod tests {
     /// run 0.28 m).
     fn flight(start_x: f64, steps: u32, base: f64) -> DetectedStairs {
         DetectedStairs {
-            steps,
-            rise: 0.17,
-            run: 0.28,
             width: 1.1,
-            dir: DVec2::X,
-            start: DVec2::new(start_x, 0.0),
-            landing: 1.0,
             base,
-            support: 100,
-            confidence: 1.0,
-            rules: Vec::new(),
+            ..DetectedStairs::straight(start_x, steps, 0.17, 0.28)
         }
     }
 

@@ -87,23 +87,6 @@ mod tests {
     use super::*;
     use glam::DVec2;
 
-    /// A flight climbing +X from `x` on the floor.
-    fn flight(x: f64, steps: u32, rise: f64, run: f64) -> DetectedStairs {
-        DetectedStairs {
-            steps,
-            rise,
-            run,
-            width: 1.0,
-            dir: DVec2::X,
-            start: DVec2::new(x, 0.0),
-            landing: 0.0,
-            base: 0.0,
-            support: 100,
-            confidence: 1.0,
-            rules: Vec::new(),
-        }
-    }
-
     /// Regression (office-151 of seeds 151-155): 4 steps of 0.166 m to a landing 1.2 m deep;
     /// the landing's side face, in the next part, read as 3 steps of 0.225 m from the floor
     /// 0.17 m past the top step, with the upper flight on it. The face is dropped, and the
@@ -111,9 +94,9 @@ mod tests {
     #[test]
     fn a_landings_side_face_read_as_a_flight_is_dropped() {
         let c = StairsConfig::default();
-        let lower = flight(0.0, 4, 0.166, 0.266);
-        let face = flight(1.23, 3, 0.225, 0.222);
-        let mut upper = flight(2.26, 3, 0.197, 0.231);
+        let lower = DetectedStairs::straight(0.0, 4, 0.166, 0.266);
+        let face = DetectedStairs::straight(1.23, 3, 0.225, 0.222);
+        let mut upper = DetectedStairs::straight(2.26, 3, 0.197, 0.231);
         upper.base = 0.675;
         let mut found = vec![Some(vec![lower.clone()]), Some(vec![face, upper])];
         drop_landing_faces(&mut found, &c);
@@ -123,7 +106,10 @@ mod tests {
         assert_eq!(rest[0].steps, 3);
         assert!((rest[0].base - 4.0 * 0.166).abs() < 1e-9);
         // A face alone on the landing goes too.
-        let mut found = vec![Some(vec![lower]), Some(vec![flight(1.23, 3, 0.225, 0.222)])];
+        let mut found = vec![
+            Some(vec![lower]),
+            Some(vec![DetectedStairs::straight(1.23, 3, 0.225, 0.222)]),
+        ];
         drop_landing_faces(&mut found, &c);
         assert!(found[1].is_none());
     }
@@ -133,12 +119,12 @@ mod tests {
     #[test]
     fn flights_off_the_landing_or_to_another_top_stay() {
         let c = StairsConfig::default();
-        let lower = flight(0.0, 4, 0.166, 0.266);
-        let beyond = flight(3.0, 3, 0.225, 0.222);
-        let higher = flight(1.23, 5, 0.18, 0.27);
-        let mut beside = flight(1.23, 3, 0.225, 0.222);
+        let lower = DetectedStairs::straight(0.0, 4, 0.166, 0.266);
+        let beyond = DetectedStairs::straight(3.0, 3, 0.225, 0.222);
+        let higher = DetectedStairs::straight(1.23, 5, 0.18, 0.27);
+        let mut beside = DetectedStairs::straight(1.23, 3, 0.225, 0.222);
         beside.start.y = 1.2;
-        let mut back = flight(1.9, 3, 0.225, 0.222);
+        let mut back = DetectedStairs::straight(1.9, 3, 0.225, 0.222);
         back.dir = -DVec2::X;
         for other in [beyond, higher, beside, back] {
             let mut found = vec![Some(vec![lower.clone()]), Some(vec![other])];

@@ -57,6 +57,7 @@
 use crate::image_frame::ImageFrame;
 mod climbs_on;
 mod config;
+mod directions;
 mod envelope;
 mod extend;
 mod fit;
@@ -100,6 +101,25 @@ pub(crate) struct DetectedStairs {
 }
 
 impl DetectedStairs {
+    /// A flight for tests: `steps` of `rise` x `run` climbing +X from `(start_x, 0)` on the
+    /// floor, 1 m wide, a 1 m landing, every level seen.
+    #[cfg(test)]
+    pub(super) fn straight(start_x: f64, steps: u32, rise: f64, run: f64) -> DetectedStairs {
+        DetectedStairs {
+            steps,
+            rise,
+            run,
+            width: 1.0,
+            dir: DVec2::X,
+            start: DVec2::new(start_x, 0.0),
+            landing: 1.0,
+            base: 0.0,
+            support: 100,
+            confidence: 1.0,
+            rules: Vec::new(),
+        }
+    }
+
     /// Footprint of step `k` (1-based; `k = steps + 1` is the landing): along range from the start.
     pub fn step_range(&self, k: u32) -> (f64, f64) {
         let a = (k - 1) as f64 * self.run;
@@ -221,18 +241,10 @@ pub(crate) fn find_stairs(
             blob_points[blob_of[px as usize] as usize].push(i);
         }
     }
-    let mut directions: Vec<DVec2> = Vec::new();
-    for wall in walls {
-        let d = wall.line.dir;
-        for cand in [d, d.perp(), -d, -d.perp()] {
-            if !directions
-                .iter()
-                .any(|e| e.angle_to(cand).abs().to_degrees() < c.snap_direction_deg)
-            {
-                directions.push(cand);
-            }
-        }
-    }
+    let directions = directions::wall_directions(
+        walls.iter().map(|w| (w.line.dir, w.length)),
+        c.snap_direction_deg,
+    );
     // Each blob's parts (see `parts`): mixed pixels and stray returns are on no surface, and
     // are left out of the levels and the support (see `surface`); where only they join two
     // surfaces, each is a part of its own.

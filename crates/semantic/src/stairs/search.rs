@@ -244,19 +244,7 @@ mod tests {
 
     /// A flight climbing +X from x = 0 on the floor, every level seen.
     fn flight(steps: u32, rise: f64, run: f64) -> DetectedStairs {
-        DetectedStairs {
-            steps,
-            rise,
-            run,
-            width: 1.0,
-            dir: DVec2::X,
-            start: DVec2::ZERO,
-            landing: 1.0,
-            base: 0.0,
-            support: 100,
-            confidence: 1.0,
-            rules: Vec::new(),
-        }
+        DetectedStairs::straight(0.0, steps, rise, run)
     }
 
     #[test]

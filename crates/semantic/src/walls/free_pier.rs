@@ -74,9 +74,10 @@ const MIN_STANDING_POINTS: usize = 2;
 
 /// The stretch of `w` from the first to the last bin where its face is seen below head height,
 /// up to [`UPPER_FACE_M`] at least (a parked car's flank or wheel on the face's line, seen
-/// under it only, is no face: see `support`), as a wall of its own, where it is shorter than `w` by a bin or more (the rest of `w` is its
-/// face seen above head height only: the Hough segment and the extent follow a beam's face
-/// past the pillar under it) and no longer than a column. A pillar under a beam, a parked car
+/// under it only, is no face: see `support`), as a wall of its own, where it is shorter than
+/// `w` by a bin or more (the rest of `w` is its face seen above head height only: the Hough
+/// segment and the extent follow a beam's face past the pillar under it) and no longer than a
+/// column. A pillar under a beam, a parked car
 /// beside each, the floor past its ends and under the beam hidden (garage-144 of seeds 141-145:
 /// 0.6 m of a pillar's face and 0.8 m of the beam's beyond it, a 1.37 m wall), stands free as
 /// the pillar it is. A wall hidden below head height along most of its length by what stands

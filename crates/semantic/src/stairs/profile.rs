@@ -258,8 +258,9 @@ fn fit_profile(
             .filter(|f| f.found as f64 >= 0.6 * f.n as f64 && f.best > 0.0 && f.best > floor)
             .collect()
     };
-    // (the top level's plateau: a second top for the counts below)
+    // (the top level's plateau: a second top for the counts below, and its own count)
     let top_mode = plateau_mode(env, top_height, rise0);
+    let plateau_count: Count = (((top_mode - offset) / rise0).round(), top_mode, fit_env);
     let mut fits = match which {
         Counts::Grid => fit_all(counts, f64::NEG_INFINITY),
         Counts::Plateau => {
@@ -268,8 +269,7 @@ fn fit_profile(
             if top_height - top_mode <= ABOVE_TOP_M || over > FEW_OVER_PLATEAU {
                 return None;
             }
-            let n_mode = ((top_mode - offset) / rise0).round();
-            return fit_all(vec![(n_mode, top_mode, fit_env)], f64::NEG_INFINITY)
+            return fit_all(vec![plateau_count], f64::NEG_INFINITY)
                 .into_iter()
                 .next()
                 .map(|f| Profile::of(dir, f));
@@ -300,8 +300,7 @@ fn fit_profile(
     // edge) may have set the top height a few centimetres high, and the rise with it: every
     // level of a long flight then misses its bins. The top level's plateau sets it then.
     if fits.is_empty() {
-        let n_mode = ((top_mode - offset) / rise0).round();
-        fits = fit_all(vec![(n_mode, top_mode, fit_env)], f64::NEG_INFINITY);
+        fits = fit_all(vec![plateau_count], f64::NEG_INFINITY);
     }
     let off = |f: &Fit, r: f64| (f.rise - r).abs() / r;
     // An upper flight none of whose fits has the lower flight's rise: its count at that rise

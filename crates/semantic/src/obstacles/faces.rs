@@ -21,6 +21,9 @@ const BACKREST_MAX_RISE_M: f64 = 0.6;
 /// A seat's top is at least this high over the floor (chairs 0.4-0.5 m, stools up to 0.8 m;
 /// lower is a crate or a footrest).
 const MIN_SEAT_HEIGHT_M: f64 = 0.3;
+/// A backrest standing free of a desk is at most this thick (a board or a mesh 2-8 cm thick,
+/// blurred by the range noise and a registration's smear).
+const BACKREST_MAX_ACROSS_M: f64 = 0.15;
 
 /// The clusters, pairs of faces of one thing (see the module docs) joined into one box: their
 /// footprints (hulls, not boxes: the box of a blob 0.2 m thick may lie at any angle) overlapping
@@ -86,18 +89,25 @@ fn faces_of_one_thing(a: &DetectedObstacle, b: &DetectedObstacle, max_step_m: f6
         && ((a.z_range.1 - b.z_range.1).abs() <= max_step_m || backrest_and_seat(a, b, max_step_m))
 }
 
-/// Whether one of `a` and `b` is a backrest cut off a desk's edge ([`super::tops`]) and the
-/// other, lower, a seat in front of it: the seat's top at a seat's height over the floor, the
-/// backrest rising over it by a step to [`BACKREST_MAX_RISE_M`].
+/// Whether one of `a` and `b` is a backrest and the other, lower, a seat in front of it: the
+/// seat's top at a seat's height over the floor, the backrest rising over it by a step to
+/// [`BACKREST_MAX_RISE_M`]. The backrest was cut off a desk's edge ([`super::tops`]), or, standing
+/// free, is a board at most [`BACKREST_MAX_ACROSS_M`] thick (a desk's or cabinet's edge seen
+/// beside a seat is a thing's side, thicker).
 fn backrest_and_seat(a: &DetectedObstacle, b: &DetectedObstacle, max_step_m: f64) -> bool {
-    let (back, seat) = match (a.beside_top, b.beside_top) {
-        (true, false) => (a, b),
-        (false, true) => (b, a),
-        _ => return false,
+    let (back, seat) = if a.z_range.1 >= b.z_range.1 {
+        (a, b)
+    } else {
+        (b, a)
     };
+    let cut_off = back.beside_top && !seat.beside_top;
+    let board = !back.beside_top && !seat.beside_top && back.size[1] <= BACKREST_MAX_ACROSS_M;
     let rise = back.z_range.1 - seat.z_range.1;
     let seat_height = seat.z_range.1 - seat.z_range.0;
-    rise > max_step_m && rise <= BACKREST_MAX_RISE_M && seat_height >= MIN_SEAT_HEIGHT_M
+    (cut_off || board)
+        && rise > max_step_m
+        && rise <= BACKREST_MAX_RISE_M
+        && seat_height >= MIN_SEAT_HEIGHT_M
 }
 
 #[cfg(test)]
@@ -132,8 +142,10 @@ mod tests {
         let mut back = cluster([0.0, 0.0], DVec2::X, [0.45, 0.1], (0.0, 0.83), false);
         let seat = cluster([0.02, 0.3], DVec2::X, [0.5, 0.15], (0.0, 0.42), false);
         let c = ObstacleConfig::default();
-        // Not cut off a top: a desk's edge and a seat, two things.
-        assert_eq!(join_faces(vec![back.clone(), seat.clone()], &c).len(), 2);
+        // Not cut off a top and thicker than a backrest: a desk's side and a seat, two things.
+        let mut side = back.clone();
+        side.size[1] = 0.2;
+        assert_eq!(join_faces(vec![side, seat.clone()], &c).len(), 2);
         back.beside_top = true;
         let out = join_faces(vec![back.clone(), seat.clone()], &c);
         assert_eq!(out.len(), 1, "{out:#?}");
@@ -145,6 +157,25 @@ mod tests {
         let mut tall = back;
         tall.z_range.1 = 1.9;
         assert_eq!(join_faces(vec![tall, seat], &c).len(), 2);
+    }
+
+    /// Regression (office-141 of seeds 141-145, and others): a chair whose backrest, standing
+    /// free of any desk, was seen as a board 0.09 m thick to 0.86 m, and its seat as a strip
+    /// 0.19 m wide to 0.48 m in front of it, was two boxes, each half outside the chair.
+    #[test]
+    fn a_free_standing_backrest_and_the_seat_before_it_are_one_chair() {
+        let back = cluster([0.0, 0.0], DVec2::X, [0.56, 0.09], (0.0, 0.86), false);
+        let seat = cluster([0.0, 0.25], DVec2::X, [0.55, 0.19], (0.0, 0.48), false);
+        let c = ObstacleConfig::default();
+        let out = join_faces(vec![back.clone(), seat.clone()], &c);
+        assert_eq!(out.len(), 1, "{out:#?}");
+        assert!((out[0].z_range.1 - 0.86).abs() < 1e-9);
+        // A cabinet's side (1.9 m) is no backrest, a crate's lid (0.25 m) no seat.
+        let mut tall = back.clone();
+        tall.z_range.1 = 1.9;
+        assert_eq!(join_faces(vec![tall, seat], &c).len(), 2);
+        let lid = cluster([0.0, 0.25], DVec2::X, [0.55, 0.19], (0.0, 0.25), false);
+        assert_eq!(join_faces(vec![back, lid], &c).len(), 2);
     }
 
     #[test]

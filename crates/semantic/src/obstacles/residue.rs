@@ -73,31 +73,41 @@ pub(super) fn walled_off(k: usize, along: (f64, f64), walls: &[WallFit]) -> bool
 /// `wall`, see `partitions`): those at most `max_across_m` thin, parallel to such a wall (or as
 /// thin both ways), lying wholly within `reach_m` of its box along and across. A glass
 /// partition found here keeps the returns above head height its cluster did not climb through
-/// apart, a thin "beam" along its top.
+/// apart, a thin "beam" along its top. A partial-height wall lying so along a longer one is its
+/// residue too: the partition's face seen from its other side to another top, or what stands
+/// against it, read as a partition of its own (office-162 of seeds 161-165: a 1.2 m partition
+/// 8 cm thick, its west face seen to 1.0 m only, was two walls 8 cm apart).
 pub(super) fn drop_partition_residue(
     found: Vec<DetectedObstacle>,
     max_across_m: f64,
     reach_m: f64,
 ) -> Vec<DetectedObstacle> {
-    let walls: Vec<DetectedObstacle> = found
+    let walls: Vec<(usize, &DetectedObstacle)> = found
         .iter()
-        .filter(|o| o.class == EntityClass::Wall)
-        .cloned()
+        .enumerate()
+        .filter(|(_, o)| o.class == EntityClass::Wall)
+        .collect();
+    // (`o`, the `i`-th cluster, along `w`, the `j`-th, within `reach_m` of its box)
+    let along = |(i, o): (usize, &DetectedObstacle), (j, w): (usize, &DetectedObstacle)| {
+        let longer = w.size[0] > o.size[0] || (w.size[0] == o.size[0] && j < i);
+        i != j
+            && (o.class != EntityClass::Wall || longer)
+            && (o.size[0] <= max_across_m || w.dir.dot(o.dir).abs() >= PARALLEL_COS)
+            && rect_corners(o.center, o.dir, o.size).iter().all(|q| {
+                let r = *q - w.center;
+                r.dot(w.dir).abs() <= w.size[0] / 2.0 + reach_m
+                    && r.dot(w.dir.perp()).abs() <= w.size[1] / 2.0 + reach_m
+            })
+    };
+    let keep: Vec<bool> = found
+        .iter()
+        .enumerate()
+        .map(|(i, o)| o.size[1] > max_across_m || !walls.iter().any(|&w| along((i, o), w)))
         .collect();
     found
         .into_iter()
-        .filter(|o| {
-            o.class == EntityClass::Wall
-                || o.size[1] > max_across_m
-                || !walls.iter().any(|w| {
-                    (o.size[0] <= max_across_m || w.dir.dot(o.dir).abs() >= PARALLEL_COS)
-                        && rect_corners(o.center, o.dir, o.size).iter().all(|q| {
-                            let r = *q - w.center;
-                            r.dot(w.dir).abs() <= w.size[0] / 2.0 + reach_m
-                                && r.dot(w.dir.perp()).abs() <= w.size[1] / 2.0 + reach_m
-                        })
-                })
-        })
+        .zip(keep)
+        .filter_map(|(o, k)| k.then_some(o))
         .collect()
 }
 
@@ -201,5 +211,28 @@ mod tests {
         plain.class = EntityClass::Obstacle;
         let top = cluster([8.26, -3.33], DVec2::Y, [3.98, 0.05], (1.96, 2.69), true);
         assert_eq!(drop_partition_residue(vec![plain, top], 0.2, 0.3).len(), 2);
+    }
+
+    #[test]
+    fn a_partition_along_a_longer_one_is_its_other_face() {
+        // office-162 (seeds 161-165): a partition 0.08 m thick to 1.2 m found as a wall 1.70 m
+        // long, and its west face, seen to 1.0 m, as another 1.14 m long 8 cm beside it.
+        let wall = |c: [f64; 2], size: [f64; 2], top: f64| {
+            let mut w = cluster(c, DVec2::Y, size, (0.0, top), false);
+            w.class = EntityClass::Wall;
+            w
+        };
+        let long = wall([9.18, 4.42], [1.70, 0.13], 1.2);
+        let face = wall([9.10, 4.26], [1.14, 0.09], 1.01);
+        let out = drop_partition_residue(vec![face.clone(), long.clone()], 0.2, 0.3);
+        assert_eq!(out.len(), 1, "{out:#?}");
+        assert!((out[0].size[0] - 1.70).abs() < 1e-9);
+        // A partition 1 m beside it, or going on 1 m past its end, is a wall of its own.
+        let apart = wall([10.1, 4.26], [1.14, 0.09], 1.01);
+        let past = wall([9.10, 5.26], [1.14, 0.09], 1.01);
+        assert_eq!(
+            drop_partition_residue(vec![apart, past, long], 0.2, 0.3).len(),
+            3
+        );
     }
 }

@@ -48,6 +48,15 @@ pub(super) fn end_plateau(env: &[(f64, f64)], along_m: f64, rise: f64) -> Option
     Some(plateau_mode(stretch, highest, rise))
 }
 
+/// How far along the envelope's bins over `level` spread, first to last (0 for none).
+pub(super) fn span_over(env: &[(f64, f64)], level: f64) -> f64 {
+    let mut over = env.iter().filter(|e| e.1 > level).map(|e| e.0);
+    match over.next() {
+        Some(first) => over.next_back().map_or(0.0, |last| last - first),
+        None => 0.0,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -67,5 +76,13 @@ mod tests {
         // (the second highest bin, as `profile` takes the top height)
         let top = plateau_mode(&env, 1.486, 0.158);
         assert!((top - 1.415).abs() <= 0.01, "top {top}");
+    }
+
+    #[test]
+    fn the_span_over_a_level_runs_from_the_first_bin_over_it_to_the_last() {
+        let env = [(0.0, 0.5), (0.1, 0.7), (0.2, 0.5), (0.35, 0.66), (0.5, 0.5)];
+        assert!((span_over(&env, 0.6) - 0.25).abs() < 1e-12);
+        assert_eq!(span_over(&env, 0.68), 0.0);
+        assert_eq!(span_over(&env, 0.8), 0.0);
     }
 }

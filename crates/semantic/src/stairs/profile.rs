@@ -4,7 +4,7 @@
 use super::envelope::{envelope, of_flight};
 use super::fit::{fit_steps, Fit, COARSE, FINE};
 use super::levels::level_grid;
-use super::plateau::{end_plateau, plateau_mode, up_to, ABOVE_TOP_M};
+use super::plateau::{end_plateau, plateau_mode, span_over, up_to, ABOVE_TOP_M};
 use super::risers::{RiserBands, RISER_WEIGHT};
 use super::StairsConfig;
 use crate::points::quantile;
@@ -207,10 +207,15 @@ fn fit_profile(
     // pixels where rays rise past its edges, can stand over its top landing by more than a rise
     // (hall style, a person beside a flight on a mid landing), which the count from the top
     // height then climbs to. Its points end with its top landing: the height of their last
-    // stretch is counted to as well, fitted to the envelope under it.
-    let end = rise_hint
-        .and_then(|_| end_plateau(env, c.run_m[1], rise0))
-        .filter(|&h| h < top_height - rise0 / 2.0);
+    // stretch is counted to as well, fitted to the envelope under it. So for any flight whose
+    // profile ends in a stretch over which nothing stands beyond a tread's depth (`run_m`):
+    // returns over its top riser and the landing's front (mixed pixels over the nosing) stand
+    // there as a step would (office-165 of seeds 161-165: 3 steps of 0.178 m read as 4 of
+    // 0.164 m climbing to returns 0.15 m over the landing along 0.2 m). A profile read down a
+    // flight from its top ends in its lowest steps, with the rest of the flight over them.
+    let end = end_plateau(env, c.run_m[1], rise0)
+        .filter(|&h| h < top_height - rise0 / 2.0)
+        .filter(|&h| rise_hint.is_some() || span_over(env, h + ABOVE_TOP_M) <= c.run_m[1]);
     let under_end: Vec<(f64, f64)> = end.map_or_else(Vec::new, |h| up_to(fit_env, h));
     let n_end = end.map_or(0.0, |h| ((h - offset) / rise0).round());
     let mut counts: Vec<Count> = vec![

@@ -355,3 +355,29 @@ fn a_count_that_misses_a_level_does_not_replace_one_that_finds_every_level() {
     let p = profile(&pts, &pts, DVec2::X, &c).expect("a staircase");
     assert_eq!(p.steps, steps, "rise {}", p.rise);
 }
+
+/// Regression (office-165 of seeds 161-165): a 3-step flight (0.178 m x 0.282 m) whose top
+/// riser had returns 0.07-0.15 m over its landing along 0.2 m (mixed pixels over the nosing and
+/// the landing's front) read as 4 steps of 0.164 m climbing to them, one level missing. The
+/// profile ends in the landing, 1.1 m long, with nothing over it beyond a tread's depth: its
+/// height is counted to as well, fitted to the envelope under it, and finds every level.
+#[test]
+fn returns_over_the_top_riser_do_not_add_a_step() {
+    let c = StairsConfig::default();
+    let (rise, run) = (0.178, 0.282);
+    let mut pts = flight(3, rise, run);
+    for i in 0..10 {
+        for k in 0..12 {
+            let q = DVec2::new(
+                2.0 * run - 0.06 + 0.02 * f64::from(i),
+                -0.6 + 0.1 * f64::from(k),
+            );
+            let over = 0.15 * (0.5 + 0.05 * f64::from((i + k) % 10));
+            pts.push((q, 3.0 * rise + over));
+        }
+    }
+    let p = profile(&pts, &pts, DVec2::X, &c).expect("a staircase");
+    assert_eq!((p.steps, p.found), (3, 3), "rise {} run {}", p.rise, p.run);
+    assert!((p.rise - rise).abs() < 0.01, "rise {}", p.rise);
+    assert!((p.run - run).abs() < 0.01, "run {}", p.run);
+}

@@ -46,7 +46,7 @@ pub(super) fn classify_partition(
         return Vec::new();
     }
     // 1. The cluster as it is.
-    if let Some(why) = partition_rule(o, sc, grids, floor_seen, frame, c, 0.0) {
+    if let Some(why) = partition_rule(o, sc, grids, floor_seen, frame, c, (0.0, 0.0)) {
         o.class = EntityClass::Wall;
         o.rules.truncate(2);
         o.rules.push(why);
@@ -74,7 +74,7 @@ pub(super) fn classify_partition(
     {
         return Vec::new();
     }
-    let Some(why) = partition_rule(&slab, sc, grids, floor_seen, frame, c, 0.0) else {
+    let Some(why) = partition_rule(&slab, sc, grids, floor_seen, frame, c, (0.0, 0.0)) else {
         return Vec::new();
     };
     slab.class = EntityClass::Wall;
@@ -93,7 +93,9 @@ pub(super) fn classify_partition(
 
 /// Why `o` stands as a partial-height wall does (see the module docs), or `None`. Where it is
 /// known to stand along `standing_m` of its length (its pieces, each from the floor to the
-/// ceiling: see `pieces`), it stands along that much at least.
+/// ceiling: see `pieces`), it stands along that much at least; `hidden_m` of its length (the
+/// gaps between its pieces, where what stands before it hid it) is left out of the share it
+/// stands along, where the pieces cover the share of it a wall must stand along.
 pub(super) fn partition_rule(
     o: &DetectedObstacle,
     sc: &ObstacleScene,
@@ -101,7 +103,7 @@ pub(super) fn partition_rule(
     floor_seen: &[bool],
     frame: &ImageFrame,
     c: &ObstacleConfig,
-    standing_m: f64,
+    (standing_m, hidden_m): (f64, f64),
 ) -> Option<String> {
     let [length, across] = o.size;
     let height = o.z_range.1 - sc.floor;
@@ -114,8 +116,17 @@ pub(super) fn partition_rule(
         return None;
     }
     let divides = divides_space(o, sc, floor_seen, grids[0], frame, c)?;
-    let standing = standing_fraction(o, sc, &points_in_box(o, sc, grids, frame), c)
-        .max((standing_m / length.max(1e-9)).min(1.0));
+    // (pieces mostly gaps are no wall's face, however well each stands: a row of things)
+    let hidden_m = if hidden_m <= (1.0 - c.partition_min_standing) * length {
+        hidden_m
+    } else {
+        0.0
+    };
+    let seen_m = (length - hidden_m).max(1e-9);
+    let standing = (standing_fraction(o, sc, &points_in_box(o, sc, grids, frame), c) * length
+        / seen_m)
+        .max(standing_m / seen_m)
+        .min(1.0);
     (standing >= c.partition_min_standing).then(|| format!(
         "a partial-height wall: {length:.2} m long, {across:.2} m thick, {height:.2} m high; its face seen from within {:.2} m of the floor up to its top along {:.0} % of its length (a wall stands on the floor along {:.0} % at least); {divides}",
         c.partition_max_bottom_m,

@@ -76,7 +76,8 @@ pub(super) fn walled_off(k: usize, along: (f64, f64), walls: &[WallFit]) -> bool
 /// apart, a thin "beam" along its top. A partial-height wall lying so along a longer one is its
 /// residue too: the partition's face seen from its other side to another top, or what stands
 /// against it, read as a partition of its own (office-162 of seeds 161-165: a 1.2 m partition
-/// 8 cm thick, its west face seen to 1.0 m only, was two walls 8 cm apart).
+/// 8 cm thick, its west side seen to 1.0 m only, was two walls 8 cm apart; the mapped bench
+/// has the two joined earlier by [`super::faces`], and this is the backstop where they are not).
 pub(super) fn drop_partition_residue(
     found: Vec<DetectedObstacle>,
     max_across_m: f64,

@@ -56,7 +56,9 @@ pub(super) fn classify_partition(
     //    stands against it. What stands against a partition (a desk, a chair) runs along part
     //    of it, while a block's other faces (a crate's, a row of crates') run along the whole
     //    face taken ([`MAX_BESIDE_SHARE`]). And the slab stays under head height: a door's
-    //    leaf standing open (2 m or more) is as thin, with its frame beside it.
+    //    leaf standing open (2 m or more) is as thin, with its frame beside it. What rises
+    //    above the slab's top by more than a cell is no face of the slab's block (its faces
+    //    end at its top): a person who walked along the partition, a shelf standing there.
     if o.size[1] <= c.partition_max_thickness_m {
         return Vec::new();
     }
@@ -67,11 +69,10 @@ pub(super) fn classify_partition(
         let s = rect_corners(r.center, r.dir, r.size).map(|q| q.dot(slab.dir));
         s.iter().copied().fold(f64::MIN, f64::max) - s.iter().copied().fold(f64::MAX, f64::min)
     };
-    if rest
-        .iter()
-        .any(|r| along_slab(r) >= MAX_BESIDE_SHARE * slab.size[0])
-        || slab.z_range.1 - sc.floor > c.head_height_m
-    {
+    let blocks_face = |r: &DetectedObstacle| {
+        along_slab(r) >= MAX_BESIDE_SHARE * slab.size[0] && r.z_range.1 <= slab.z_range.1 + c.cell_m
+    };
+    if rest.iter().any(blocks_face) || slab.z_range.1 - sc.floor > c.head_height_m {
         return Vec::new();
     }
     let Some(why) = partition_rule(&slab, sc, grids, floor_seen, frame, c, (0.0, 0.0)) else {

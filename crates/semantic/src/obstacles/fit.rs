@@ -244,6 +244,12 @@ pub(crate) fn rect_corners(c: DVec2, d: DVec2, size: [f64; 2]) -> [DVec2; 4] {
     [c - u - v, c + u - v, c + u + v, c - u + v]
 }
 
+/// Half the length that the rectangle with unit first axis `d` and full `size` covers along
+/// the unit vector `along` (its corners' spread projected on `along`, halved).
+pub(crate) fn half_extent_along(d: DVec2, size: [f64; 2], along: DVec2) -> f64 {
+    (d.dot(along).abs() * size[0] + d.perp_dot(along).abs() * size[1]) / 2.0
+}
+
 /// The area of a polygon (absolute).
 pub(crate) fn polygon_area(p: &[DVec2]) -> f64 {
     (0..p.len())

@@ -16,7 +16,7 @@
 
 use super::classify::set_box_rule;
 use super::cluster::BandGrid;
-use super::fit::rect_corners;
+use super::fit::half_extent_along;
 use super::slabs::{points_in_box, thin_slab};
 use super::{DetectedObstacle, ObstacleConfig, ObstacleScene};
 use crate::image_frame::ImageFrame;
@@ -65,10 +65,7 @@ pub(super) fn classify_partition(
     let Some((mut slab, rest)) = thin_slab(o, sc, grids, frame, c) else {
         return Vec::new();
     };
-    let along_slab = |r: &DetectedObstacle| {
-        let s = rect_corners(r.center, r.dir, r.size).map(|q| q.dot(slab.dir));
-        s.iter().copied().fold(f64::MIN, f64::max) - s.iter().copied().fold(f64::MAX, f64::min)
-    };
+    let along_slab = |r: &DetectedObstacle| 2.0 * half_extent_along(r.dir, r.size, slab.dir);
     let blocks_face = |r: &DetectedObstacle| {
         along_slab(r) >= MAX_BESIDE_SHARE * slab.size[0] && r.z_range.1 <= slab.z_range.1 + c.cell_m
     };

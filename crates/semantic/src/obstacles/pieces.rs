@@ -6,6 +6,7 @@
 //! one wall. Otherwise they stay as they were: a row of things side by side is no wall.
 
 use super::cluster::BandGrid;
+use super::fit::half_extent_along;
 use super::merge::{absorb, PARALLEL_COS};
 use super::partitions::partition_rule;
 use super::{DetectedObstacle, ObstacleConfig, ObstacleScene};
@@ -143,9 +144,7 @@ fn gaps_between(members: &[usize], found: &[DetectedObstacle], wall: &DetectedOb
         .iter()
         .map(|&m| {
             let o = &found[m];
-            let half = (o.dir.dot(wall.dir).abs() * o.size[0]
-                + o.dir.perp_dot(wall.dir).abs() * o.size[1])
-                / 2.0;
+            let half = half_extent_along(o.dir, o.size, wall.dir);
             let s = (o.center - wall.center).dot(wall.dir);
             (s - half, s + half)
         })

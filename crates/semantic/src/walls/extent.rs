@@ -2,6 +2,7 @@
 //! another wall's face crosses the plane) left out (see the `walls` module).
 
 use super::faces::Faces;
+use super::stray::StrayBridges;
 use super::WallConfig;
 use crate::points::Line2;
 use crate::scene::Scene;
@@ -65,10 +66,9 @@ pub(crate) fn find_extent(
     // face, but the wall ends where its own face does.
     let own = |d: f64| faces.wall.iter().any(|f| (d - f).abs() <= tol);
     let stray = |d: f64| faces.stray.is_some_and(|f| (d - f).abs() <= tol);
-    let all: Vec<f64> = faces.wall.iter().copied().chain(faces.stray).collect();
     let (z_lo, z_hi) = (sc.floor + 0.05, sc.ceiling - 0.05);
-    let f_lo = all.iter().copied().fold(f64::INFINITY, f64::min) - 2.0 * tol;
-    let f_hi = all.iter().copied().fold(f64::NEG_INFINITY, f64::max) + 2.0 * tol;
+    let wall = &faces.wall;
+    let (f_lo, f_hi) = (wall[0] - 2.0 * tol, wall[wall.len() - 1] + 2.0 * tol);
     let (mut e0, mut e1) = (0.5f64, 0.5f64);
     // The points between the wall's heights within the searched range, walked once (a grown
     // range walks only the stretches it adds): `(along, height)` on a face, and
@@ -83,9 +83,16 @@ pub(crate) fn find_extent(
                 if z < z_lo || z > z_hi || !keep(s) {
                     return;
                 }
-                if own(d) || stray(d) {
-                    seen.0.push((s, z, own(d)));
-                } else if d < f_lo || d > f_hi {
+                if own(d) {
+                    seen.0.push((s, z, true));
+                    return;
+                }
+                // (A stray face's points are off the wall's faces too: they may belong to a
+                // surface crossing its plane.)
+                if stray(d) {
+                    seen.0.push((s, z, false));
+                }
+                if d < f_lo || d > f_hi {
                     seen.1.push((s, d, z));
                 }
             });
@@ -133,9 +140,18 @@ pub(crate) fn find_extent(
                     crossing(x.0) && z >= x.1 - 0.1 && z <= x.2 + 0.1
                 })
         };
+        // A stray face's points bridge only where the floor is not seen in the wall's body.
+        let bridges = StrayBridges::new(line, faces, (r0, r1), sc, c);
+        let bridging = |s: f64| bridges.as_ref().is_some_and(|b| b.bridges(s));
         let visible: Vec<(f64, bool)> = on_faces
             .iter()
-            .filter(|&&(s, z, _)| !hidden(bin_of(s), z))
+            .filter(|&&(s, z, own)| {
+                if own {
+                    !hidden(bin_of(s), z)
+                } else {
+                    bridging(s)
+                }
+            })
             .map(|p| (p.0, p.2))
             .collect();
         let s_vals: Vec<f64> = visible.iter().map(|p| p.0).collect();

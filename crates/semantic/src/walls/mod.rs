@@ -61,6 +61,7 @@ mod orientation;
 mod own_points;
 mod piers;
 mod rests;
+mod stray;
 mod support;
 mod top;
 

@@ -50,8 +50,10 @@ impl StrayBridges {
         };
         let n = (((r1 - r0) / BIN_M).ceil() as usize + 1).min(10_000_000);
         let mut floor = vec![0usize; n];
+        // (only the strip of the body is walked: the floor's returns are most of a wall's)
+        let half_width = body.0.abs().max(body.1.abs()) + 0.01;
         sc.index
-            .for_each_near_line(line, r0, r1, c.search_half_width_m, |_, s, d, z| {
+            .for_each_near_line(line, r0, r1, half_width, |_, s, d, z| {
                 if (z - sc.floor).abs() <= FLOOR_TOL_M && d >= body.0 && d <= body.1 {
                     floor[(((s - r0) / BIN_M).max(0.0) as usize).min(n - 1)] += 1;
                 }

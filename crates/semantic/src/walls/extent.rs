@@ -271,10 +271,7 @@ mod tests {
         let index = XyIndex::new(&points, DVec2::splat(-10.0), DVec2::splat(10.0), 0.5);
         let sc = Scene::with_one_index(&points, &index, 0.0, 2.5);
         let c = WallConfig::default();
-        let line = Line2 {
-            origin: DVec2::ZERO,
-            dir: DVec2::X,
-        };
+        let line = Line2::through(DVec2::ZERO, DVec2::X);
         let ends = |stray: Option<f64>| {
             let faces = Faces {
                 wall: vec![0.0],

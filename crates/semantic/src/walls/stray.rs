@@ -94,10 +94,7 @@ mod tests {
         let index = XyIndex::new(&points, DVec2::splat(-10.0), DVec2::splat(10.0), 0.5);
         let sc = Scene::with_one_index(&points, &index, 0.0, 2.5);
         let c = WallConfig::default();
-        let line = Line2 {
-            origin: DVec2::ZERO,
-            dir: DVec2::X,
-        };
+        let line = Line2::through(DVec2::ZERO, DVec2::X);
         let faces = |stray| Faces {
             wall: vec![0.0],
             stray,

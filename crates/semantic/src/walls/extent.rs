@@ -1,8 +1,6 @@
 //! Wall extent: the runs of a wall's face points along its plane, with the corners (where
 //! another wall's face crosses the plane) left out (see the `walls` module).
 
-use super::faces::Faces;
-use super::stray::StrayBridges;
 use super::WallConfig;
 use crate::points::Line2;
 use crate::scene::Scene;
@@ -54,7 +52,7 @@ impl Crossings {
 /// searched range's ends, and the corners where a crossing surface hides the face points.
 pub(crate) fn find_extent(
     line: &Line2,
-    faces: &Faces,
+    faces: &[f64],
     a: f64,
     b: f64,
     sc: &Scene,
@@ -62,19 +60,14 @@ pub(crate) fn find_extent(
 ) -> Option<(f64, f64, Crossings)> {
     let hw = c.search_half_width_m;
     let tol = c.face_tolerance_m;
-    // The wall's faces, and a stray face (see `Faces`): its points bridge gaps in the wall's
-    // face, but the wall ends where its own face does.
-    let own = |d: f64| faces.wall.iter().any(|f| (d - f).abs() <= tol);
-    let stray = |d: f64| faces.stray.is_some_and(|f| (d - f).abs() <= tol);
+    let on_face = |d: f64| faces.iter().any(|f| (d - f).abs() <= tol);
     let (z_lo, z_hi) = (sc.floor + 0.05, sc.ceiling - 0.05);
-    let wall = &faces.wall;
-    let (f_lo, f_hi) = (wall[0] - 2.0 * tol, wall[wall.len() - 1] + 2.0 * tol);
+    let (f_lo, f_hi) = (faces[0] - 2.0 * tol, faces[faces.len() - 1] + 2.0 * tol);
     let (mut e0, mut e1) = (0.5f64, 0.5f64);
     // The points between the wall's heights within the searched range, walked once (a grown
     // range walks only the stretches it adds): `(along, height)` on a face, and
-    // `(along, height, on the wall's own face)` on a face, and `(along, across, height)` off
-    // the faces (see below).
-    type Seen = (Vec<(f64, f64, bool)>, Vec<(f64, f64, f64)>);
+    // `(along, across, height)` off the faces (see below).
+    type Seen = (Vec<(f64, f64)>, Vec<(f64, f64, f64)>);
     let mut seen: Seen = (Vec::new(), Vec::new());
     let mut walked: Option<(f64, f64)> = None;
     let walk = |seen: &mut Seen, s0: f64, s1: f64, keep: &dyn Fn(f64) -> bool| {
@@ -83,16 +76,9 @@ pub(crate) fn find_extent(
                 if z < z_lo || z > z_hi || !keep(s) {
                     return;
                 }
-                if own(d) {
-                    seen.0.push((s, z, true));
-                    return;
-                }
-                // (A stray face's points are off the wall's faces too: they may belong to a
-                // surface crossing its plane.)
-                if stray(d) {
-                    seen.0.push((s, z, false));
-                }
-                if d < f_lo || d > f_hi {
+                if on_face(d) {
+                    seen.0.push((s, z));
+                } else if d < f_lo || d > f_hi {
                     seen.1.push((s, d, z));
                 }
             });
@@ -140,33 +126,14 @@ pub(crate) fn find_extent(
                     crossing(x.0) && z >= x.1 - 0.1 && z <= x.2 + 0.1
                 })
         };
-        // A stray face's points bridge only where the floor is not seen in the wall's body.
-        let bridges = StrayBridges::new(line, faces, (r0, r1), sc, c);
-        let bridging = |s: f64| bridges.as_ref().is_some_and(|b| b.bridges(s));
-        let visible: Vec<(f64, bool)> = on_faces
+        let s_vals: Vec<f64> = on_faces
             .iter()
-            .filter(|&&(s, z, own)| {
-                if own {
-                    !hidden(bin_of(s), z)
-                } else {
-                    bridging(s)
-                }
-            })
-            .map(|p| (p.0, p.2))
+            .filter(|&&(s, z)| !hidden(bin_of(s), z))
+            .map(|p| p.0)
             .collect();
-        let s_vals: Vec<f64> = visible.iter().map(|p| p.0).collect();
         let (lo, hi) = extent(&s_vals, a, b, c.max_gap_m)?;
         let grow_lo = lo <= r0 + c.max_gap_m;
         let grow_hi = hi >= r1 - c.max_gap_m;
-        // The wall ends where its own face does (a stray face's points only bridge).
-        let own_s = visible.iter().filter(|p| p.1 && p.0 >= lo && p.0 <= hi);
-        let own_lo = own_s.clone().map(|p| p.0).fold(f64::INFINITY, f64::min);
-        let own_hi = own_s.map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
-        let (lo, hi) = if own_lo < own_hi {
-            (own_lo, own_hi)
-        } else {
-            (lo, hi)
-        };
         let crossing = Crossings {
             r0,
             bin,
@@ -242,48 +209,5 @@ mod tests {
         assert_eq!(extent(&s, 0.0, 1.0, 0.35), Some((0.1, 1.1)));
         assert_eq!(extent(&s, 0.0, 2.55, 0.35), Some((0.1, 2.6)));
         assert_eq!(extent(&[], 0.0, 1.0, 0.35), None);
-    }
-
-    /// Points along the x axis at `y`, over `[x0, x1]`, from 0.1 m to 2.4 m up.
-    fn sheet(points: &mut Vec<glam::Vec3>, y: f32, x0: f32, x1: f32) {
-        let n = ((x1 - x0) / 0.02).round() as usize;
-        for i in 0..=n {
-            for k in 1..=24 {
-                points.push(glam::Vec3::new(x0 + i as f32 * 0.02, y, k as f32 * 0.1));
-            }
-        }
-    }
-
-    /// Regression (garage-193; the 3DTK corridor): something standing 0.3 m in front of a wall
-    /// (a pilaster, a person) is no face of the wall, but what it hides is still wall: its
-    /// returns bridge the gap in the wall's face, and do not carry the wall's end beyond it.
-    #[test]
-    fn a_stray_face_bridges_the_wall_face_it_hides_but_ends_no_wall() {
-        use crate::points::XyIndex;
-        use glam::DVec2;
-        // The wall's face over [0, 2] and [3, 5] m; a pilaster's front 0.3 m in front of it
-        // over [1.9, 3.1] m; a person's returns 0.28 m in front of it past its end.
-        let mut points = Vec::new();
-        sheet(&mut points, 0.0, 0.0, 2.0);
-        sheet(&mut points, 0.0, 3.0, 5.0);
-        sheet(&mut points, -0.3, 1.9, 3.1);
-        sheet(&mut points, -0.28, 5.0, 5.5);
-        let index = XyIndex::new(&points, DVec2::splat(-10.0), DVec2::splat(10.0), 0.5);
-        let sc = Scene::with_one_index(&points, &index, 0.0, 2.5);
-        let c = WallConfig::default();
-        let line = Line2::through(DVec2::ZERO, DVec2::X);
-        let ends = |stray: Option<f64>| {
-            let faces = Faces {
-                wall: vec![0.0],
-                stray,
-            };
-            let (lo, hi, _) = find_extent(&line, &faces, 0.5, 1.5, &sc, &c).expect("extent");
-            (lo, hi)
-        };
-        let (lo, hi) = ends(Some(-0.3));
-        assert!(lo.abs() < 0.01 && (hi - 5.0).abs() < 0.01, "{lo} {hi}");
-        // Without the pilaster's returns the wall's face stops at the gap.
-        let (lo, hi) = ends(None);
-        assert!(lo.abs() < 0.01 && (hi - 2.0).abs() < 0.01, "{lo} {hi}");
     }
 }

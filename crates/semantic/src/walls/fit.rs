@@ -103,7 +103,7 @@ pub(super) fn fit_wall_noting(
             let (l, faces) = refine_line(line, a, b, sc, c)?;
             let (a, b) = (l.coords(ends.0).0, l.coords(ends.1).0);
             let (lo, hi, crossing) = find_extent(&l, &faces, a, b, sc, c)?;
-            Some((l, lo, hi, (faces.wall, crossing)))
+            Some((l, lo, hi, (faces, crossing)))
         })?;
     let noted = settled.insert(Settled {
         line,

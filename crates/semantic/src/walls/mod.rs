@@ -4,19 +4,15 @@
 //! near it, and the wall is measured from them:
 //!
 //! 1. Faces: the histogram of the band points' distances to the plane has a peak per observed
-//!    face. A second peak at a plausible thickness is the wall's far face only if its points
-//!    run along a third of the first face's stretches; one that runs along less is something
-//!    standing against the wall (a cabinet, a person, a car's flank: a stray face). Each face's
-//!    points are refitted (total least squares) to correct the Hough angle quantisation, three
-//!    times.
+//!    face. Each face's points are refitted (total least squares) to correct the Hough angle
+//!    quantisation, three times.
 //! 2. Free side: a face has free space (floor and ceiling points right in front of it) on one
 //!    side and solid wall behind it. Two faces with free space outwards are both sides of one
 //!    wall: centre between them, thickness measured. Otherwise only one face was seen: the
 //!    centre lies half an assumed thickness behind it (the median measured thickness of the
 //!    map's other walls, or `default_thickness_m`).
 //! 3. Extent: the face points at every height form runs along the plane; the runs that overlap
-//!    the segment (gaps up to `max_gap_m`) give the wall's ends. A stray face's points bridge
-//!    gaps (what stands against the wall hides its face), but the wall ends at its own face. Where another surface crosses
+//!    the segment (gaps up to `max_gap_m`) give the wall's ends. Where another surface crosses
 //!    the plane (points off the faces spread over 15 cm or more across it, within 3 cm along
 //!    it: the face of a wall meeting this one), the face points belong to the corner and do
 //!    not extend the wall, so a wall ends at the face of the wall it meets.
@@ -61,7 +57,6 @@ mod orientation;
 mod own_points;
 mod piers;
 mod rests;
-mod stray;
 mod support;
 mod top;
 

@@ -45,6 +45,11 @@ pub struct RampConfig {
     /// to return below 0.2-0.35 m (a seat, a car's bonnet or a table's edge starts higher:
     /// 0.45 m and more).
     pub max_foot_height_m: f64,
+    /// ... unless the stretch on the line is at least this long (m): beside a ramp, a laser
+    /// mounted low (a robot's) sees its top and side face only where they stand up to about
+    /// its own height, so a long ramp may be seen from well above its foot, while a seat's, a
+    /// bonnet's or a table's sloping edge is short.
+    pub min_length_high_foot_m: f64,
     /// A ramp is at least this long, foot to head (m) ...
     pub min_length_m: f64,
     /// ... at least this wide (m): the narrowest wheelchair ramps are 0.9 m between rails ...
@@ -74,6 +79,7 @@ impl Default for RampConfig {
             min_pitch_deg: 3.0,
             max_pitch_deg: 20.0,
             max_foot_height_m: 0.4,
+            min_length_high_foot_m: 3.0,
             min_length_m: 1.5,
             min_width_m: 0.7,
             min_rise_m: 0.15,
@@ -93,6 +99,7 @@ impl RampConfig {
             ("ramps.inlier_m", self.inlier_m),
             ("ramps.max_rms_m", self.max_rms_m),
             ("ramps.max_foot_height_m", self.max_foot_height_m),
+            ("ramps.min_length_high_foot_m", self.min_length_high_foot_m),
             ("ramps.min_length_m", self.min_length_m),
             ("ramps.min_width_m", self.min_width_m),
             ("ramps.min_rise_m", self.min_rise_m),

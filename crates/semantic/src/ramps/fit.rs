@@ -48,6 +48,7 @@ impl RampPlane {
 /// any. Uphill on the plane through most cells' tops, or else along an axis of the footprint's
 /// rectangle, the upper profile's line must be as steep as a ramp and no steeper, hold
 /// `min_inliers` of the bins within `max_rms_m`, start within `max_foot_height_m` of the floor
+/// (or anywhere under head height if the stretch on it is `min_length_high_foot_m` long)
 /// and meet it no farther before the stretch on the line than that stretch is long; and the
 /// ramp must be long, wide and high enough. The first direction that passes is the ramp's.
 pub(crate) fn ramp_plane(
@@ -91,11 +92,14 @@ fn along(points: &[(DVec2, f64)], dir: DVec2, floor: f64, c: &RampConfig) -> Opt
         u0 + (line.last + 1) as f64 * bin,
     );
     let start_height = line.at_start + line.slope * (line.first as f64 * bin) - floor;
+    // A line starting high is a ramp's only where it is long (a low laser beside a ramp).
+    let foot_plausible =
+        start_height <= c.max_foot_height_m || head_u - seen_from >= c.min_length_high_foot_m;
     if line.slope < lo
         || line.slope > hi
         || (line.inliers as f64) < c.min_inliers * line.filled as f64
         || line.rms_m > c.max_rms_m
-        || start_height > c.max_foot_height_m
+        || !foot_plausible
     {
         return None;
     }

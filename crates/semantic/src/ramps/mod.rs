@@ -314,6 +314,52 @@ mod tests {
         assert!(r.size[1] < 3.15, "{r:#?}");
     }
 
+    /// Regression (garage-224 of the styles bench, seeds 221-225): a ramp along a wall, rising
+    /// 1.3 m over 8.4 m, seen by the survey's lasers (0.5 m above the floor) only from 0.44 m
+    /// up, over its upper 5.5 m: its line started 0.44 m above the floor, over the 0.4 m a
+    /// seat's or a bonnet's edge is told from a ramp's foot by, and the ramp became obstacles.
+    /// Here: a ramp rising 0.15 m per metre from y = 0 (8.5 degrees), its side face and top
+    /// seen from y = 3.2 on (0.48 m up, over 4.8 m), its head's face at y = 8.
+    #[test]
+    fn a_long_ramp_seen_only_above_a_low_lasers_height_is_one_ramp_from_its_foot() {
+        let rise = |y: f64| 0.15 * y;
+        let mut pts = face(DVec2::new(4.0, 3.2), DVec2::new(4.0, 8.0), |s| {
+            rise(3.2 + 4.8 * s)
+        });
+        pts.extend(face(DVec2::new(4.0, 8.0), DVec2::new(7.0, 8.0), |_| 1.2));
+        for y in [3.6, 4.4, 5.2, 6.0, 6.8, 7.6] {
+            for k in 0..100 {
+                let x = 4.0 + 0.03 * k as f64;
+                pts.push(Vec3::new(x as f32, y as f32, rise(y) as f32));
+            }
+        }
+        let ramps = ramps_of(&pts);
+        assert_eq!(ramps.len(), 1, "{ramps:#?}");
+        let r = &ramps[0];
+        let foot = r.center.y - r.size[0] / 2.0;
+        assert!(foot.abs() < 0.2, "foot at {foot}: {r:#?}");
+        assert!((r.z_range.1 - 1.2).abs() < 0.04, "{r:#?}");
+    }
+
+    /// A slope as steep as a ramp starting 0.5 m up, seen over 2.5 m (less than
+    /// `min_length_high_foot_m`): a thing's sloping top, no ramp, though it rises more than its
+    /// start's height.
+    #[test]
+    fn a_short_slope_starting_high_is_no_ramp() {
+        let top = |y: f64| 0.5 + 0.27 * (y - 2.0);
+        let mut pts = face(DVec2::new(4.0, 2.0), DVec2::new(4.0, 4.5), |s| {
+            top(2.0 + 2.5 * s)
+        });
+        for y in [2.3, 2.9, 3.5, 4.1] {
+            for k in 0..40 {
+                let x = 4.0 + 0.03 * k as f64;
+                pts.push(Vec3::new(x as f32, y as f32, top(y) as f32));
+            }
+        }
+        let ramps = ramps_of(&pts);
+        assert!(ramps.is_empty(), "{ramps:#?}");
+    }
+
     /// A flight of stairs' side face (0.17 m risers, 0.28 m treads), a car's side (bumper,
     /// bonnet, windscreen, roof) and a table's sloping edge 0.7 m up: no ramp.
     #[test]

@@ -3,14 +3,15 @@
 
 use crate::scan_input::ScanReadArgs;
 use clap::Args;
-use pipeline::{read_sequence, scans_to_verdict, Config, ScenarioChoice};
+use pipeline::{read_scan_set, scans_to_verdict, Config, ScenarioChoice};
 use std::path::PathBuf;
 use std::time::Instant;
 
 /// Arguments of `semsim run`.
 #[derive(Args)]
 pub struct RunArgs {
-    /// The scans, in order (files, or a folder of them; one .e57 or .mcap holding several).
+    /// The scans, in order (files, or a folder of them; one .e57 or .mcap holding several). One
+    /// scan, or one cloud registered already, is mapped as it stands.
     #[arg(required = true, value_name = "SCANS")]
     inputs: Vec<PathBuf>,
     /// Odometry pose file (default: odometry.txt in the folder, or 3DTK .pose files).
@@ -40,7 +41,7 @@ pub fn run(a: RunArgs, cfg: &Config) -> anyhow::Result<()> {
     // The scenario and the output folder first: they should fail before minutes of work.
     pipeline::check_output_dir(&a.out)?;
     let scenario = ScenarioChoice::from_file_or_plan(a.scenario.as_deref(), &cfg.plan)?;
-    let input = read_sequence(&a.inputs, a.odometry.as_deref(), None, &a.read.options())?;
+    let input = read_scan_set(&a.inputs, a.odometry.as_deref(), None, &a.read.options())?;
     let scans = pipeline::read_scans_with(
         &input.scans,
         a.max_range_m,

@@ -104,15 +104,16 @@ pub fn scans_to_verdict(
     out: &Path,
     observer: &mut dyn Observer,
 ) -> Result<ChainOutcome> {
-    // 1. Registration: scan k against the map of scans 0..k-1, from the odometry.
-    observer.stage_started(
-        1,
-        &format!(
-            "registration ({}) of {} scans",
-            cfg.registration.icp.method.short_name(),
-            scans.len()
+    // 1. Registration: scan k against the map of scans 0..k-1, from the odometry (one scan
+    //    alone defines the world).
+    let title = match scans.len() {
+        1 => "registration: one scan, which defines the world (nothing to register)".to_string(),
+        n => format!(
+            "registration ({}) of {n} scans",
+            cfg.registration.icp.method.short_name()
         ),
-    );
+    };
+    observer.stage_started(1, &title);
     let mut registrar = open_registrar(&cfg.registration)?;
     observer.device_opened(registrar.description());
     let registration = register_scans(

@@ -86,7 +86,7 @@ pub use register::{
 };
 pub use registration::{drop_transients, find_transients, TransientConfig};
 pub use scan_folder::{
-    read_sequence, write_scan_folder, ScanFolderSummary, ScanSource, SequenceInput,
+    read_scan_set, read_sequence, write_scan_folder, ScanFolderSummary, ScanSource, SequenceInput,
 };
 pub use scans::{merge_scan_files, place_and_merge, read_scans, read_scans_with};
 pub use score::score_map_file;

@@ -12,7 +12,7 @@ mod read;
 mod sources;
 mod write;
 
-pub use read::{is_scan_file, read_sequence};
+pub use read::{is_scan_file, read_scan_set, read_sequence};
 pub use sources::{expand_files, ExpandedScans};
 pub use write::{write_scan_folder, ScanFolderSummary};
 

@@ -24,6 +24,29 @@ pub fn read_sequence(
     truth: Option<&Path>,
     options: &interop::ReadOptions,
 ) -> Result<SequenceInput> {
+    read_scans_in(inputs, odometry, truth, options, 2)
+}
+
+/// As [`read_sequence`], one scan too: a single station, or a cloud registered already (a
+/// surveyor's E57 or LAS of a whole floor), which `semsim run` maps as it stands (the scan
+/// defines the world; there is nothing to register it against).
+pub fn read_scan_set(
+    inputs: &[PathBuf],
+    odometry: Option<&Path>,
+    truth: Option<&Path>,
+    options: &interop::ReadOptions,
+) -> Result<SequenceInput> {
+    read_scans_in(inputs, odometry, truth, options, 1)
+}
+
+/// [`read_sequence`] with at least `min_scans` scans.
+fn read_scans_in(
+    inputs: &[PathBuf],
+    odometry: Option<&Path>,
+    truth: Option<&Path>,
+    options: &interop::ReadOptions,
+    min_scans: usize,
+) -> Result<SequenceInput> {
     let mut files = Vec::new();
     let mut folder = None;
     for i in inputs {
@@ -48,9 +71,14 @@ pub fn read_sequence(
     }
     let mut read = files.clone();
     let expanded = expand_files(&files, options)?;
-    if expanded.scans.len() < 2 {
+    if expanded.scans.len() < min_scans {
+        let what = if min_scans > 1 {
+            "a sequence needs at least two scans"
+        } else {
+            "no scans"
+        };
         return Err(PipelineError::bad_input(format!(
-            "{}: a sequence needs at least two scans, found {}",
+            "{}: {what}, found {}",
             shown_inputs(inputs),
             expanded.scans.len()
         )));

@@ -46,8 +46,9 @@ pub(super) fn classify_partition(
         return Vec::new();
     }
     // 1. The cluster as it is.
-    if let Some(why) = partition_rule(o, sc, grids, floor_seen, frame, c, (0.0, 0.0)) {
+    if let Some((why, top)) = partition_rule(o, sc, grids, floor_seen, frame, c, (0.0, 0.0)) {
         o.class = EntityClass::Wall;
+        o.z_range.1 = top;
         o.rules.truncate(2);
         o.rules.push(why);
         return Vec::new();
@@ -72,10 +73,12 @@ pub(super) fn classify_partition(
     if rest.iter().any(blocks_face) || slab.z_range.1 - sc.floor > c.head_height_m {
         return Vec::new();
     }
-    let Some(why) = partition_rule(&slab, sc, grids, floor_seen, frame, c, (0.0, 0.0)) else {
+    let Some((why, top)) = partition_rule(&slab, sc, grids, floor_seen, frame, c, (0.0, 0.0))
+    else {
         return Vec::new();
     };
     slab.class = EntityClass::Wall;
+    slab.z_range.1 = top;
     set_box_rule(
         &mut slab,
         format!(
@@ -89,7 +92,8 @@ pub(super) fn classify_partition(
     rest
 }
 
-/// Why `o` stands as a partial-height wall does (see the module docs), or `None`. Where it is
+/// Why `o` stands as a partial-height wall does (see the module docs), and its top (where its
+/// face ends, [`face_top`]), or `None`. Where it is
 /// known to stand along `standing_m` of its length (its pieces, each from the floor to the
 /// ceiling: see `pieces`), it stands along that much at least; `hidden_m` of its length (the
 /// gaps between its pieces, where what stands before it hid it) is left out of the share it
@@ -102,18 +106,25 @@ pub(super) fn partition_rule(
     frame: &ImageFrame,
     c: &ObstacleConfig,
     (standing_m, hidden_m): (f64, f64),
-) -> Option<String> {
+) -> Option<(String, f64)> {
     let [length, across] = o.size;
-    let height = o.z_range.1 - sc.floor;
     if across > c.partition_max_thickness_m
         || length < c.partition_min_length_m
         || length < 4.0 * across
-        || height < c.partition_min_height_m
+        || o.z_range.1 - sc.floor < c.partition_min_height_m
         || faces_a_wall(o, sc, c.partition_min_passage_m)
     {
         return None;
     }
     let divides = divides_space(o, sc, floor_seen, grids[0], frame, c)?;
+    // Its top: where its face ends along most of it, not a few returns above it at one end
+    // (the mixed pixels between its top edge and the wall behind it).
+    let members = points_in_box(o, sc, grids, frame);
+    let top = face_top(o, sc, &members);
+    let height = top - sc.floor;
+    if height < c.partition_min_height_m {
+        return None;
+    }
     // (pieces mostly gaps are no wall's face, however well each stands: a row of things)
     let hidden_m = if hidden_m <= (1.0 - c.partition_min_standing) * length {
         hidden_m
@@ -121,16 +132,15 @@ pub(super) fn partition_rule(
         0.0
     };
     let seen_m = (length - hidden_m).max(1e-9);
-    let standing = (standing_fraction(o, sc, &points_in_box(o, sc, grids, frame), c) * length
-        / seen_m)
+    let standing = (standing_fraction(o, sc, &members, top, c) * length / seen_m)
         .max(standing_m / seen_m)
         .min(1.0);
-    (standing >= c.partition_min_standing).then(|| format!(
+    (standing >= c.partition_min_standing).then(|| (format!(
         "a partial-height wall: {length:.2} m long, {across:.2} m thick, {height:.2} m high; its face seen from within {:.2} m of the floor up to its top along {:.0} % of its length (a wall stands on the floor along {:.0} % at least); {divides}",
         c.partition_max_bottom_m,
         100.0 * standing,
         100.0 * c.partition_min_standing
-    ))
+    ), top))
 }
 
 /// How `o` divides space (see the module docs), or `None` if it may be a block's face: the
@@ -255,31 +265,57 @@ fn faces_a_wall(o: &DetectedObstacle, sc: &ObstacleScene, passage_m: f64) -> boo
     })
 }
 
+/// `members`' heights by [`BIN_M`] bin along `o`: `(bin, z)`, bins counted from `o`'s start.
+fn along_bins<'a>(
+    o: &'a DetectedObstacle,
+    sc: &'a ObstacleScene,
+    members: &'a [u32],
+) -> impl Iterator<Item = (usize, f64)> + 'a {
+    let bins = (o.size[0] / BIN_M).ceil().max(1.0);
+    members.iter().filter_map(move |&i| {
+        let p = sc.points[i as usize];
+        let s = (DVec2::new(p.x as f64, p.y as f64) - o.center).dot(o.dir);
+        let bin = ((s + o.size[0] / 2.0) / BIN_M).floor();
+        (0.0..bins)
+            .contains(&bin)
+            .then_some((bin as usize, p.z as f64))
+    })
+}
+
+/// The top of `o`'s face: the median over the [`BIN_M`] bins holding its returns of each
+/// bin's highest, at most its box's top. A few returns over one end (mixed pixels between its
+/// top edge and a wall behind it, a person passing) do not lift it.
+fn face_top(o: &DetectedObstacle, sc: &ObstacleScene, members: &[u32]) -> f64 {
+    let bins = (o.size[0] / BIN_M).ceil().max(1.0) as usize;
+    let mut tops = vec![f64::NEG_INFINITY; bins];
+    for (bin, z) in along_bins(o, sc, members) {
+        tops[bin] = tops[bin].max(z);
+    }
+    let mut seen: Vec<f64> = tops.into_iter().filter(|z| z.is_finite()).collect();
+    seen.sort_by(f64::total_cmp);
+    seen.get(seen.len() / 2)
+        .map_or(o.z_range.1, |&z| z.min(o.z_range.1))
+}
+
 /// The fraction of `o`'s length (bins of [`BIN_M`]) where its points `members` come down to
 /// within `partition_max_bottom_m` of the floor and up to within `max_vertical_gap_m` of its
-/// top.
+/// face's `top` ([`face_top`]).
 fn standing_fraction(
     o: &DetectedObstacle,
     sc: &ObstacleScene,
     members: &[u32],
+    top: f64,
     c: &ObstacleConfig,
 ) -> f64 {
     let bins = (o.size[0] / BIN_M).ceil().max(1.0) as usize;
     let (mut low, mut high) = (vec![false; bins], vec![false; bins]);
     let (bottom_below, top_above) = (
         sc.floor + c.partition_max_bottom_m,
-        o.z_range.1 - c.max_vertical_gap_m,
+        top - c.max_vertical_gap_m,
     );
-    for &i in members {
-        let p = sc.points[i as usize];
-        let s = (DVec2::new(p.x as f64, p.y as f64) - o.center).dot(o.dir);
-        let bin = ((s + o.size[0] / 2.0) / BIN_M).floor();
-        if !(0.0..bins as f64).contains(&bin) {
-            continue;
-        }
-        let z = p.z as f64;
-        low[bin as usize] |= z <= bottom_below;
-        high[bin as usize] |= z >= top_above;
+    for (bin, z) in along_bins(o, sc, members) {
+        low[bin] |= z <= bottom_below;
+        high[bin] |= z >= top_above;
     }
     // The foot's band is a few centimetres high: at range the laser's rows leave a bin of it
     // without a return here and there. A bin between two that stand on the floor stands too

@@ -240,3 +240,28 @@ fn a_foot_seen_in_every_other_bin_still_stands_on_the_floor() {
     assert_eq!(found.len(), 1, "{found:?}");
     assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
 }
+
+/// Regression (office-221 of the styles bench, seeds 221-225): a partition 1.81 m long and
+/// 1.29 m high met the room's wall at one end, and 16 mixed pixels between its top edge and
+/// that wall, up to 1.75 m, lifted the cluster's top: its face, seen up to 1.29 m, was then
+/// nowhere within `max_vertical_gap_m` of "its top", and it stayed an obstacle box 1.73 m
+/// high. Its top is where its face ends along most of it.
+#[test]
+fn a_few_returns_over_a_partitions_end_do_not_lift_its_top() {
+    let mut points = slab(1.0, 2.8, 2.0, 0.09, 1.3);
+    for k in 0..16 {
+        let z = 1.35 + 0.025 * k as f32;
+        points.push(Vec3::new(2.75 + 0.003 * (k % 3) as f32, 2.0, z));
+    }
+    let found = found_in(
+        &{
+            let mut all = floor(None);
+            all.extend_from_slice(&points);
+            all
+        },
+        &[],
+    );
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].class, EntityClass::Wall, "{found:?}");
+    assert!((found[0].z_range.1 - 1.3).abs() < 0.05, "{found:?}");
+}

@@ -80,7 +80,7 @@ pub(super) fn join_partition_pieces(
                 absorb(&mut wall, &found[m], dir);
             }
         }
-        let Some(why) = partition_rule(
+        let Some((why, top)) = partition_rule(
             &wall,
             sc,
             grids,
@@ -95,6 +95,7 @@ pub(super) fn join_partition_pieces(
             continue;
         };
         wall.class = EntityClass::Wall;
+        wall.z_range.1 = top;
         wall.rules.truncate(1);
         wall.rules.push(format!(
             "box: around {} thin pieces standing on the floor along one line, at most {MAX_GAP_M:.2} m apart (a partition seen in pieces)",

@@ -32,32 +32,11 @@ fn only(d: &Dir, keep: &[&str]) {
     assert!(extra.is_empty(), "files left behind: {extra:?}");
 }
 
-/// The built-in default building written into the test's folder as `b.toml`.
-fn default_building(d: &Dir) -> PathBuf {
-    d.write(
-        "b.toml",
-        include_str!("../../scanner/data/default_building.toml"),
-    )
-}
-
 /// A tiny scan folder of the default building (two scans, a small laser).
 fn scan_folder(d: &Dir, name: &str) -> PathBuf {
     let cfg = d.small_config();
-    let b = default_building(d);
-    d.run(&[
-        "scan",
-        "--building",
-        s(&b),
-        "--pose",
-        "2,0,0",
-        "--pose",
-        "3,0,0",
-        "--out",
-        name,
-        "--config",
-        s(&cfg),
-    ])
-    .ok();
+    d.scan_default_building(name, &["2,0,0", "3,0,0"], &cfg)
+        .ok();
     d.join(name)
 }
 
@@ -139,19 +118,8 @@ fn nul_bytes_from_a_file_are_never_echoed_to_the_terminal() {
 fn a_config_section_of_another_stage_is_checked_by_every_command() {
     let d = Dir::new();
     let cfg = bad(&d, "config_max_iterations_0.toml");
-    let b = default_building(&d);
-    d.run(&[
-        "scan",
-        "--building",
-        s(&b),
-        "--pose",
-        "2,0,0",
-        "--out",
-        "scans",
-        "--config",
-        s(&cfg),
-    ])
-    .bad_input(&["config_max_iterations_0.toml", "max_iterations"]);
+    d.scan_default_building("scans", &["2,0,0"], &cfg)
+        .bad_input(&["config_max_iterations_0.toml", "max_iterations"]);
     assert!(
         !d.join("scans").exists(),
         "scan ran with a bad configuration"
@@ -161,7 +129,7 @@ fn a_config_section_of_another_stage_is_checked_by_every_command() {
 #[test]
 fn a_heading_of_1e300_degrees_is_refused() {
     let d = Dir::new();
-    let b = default_building(&d);
+    let b = d.default_building();
     d.run(&[
         "scan",
         "--building",

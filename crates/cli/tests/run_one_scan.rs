@@ -65,22 +65,7 @@ fn run_one(d: &Dir, scan: &Path) -> semantic::SemanticMap {
 fn run_on_one_virtual_scan_maps_it_as_it_stands_and_gives_a_verdict() {
     let d = Dir::new();
     let cfg = d.small_config();
-    let b = d.write(
-        "b.toml",
-        include_str!("../../scanner/data/default_building.toml"),
-    );
-    d.run(&[
-        "scan",
-        "--building",
-        s(&b),
-        "--pose",
-        "2,0,0",
-        "--out",
-        "scans",
-        "--config",
-        s(&cfg),
-    ])
-    .ok();
+    d.scan_default_building("scans", &["2,0,0"], &cfg).ok();
     let map = run_one(&d, &d.join("scans/scan000.pcd"));
     // The corridor the scanner stood in: its floor and the walls along it.
     assert_eq!(map.of_class(cloud::EntityClass::Floor).count(), 1);

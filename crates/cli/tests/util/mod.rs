@@ -45,6 +45,29 @@ impl Dir {
         Run(out)
     }
 
+    /// The built-in default building written into the folder as `b.toml`.
+    pub fn default_building(&self) -> PathBuf {
+        self.write(
+            "b.toml",
+            include_str!("../../../scanner/data/default_building.toml"),
+        )
+    }
+
+    /// `semsim scan` of the default building (written as `b.toml`) from `poses` (`x,y,yaw`)
+    /// into `out`, with `config`.
+    pub fn scan_default_building(&self, out: &str, poses: &[&str], config: &Path) -> Run {
+        let b = self.default_building();
+        let (b, config) = (
+            b.to_str().expect("utf-8 path"),
+            config.to_str().expect("utf-8 path"),
+        );
+        let mut args = vec!["scan", "--building", b, "--out", out, "--config", config];
+        for p in poses {
+            args.extend(["--pose", p]);
+        }
+        self.run(&args)
+    }
+
     /// A small, fast laser configuration file for tests.
     pub fn small_config(&self) -> PathBuf {
         self.write(

@@ -64,6 +64,7 @@ mod doors;
 mod frame;
 mod ground_truth;
 mod labels;
+mod object_groups;
 mod obstacles;
 mod ramps;
 mod report;

@@ -1,9 +1,9 @@
 //! Obstacles, columns and beams scored against the building's boxes, and the walls a map puts
 //! where only beams or pillars stand.
 //!
-//! Truth objects: the building's boxes, those of one non-empty name joined (a table and its
-//! legs are one object; their box is the smallest around all of them in the first box's
-//! frame). Counted as expected: obstacles (classes furniture, obstacle and column) taller than
+//! Truth objects: the building's boxes, those of one non-empty name that touch joined (a table
+//! and its legs are one object; their box is the smallest around all of them in the first box's
+//! frame; boxes of one name apart are objects of their own, see `object_groups`). Counted as expected: obstacles (classes furniture, obstacle and column) taller than
 //! `obstacle_min_height_m` (0.3 m) and longer than `obstacle_min_across_m` (0.3 m) across;
 //! beams and columns of any size; with an observed cloud only those with `min_bin_points` (5)
 //! labelled points or more. Detected: the map's obstacles and columns passing the same size
@@ -18,6 +18,7 @@
 //! Walls on beams or columns: map walls whose centre line lies mostly (over half of it, 5 cm
 //! samples) within the footprint, grown by 10 cm, of true beams and columns.
 
+use crate::object_groups::object_groups;
 use crate::score::ClassScore;
 use crate::truth::Truth;
 use crate::{EvalConfig, Evaluation};
@@ -187,35 +188,26 @@ fn seen_inside(b: &OrientedBox, building: &Building, t: &Truth) -> Vec<(String, 
     counts
 }
 
-/// The building's boxes as objects (boxes of one name joined), in the map frame.
+/// The building's boxes as objects (boxes of one name that touch joined, see `object_groups`), in
+/// the map frame.
 fn objects(building: &Building, t: &Truth, c: &EvalConfig) -> Vec<Object> {
-    let mut out: Vec<(Object, Vec<usize>)> = Vec::new();
-    for (i, b) in building.boxes.iter().enumerate() {
-        let key = if b.name.is_empty() {
-            format!("boxes[{i}]")
-        } else {
-            b.name.clone()
-        };
-        match out
-            .iter_mut()
-            .find(|(o, _)| o.name == key && o.class == b.class)
-        {
-            Some((_, members)) => members.push(i),
-            None => out.push((
-                Object {
-                    name: key,
-                    class: b.class,
-                    geometry: OrientedBox {
-                        center_m: b.center_m,
-                        size_m: b.size_m,
-                        yaw_deg: b.yaw_deg,
-                    },
-                    seen: true,
+    let out: Vec<(Object, Vec<usize>)> = object_groups(&building.boxes)
+        .into_iter()
+        .map(|(name, members)| {
+            let b = &building.boxes[members[0]];
+            let o = Object {
+                name,
+                class: b.class,
+                geometry: OrientedBox {
+                    center_m: b.center_m,
+                    size_m: b.size_m,
+                    yaw_deg: b.yaw_deg,
                 },
-                vec![i],
-            )),
-        }
-    }
+                seen: true,
+            };
+            (o, members)
+        })
+        .collect();
     out.into_iter()
         .map(|(mut o, members)| {
             // The box around all members, in the first one's frame, then into the map frame.

@@ -21,8 +21,9 @@
 //! A level stretch can also be treads above the laser that the scans missed, part way up one
 //! straight flight: then the two flights fitted meet, the upper one's first riser within a
 //! tread's depth of the lower one's top front edge, and their points are one flight.
+use super::floor::{floor_density, floor_in_strip};
 use super::landing::{mid_landing, Landing};
-use super::plausible::{finish, floor_density, floor_in_strip};
+use super::plausible::finish;
 use super::profile::{profile, profile_near};
 use super::{DetectedStairs, StairsConfig};
 use crate::scene::Scene;

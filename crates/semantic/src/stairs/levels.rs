@@ -34,13 +34,18 @@ pub(super) fn level_grid(heights: &[f64], c: &StairsConfig) -> Option<(f64, f64,
     if peaks.len() < c.min_steps as usize {
         return None;
     }
-    let mut candidates: Vec<f64> = peaks.windows(2).map(|p| p[1] - p[0]).collect();
-    candidates.push(peaks[0] + 0.01);
-    candidates.retain(|r| *r >= c.rise_m[0] && *r <= c.rise_m[1]);
+    // The rise between neighbouring peaks, or between peaks one apart (`true`): a level's
+    // running maximum climbing its riser's top edge, or mixed pixels there, can pile up
+    // between two levels.
+    let mut candidates: Vec<(f64, bool)> = peaks.windows(2).map(|p| (p[1] - p[0], false)).collect();
+    candidates.extend(peaks.windows(3).map(|p| (p[2] - p[0], true)));
+    candidates.push((peaks[0] + 0.01, false));
+    candidates.retain(|r| r.0 >= c.rise_m[0] && r.0 <= c.rise_m[1]);
     let mut best: Option<(f64, f64, f64, f64)> = None; // score, rise, offset, top level
-    for r0 in candidates {
+    for (r0, skipping) in candidates {
         let (mut rise, mut offset) = (r0, 0.0);
         let mut ks: Vec<f64> = Vec::new();
+        let mut on_grid = 0;
         for _ in 0..3 {
             let fit: Vec<(f64, f64)> = peaks
                 .iter()
@@ -50,6 +55,7 @@ pub(super) fn level_grid(heights: &[f64], c: &StairsConfig) -> Option<(f64, f64,
                         .then_some((k, p))
                 })
                 .collect();
+            on_grid = fit.len();
             ks = fit.iter().map(|f| f.0).collect();
             ks.dedup();
             if let Some((a, b)) = linear_fit(&fit) {
@@ -61,7 +67,11 @@ pub(super) fn level_grid(heights: &[f64], c: &StairsConfig) -> Option<(f64, f64,
         }
         let top = ks.last().copied().unwrap_or(0.0);
         let score = ks.len() as f64 - 0.5 * (top - ks.len() as f64);
-        let enough = ks.len() >= c.min_steps as usize && starts_low(&ks);
+        // (a rise skipping a peak must leave few peaks off its grid, a stray between two
+        // levels: a ramp's side face, its top edge creeping up, piles up at heights all the
+        // way, and some of them are a rise apart)
+        let strays_few = !skipping || 2 * (peaks.len() - on_grid) <= on_grid;
+        let enough = ks.len() >= c.min_steps as usize && starts_low(&ks) && strays_few;
         if enough && best.is_none_or(|b| score > b.0) {
             best = Some((score, rise, offset, top));
         }
@@ -98,6 +108,36 @@ mod tests {
             .iter()
             .flat_map(|&k| std::iter::repeat_n(0.17 * f64::from(k), 20))
             .collect()
+    }
+
+    /// Regression (office-244 of seeds 241-245): a 3-step flight of 0.152 m seen from its side
+    /// only. Its side face's top edge, read 2-4 cm low, gave peaks at 0.155, 0.295 and 0.435 m,
+    /// and the running maximum rising over the third riser's edge (0.363 and 0.374 m) one more
+    /// between the top two: no two neighbouring peaks were a rise apart, and the flight had no
+    /// grid of levels. (These are its running maxima, as (height, bins).)
+    #[test]
+    fn a_peak_between_two_levels_does_not_hide_their_rise() {
+        let runs = [
+            (0.131, 1),
+            (0.151, 3),
+            (0.169, 3),
+            (0.21, 2),
+            (0.28, 6),
+            (0.302, 9),
+            (0.363, 5),
+            (0.374, 3),
+            (0.423, 3),
+            (0.437, 7),
+            (0.447, 68),
+        ];
+        let maxima: Vec<f64> = runs
+            .iter()
+            .flat_map(|&(h, n)| std::iter::repeat_n(h, n))
+            .collect();
+        let (rise, _, top) =
+            level_grid(&maxima, &StairsConfig::default()).expect("a grid of levels");
+        assert_eq!(top, 3.0);
+        assert!((rise - 0.145).abs() < 0.01, "rise {rise}");
     }
 
     #[test]

@@ -62,6 +62,7 @@ mod envelope;
 mod extend;
 mod fit;
 mod flights;
+mod floor;
 mod landing;
 mod landing_faces;
 mod levels;
@@ -73,6 +74,7 @@ mod risers;
 mod search;
 mod side_faces;
 mod surface;
+mod top_end;
 mod upper;
 
 use crate::scene::Scene;

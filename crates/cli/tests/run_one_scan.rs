@@ -99,3 +99,18 @@ fn register_sequence_of_one_scan_is_still_bad_input() {
         ]);
     assert!(!d.join("reg").exists());
 }
+
+#[test]
+fn run_on_a_folder_with_no_scan_files_names_the_formats_it_reads() {
+    let d = Dir::new();
+    std::fs::create_dir_all(d.join("empty")).expect("a folder");
+    std::fs::write(d.join("empty/notes.txt"), "no scans here").expect("a file");
+    d.run(&["run", "empty", "--out", "out"]).bad_input(&[
+        "empty",
+        "no scan files found",
+        ".pcd",
+        ".e57",
+        ".mcap",
+    ]);
+    assert!(!d.join("out").exists());
+}

@@ -3,7 +3,7 @@
 //! of one name standing apart are objects of their own (the generator's "clutter" boxes, a
 //! user's several "crate"s).
 
-use crate::obstacles::corners;
+use glam::DVec2;
 use scanner::Furniture;
 use semantic::{convex_intersection_area, OrientedBox};
 
@@ -41,7 +41,7 @@ pub(crate) fn object_groups(boxes: &[Furniture]) -> Vec<(String, Vec<usize>)> {
             ],
             yaw_deg: b.yaw_deg,
         };
-        (corners(&g), g.z_range_m())
+        (g.corners_xy().map(DVec2::from_array), g.z_range_m())
     };
     for i in 0..boxes.len() {
         for j in i + 1..boxes.len() {

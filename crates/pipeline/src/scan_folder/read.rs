@@ -72,15 +72,18 @@ fn read_scans_in(
     let mut read = files.clone();
     let expanded = expand_files(&files, options)?;
     if expanded.scans.len() < min_scans {
-        let what = if min_scans > 1 {
-            "a sequence needs at least two scans"
+        let found = expanded.scans.len();
+        let what = if found == 0 {
+            format!(
+                "no scan files found (a scan is a .{} file)",
+                SCAN_EXTENSIONS.join(", .")
+            )
         } else {
-            "no scans"
+            format!("a sequence needs at least two scans, found {found}")
         };
         return Err(PipelineError::bad_input(format!(
-            "{}: {what}, found {}",
-            shown_inputs(inputs),
-            expanded.scans.len()
+            "{}: {what}",
+            shown_inputs(inputs)
         )));
     }
     let scans = &expanded.scans;

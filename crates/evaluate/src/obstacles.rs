@@ -3,7 +3,8 @@
 //!
 //! Truth objects: the building's boxes, those of one non-empty name that touch joined (a table
 //! and its legs are one object; their box is the smallest around all of them in the first box's
-//! frame; boxes of one name apart are objects of their own, see `object_groups`). Counted as expected: obstacles (classes furniture, obstacle and column) taller than
+//! frame; boxes of one name apart are objects of their own, see `object_groups`). Counted as
+//! expected: obstacles (classes furniture, obstacle and column) taller than
 //! `obstacle_min_height_m` (0.3 m) and longer than `obstacle_min_across_m` (0.3 m) across;
 //! beams and columns of any size; with an observed cloud only those with `min_bin_points` (5)
 //! labelled points or more. Detected: the map's obstacles and columns passing the same size
@@ -188,28 +189,12 @@ fn seen_inside(b: &OrientedBox, building: &Building, t: &Truth) -> Vec<(String, 
     counts
 }
 
-/// The building's boxes as objects (boxes of one name that touch joined, see `object_groups`), in
-/// the map frame.
+/// The building's boxes as objects (boxes of one name that touch joined, see `object_groups`),
+/// in the map frame.
 fn objects(building: &Building, t: &Truth, c: &EvalConfig) -> Vec<Object> {
-    let out: Vec<(Object, Vec<usize>)> = object_groups(&building.boxes)
+    object_groups(&building.boxes)
         .into_iter()
         .map(|(name, members)| {
-            let b = &building.boxes[members[0]];
-            let o = Object {
-                name,
-                class: b.class,
-                geometry: OrientedBox {
-                    center_m: b.center_m,
-                    size_m: b.size_m,
-                    yaw_deg: b.yaw_deg,
-                },
-                seen: true,
-            };
-            (o, members)
-        })
-        .collect();
-    out.into_iter()
-        .map(|(mut o, members)| {
             // The box around all members, in the first one's frame, then into the map frame.
             let yaw = building.boxes[members[0]].yaw_deg.to_radians();
             let (d, n) = (DVec2::from_angle(yaw), DVec2::from_angle(yaw).perp());
@@ -236,19 +221,23 @@ fn objects(building: &Building, t: &Truth, c: &EvalConfig) -> Vec<Object> {
             let centre = d * (u[0] + u[1]) / 2.0 + n * (v[0] + v[1]) / 2.0;
             let cm = t.to_map(centre.x, centre.y, (z[0] + z[1]) / 2.0);
             let dm = t.to_map(centre.x + d.x, centre.y + d.y, (z[0] + z[1]) / 2.0) - cm;
-            o.geometry = OrientedBox {
-                center_m: cm.to_array(),
-                size_m: [u[1] - u[0], v[1] - v[0], z[1] - z[0]],
-                yaw_deg: dm.y.atan2(dm.x).to_degrees(),
-            };
-            if t.observed {
+            let seen = !t.observed || {
                 let points: usize = members
                     .iter()
                     .map(|i| t.count(&format!("boxes[{i}]")))
                     .sum();
-                o.seen = points >= c.min_bin_points;
+                points >= c.min_bin_points
+            };
+            Object {
+                name,
+                class: building.boxes[members[0]].class,
+                geometry: OrientedBox {
+                    center_m: cm.to_array(),
+                    size_m: [u[1] - u[0], v[1] - v[0], z[1] - z[0]],
+                    yaw_deg: dm.y.atan2(dm.x).to_degrees(),
+                },
+                seen,
             }
-            o
         })
         .collect()
 }

@@ -20,6 +20,7 @@ use super::fit::half_extent_along;
 use super::slabs::{points_in_box, thin_slab};
 use super::{DetectedObstacle, ObstacleConfig, ObstacleScene};
 use crate::image_frame::ImageFrame;
+use crate::points::quantile;
 use cloud::EntityClass;
 use glam::DVec2;
 
@@ -292,9 +293,7 @@ fn face_top(o: &DetectedObstacle, sc: &ObstacleScene, members: &[u32]) -> f64 {
         tops[bin] = tops[bin].max(z);
     }
     let mut seen: Vec<f64> = tops.into_iter().filter(|z| z.is_finite()).collect();
-    seen.sort_by(f64::total_cmp);
-    seen.get(seen.len() / 2)
-        .map_or(o.z_range.1, |&z| z.min(o.z_range.1))
+    quantile(&mut seen, 0.5).map_or(o.z_range.1, |z| z.min(o.z_range.1))
 }
 
 /// The fraction of `o`'s length (bins of [`BIN_M`]) where its points `members` come down to

@@ -2,6 +2,7 @@
 //! ramp's top, or of its side face's top edge where the top itself was not seen) and the
 //! straight line fitted to it, robustly (what stands on the ramp is left out).
 
+use crate::points::quantile;
 use glam::DVec2;
 
 /// The highest height per `bin_m` bin of `points` (XY, z) along `dir` from `u0` (the least
@@ -109,15 +110,9 @@ fn theil_sen(pts: &[(f64, f64)]) -> Option<(f64, f64)> {
             }
         }
     }
-    let slope = median(&mut slopes)?;
+    let slope = quantile(&mut slopes, 0.5)?;
     let mut at: Vec<f64> = pts.iter().map(|p| p.1 - slope * p.0).collect();
-    Some((median(&mut at)?, slope))
-}
-
-/// The median (the upper one of an even count); `None` if empty.
-fn median(v: &mut [f64]) -> Option<f64> {
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied()
+    Some((quantile(&mut at, 0.5)?, slope))
 }
 
 /// Intercept and slope of the least-squares line through `(u, z)`; `None` with fewer than 3

@@ -2,13 +2,13 @@
 //! against the growing map, each scan scored against ground truth where it is known.
 
 use crate::error::{to_json, Result};
-use crate::scan_folder::SequenceInput;
+use crate::scan_folder::{ScanSource, SequenceInput};
 use crate::scans::{place_scans, report_transients};
 use crate::truth::relative_pose_errors;
 use cloud::{NamedPose, PointCloud};
 use glam::Vec3;
 use registration::TransientConfig;
-use registration::{IcpResult, Registrar, SequenceConfig, SequenceResult};
+use registration::{CorrectionCheck, IcpResult, Registrar, SequenceConfig, SequenceResult};
 use serde::Serialize;
 use std::collections::HashSet;
 use std::path::Path;
@@ -43,6 +43,9 @@ pub struct ScanRow {
     pub error_m: Option<f64>,
     /// Rotation error against the truth (relative to scan 0).
     pub error_deg: Option<f64>,
+    /// The check of a long correction from the odometry (only where one ran).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub correction_check: Option<CorrectionCheck>,
 }
 
 /// Opens the configured device (for `auto`: a hardware GPU if there is one, else the CPU).
@@ -78,13 +81,16 @@ pub fn register_scans(
         .iter()
         .enumerate()
         .map(|(k, name)| {
+            let check = sequence.corrections_checked.get(k).and_then(Clone::clone);
             scan_row(
                 name,
                 sequence.results.get(k).and_then(|r| r.as_ref()),
                 errors.get(k),
+                check,
             )
         })
         .collect();
+    report_checks(&input.scans, &sequence.corrections_checked);
     Ok(Registration {
         poses,
         sequence,
@@ -93,7 +99,28 @@ pub fn register_scans(
     })
 }
 
-fn scan_row(name: &str, r: Option<&IcpResult>, err: Option<&(f64, f64)>) -> ScanRow {
+/// Says on stderr where a long correction's check kept the narrow schedule's pose.
+fn report_checks(sources: &[ScanSource], checks: &[Option<CorrectionCheck>]) {
+    for (f, c) in sources.iter().zip(checks) {
+        let Some(c) = c.as_ref().filter(|c| c.narrow_kept) else {
+            continue;
+        };
+        eprintln!(
+            "note: {} ({}): ICP from the odometry moved the scan {:.2} m; registered again with a narrow gate it moved {:.2} m, which what both sides saw supports better: kept",
+            f.file.display(),
+            f.name,
+            c.correction_m,
+            c.narrow_correction_m.unwrap_or(f64::NAN)
+        );
+    }
+}
+
+fn scan_row(
+    name: &str,
+    r: Option<&IcpResult>,
+    err: Option<&(f64, f64)>,
+    correction_check: Option<CorrectionCheck>,
+) -> ScanRow {
     let (iterations, rmse_m, fitness, total_ms) = r.map_or((0, 0.0, 1.0, 0.0), |r| {
         (r.iterations.len(), r.rmse_m, r.fitness, r.total_ms)
     });
@@ -105,6 +132,7 @@ fn scan_row(name: &str, r: Option<&IcpResult>, err: Option<&(f64, f64)>) -> Scan
         total_ms,
         error_m: err.map(|e| e.0),
         error_deg: err.map(|e| e.1),
+        correction_check,
     }
 }
 

@@ -89,6 +89,7 @@ mod error;
 mod icp;
 mod initial;
 mod linalg;
+mod long_correction;
 mod nearest;
 mod registrar;
 mod result;
@@ -101,6 +102,7 @@ pub use config::{
 };
 pub use error::{RegistrationError, Result};
 pub use initial::{InitialAlignment, InitialAlignmentReport};
+pub use long_correction::CorrectionCheck;
 pub use nearest::grid::BucketGrid;
 pub use nearest::kdtree::KdTree;
 pub use nearest::NearestNeighbors;

@@ -12,6 +12,7 @@ use crate::config::IcpConfig;
 use crate::downsample::{finite_points, voxel_downsample, voxel_downsample_with};
 use crate::error::{RegistrationError, Result};
 use crate::initial::{self, InitialAlignment, InitialAlignmentReport};
+use crate::long_correction::{self, CorrectionCheck};
 use crate::registrar::Registrar;
 use crate::result::IcpResult;
 use crate::target::Target;
@@ -107,6 +108,9 @@ pub struct SequenceResult {
     /// Each scan's initial alignment; `None` where there was none (scan 0, and every scan
     /// that registered from its guess).
     pub initial: Vec<Option<InitialAlignmentReport>>,
+    /// Each scan's check of a long correction from the odometry's guess (see
+    /// [`CorrectionCheck`]); `None` where none ran.
+    pub corrections_checked: Vec<Option<CorrectionCheck>>,
 }
 
 /// Registers `scans` one after another against the growing map.
@@ -198,6 +202,7 @@ pub fn register_sequence_with(
     let mut world_from_scan = vec![odom(0)];
     let mut results = vec![None];
     let mut reports = vec![None];
+    let mut checks = vec![None];
     let mut map = scan_points(0)?;
     move_points(&mut map, &odom(0));
     let views = vec![odom(0).transform_point3(sensor(0).as_dvec3()).as_vec3(); map.len()];
@@ -248,6 +253,18 @@ pub fn register_sequence_with(
             }
             Err(e) => return Err(e),
         };
+        // A long correction from the odometry's guess is checked against a narrow schedule.
+        let (result, check) = if report.is_none() && has_odometry {
+            let map_view = long_correction::MapView {
+                points: &map,
+                views: &views,
+                target: &target,
+            };
+            let cell = (config.initial_cell_m, config.range_knee_m);
+            long_correction::check(registrar, map_view, &source, &guess, result, &icp, cell)?
+        } else {
+            (result, None)
+        };
         let pose = result.target_from_source;
         let mut moved = source.points;
         move_points(&mut moved, &pose);
@@ -258,6 +275,7 @@ pub fn register_sequence_with(
         world_from_scan.push(pose);
         results.push(Some(result));
         reports.push(report);
+        checks.push(check);
         progress(k + 1, total);
     }
     Ok(SequenceResult {
@@ -265,6 +283,7 @@ pub fn register_sequence_with(
         map: PointCloud::from_points(map),
         results,
         initial: reports,
+        corrections_checked: checks,
     })
 }
 

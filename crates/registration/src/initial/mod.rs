@@ -28,8 +28,10 @@
 //! `cargo test --release -p registration --test initial_alignment measure_initial_alignment_cost
 //! -- --ignored --nocapture`) and only runs where configured ([`InitialAlignment`]).
 
+mod choose;
 mod columns;
 mod correlate;
+mod prefer;
 mod seen;
 mod verify;
 
@@ -39,6 +41,9 @@ use cloud::PointCloud;
 use glam::{DAffine3, DQuat, DVec3, Vec3};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
+
+use choose::choose;
+pub(crate) use prefer::prefer;
 
 /// When a sequence searches a scan's initial pose ([`crate::SequenceConfig::initial_alignment`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
@@ -185,14 +190,13 @@ pub(crate) fn align(
     let max_ray_m = 2.0 * correlate::reach(&source_columns, cell_m);
     let (map_points, map_views) =
         crate::downsample::voxel_downsample_with(map, views, cell_m, "initial_cell_m")?;
-    let map_free = seen::SeenFree::new(&map_points, &map_views, cell_m, max_ray_m);
-    let sensors = vec![source.sensor_origin; points.len()];
-    let source_free = seen::SeenFree::new(&points, &sensors, cell_m, max_ray_m);
-    let evidence = verify::Evidence {
-        map_points,
-        map_free,
-        source_free,
-    };
+    let evidence = verify::Evidence::new(
+        (map_points, map_views),
+        &points,
+        source.sensor_origin,
+        cell_m,
+        max_ray_m,
+    );
     let verified = verify::verify(&target, source, &points, &starts, &config, &evidence)?;
     let (best, chosen) = choose(&verified, guess, sensor, points.len()).unwrap_or((
         0,
@@ -212,39 +216,6 @@ pub(crate) fn align(
         verify_ms: start.elapsed().as_secs_f64() * 1e3,
     };
     Ok((chosen.world_from_scan, report))
-}
-
-/// The winner of `verified` (and its index): the best score; among the scores that are
-/// statistically indistinguishable from it, the pose whose sensor is nearest to the guess's.
-///
-/// A score is a mean over the `n` source points of values of about unit spread, so two
-/// scores closer than two standard errors (`2 / sqrt(n)`) do not tell their poses apart: the
-/// identical rooms of an office floor, two ends of a symmetric corridor. Then the sequence's
-/// own evidence decides: scans are taken one after another, so the nearer pose is the likelier.
-fn choose(
-    verified: &[verify::Verified],
-    guess: &DAffine3,
-    sensor: DVec3,
-    n: usize,
-) -> Option<(usize, verify::Verified)> {
-    let best = verified
-        .iter()
-        .map(|v| v.score)
-        .fold(f64::NEG_INFINITY, f64::max);
-    let margin = 2.0 / (n.max(1) as f64).sqrt();
-    let from_guess = |v: &verify::Verified| {
-        (v.world_from_scan.transform_point3(sensor) - guess.transform_point3(sensor)).length()
-    };
-    verified
-        .iter()
-        .enumerate()
-        .filter(|(_, v)| v.score.is_finite() && v.score >= best - margin)
-        .min_by(|a, b| {
-            from_guess(a.1)
-                .total_cmp(&from_guess(b.1))
-                .then(a.0.cmp(&b.0))
-        })
-        .map(|(i, v)| (i, *v))
 }
 
 /// The best [`VERIFIED_HYPOTHESES`] of `sorted` (best first) that differ from every better

@@ -86,6 +86,28 @@ pub(crate) struct Evidence {
     pub(crate) source_free: SeenFree,
 }
 
+impl Evidence {
+    /// What the map (`map_points` on the search's cell `cell_m`, each seen from
+    /// `map_views[i]`) and the source (`source_points` on the cell, in its scan frame, seen
+    /// from `source_sensor`) saw free, rays cut at `max_ray_m`.
+    pub(crate) fn new(
+        (map_points, map_views): (Vec<Vec3>, Vec<Vec3>),
+        source_points: &[Vec3],
+        source_sensor: Vec3,
+        cell_m: f64,
+        max_ray_m: f64,
+    ) -> Evidence {
+        let map_free = SeenFree::new(&map_points, &map_views, cell_m, max_ray_m);
+        let sensors = vec![source_sensor; source_points.len()];
+        let source_free = SeenFree::new(source_points, &sensors, cell_m, max_ray_m);
+        Evidence {
+            map_points,
+            map_free,
+            source_free,
+        }
+    }
+}
+
 /// Refines and scores every start in `starts` (`world_from_scan` of `source`) against
 /// `target`, prepared with [`coarse_config`]; `source_points` are the source's points on the
 /// search's cell, the same for every hypothesis. A start whose ICP finds no overlap scores
@@ -114,15 +136,27 @@ pub(crate) fn verify(
                 }
                 Err(e) => return Err(e),
             };
-            let (agreement, fitness) = agreement(target, source_points, &pose, cell_m);
-            let against = contradiction(evidence, source_points, &pose);
-            Ok(Verified {
-                world_from_scan: pose,
-                score: agreement - contradiction_weight() * against,
-                fitness,
-            })
+            Ok(score(target, source_points, pose, cell_m, evidence))
         })
         .collect()
+}
+
+/// Scores `pose` (`world_from_scan` of the source) as it is: agreement with `target` (on the
+/// search's cell `cell_m`) minus weighted contradiction, on `source_points`.
+pub(crate) fn score(
+    target: &Target,
+    source_points: &[Vec3],
+    pose: DAffine3,
+    cell_m: f64,
+    evidence: &Evidence,
+) -> Verified {
+    let (agreement, fitness) = agreement(target, source_points, &pose, cell_m);
+    let against = contradiction(evidence, source_points, &pose);
+    Verified {
+        world_from_scan: pose,
+        score: agreement - contradiction_weight() * against,
+        fitness,
+    }
 }
 
 /// The mean truncated agreement of `points` moved by `pose`, and the fraction within half a

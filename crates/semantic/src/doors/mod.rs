@@ -3,6 +3,7 @@
 //! dropped from the walls.
 
 mod leaves;
+mod opening_bins;
 mod opening_config;
 mod openings;
 

@@ -20,9 +20,11 @@ pub struct OpeningConfig {
     pub max_pier_m: f64,
     /// Fraction of an opening's bins with a lintel above.
     pub min_lintel_coverage: f64,
-    /// Fraction of an opening's bins with points seen through it (one-sided walls).
+    /// Fraction of an opening's bins with points seen through it (one-sided walls, and
+    /// two-sided walls seen from one side only about the opening).
     pub min_evidence: f64,
-    /// How far behind a one-sided wall's face points count as seen through an opening.
+    /// How far behind a one-sided wall's face (or a two-sided wall's far face) points count as
+    /// seen through an opening.
     pub behind_m: f64,
 }
 

@@ -15,8 +15,9 @@
 //!   in `min_lintel_coverage` of its bins), and, for a wall seen from one side only (which
 //!   could be hidden behind furniture at door level), if the scans saw into it: points inside
 //!   the wall's slab or behind its face, or floor within its footprint, in `min_evidence` of
-//!   its bins. A wall seen from both sides cannot be hidden on both at once, so the lintel
-//!   suffices there.
+//!   its bins. A wall seen from both sides about the run cannot be hidden on both at once, so
+//!   the lintel suffices there; a two-sided wall seen from one side only about the run (see
+//!   [`faces_seen_around`]) needs the view through it too.
 //!
 //! The opening's edges are the nearest face points at door level either side; its height is
 //! the median lowest face point above it (the lintel's underside), at least a door's height
@@ -24,6 +25,7 @@
 //! seen behind a one-sided wall's face counts as seen through up to door level only. The paper's labels follow:
 //! "Free space for door" (the opening volume) and "Wall above door" (the lintel).
 
+use super::opening_bins::{bin_wall, Bin, DoorLevel};
 use super::OpeningConfig;
 use crate::points::median;
 use crate::scene::Scene;
@@ -31,21 +33,11 @@ use crate::walls::WallFit;
 
 /// The widest blocked sliver of an opening that a leaf ajar crossing the face plane may explain.
 const LEAF_SLIVER_M: f64 = 0.4;
-/// Face points above door level count as lintel up to this far below the wall's top.
-const LINTEL_TOP_MARGIN_M: f64 = 0.02;
-/// Points this near the floor height are floor points (seen through an opening).
-const FLOOR_POINT_TOLERANCE_M: f64 = 0.04;
-/// Points behind a one-sided wall's face count as seen through from this far above the floor
-/// to this far below the wall's top.
-const BEHIND_SLAB_MARGIN_M: f64 = 0.05;
 /// An opening's top (the lintel's underside) is at least this high above the floor: building
 /// codes ask 2.0 m of door height (1.98 m in the US), above the stature of 99 % of adults
 /// (~1.90 m). A lower "lintel" is the face of a wall seen above something that hid it below (a
 /// parked car, a cabinet), not a doorway a person walks through.
 const MIN_DOOR_HEIGHT_M: f64 = 1.95;
-/// The most bins along one wall (a cap against absurd lengths).
-const MAX_BINS: usize = 10_000_000;
-
 /// A door opening in a wall.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Opening {
@@ -58,31 +50,6 @@ pub(crate) struct Opening {
     pub lintel_points: u64,
     pub confidence: f64,
     pub rules: Vec<String>,
-}
-
-#[derive(Clone, Default)]
-struct Bin {
-    blocked: bool,
-    face_s: (f64, f64),
-    lintel: bool,
-    lintel_low_z: f64,
-    lintel_points: u64,
-    evidence: bool,
-    /// Face points at door level near enough a face to block (see `bin_wall`).
-    door_face: u16,
-}
-
-/// Door level `[lo, hi]` (absolute z) of the wall's openings.
-#[derive(Clone, Copy)]
-struct DoorLevel {
-    lo: f64,
-    hi: f64,
-}
-
-impl DoorLevel {
-    fn contains(&self, z: f64) -> bool {
-        z >= self.lo && z <= self.hi
-    }
 }
 
 /// The openings of wall `wi`: its points binned along it, the runs of open bins, and those
@@ -103,120 +70,6 @@ pub(crate) fn find_openings(
         .into_iter()
         .filter_map(|(a, b)| opening_of(wi, w, &bins, a, b, c, level))
         .collect()
-}
-
-/// Bins the points near wall `w` along it (`bin_m`): face points at door level, the lintel
-/// above, and evidence of the scans seeing through. Also returns, per bin, the door-level
-/// points within half a wall of a face; a bin's `blocked` is set from both.
-fn bin_wall(
-    w: &WallFit,
-    sc: &Scene,
-    c: &OpeningConfig,
-    face_tol: f64,
-    level: DoorLevel,
-) -> (Vec<Bin>, Vec<u16>) {
-    let n = ((w.length / c.bin_m).ceil() as usize).clamp(1, MAX_BINS);
-    let mut bins = vec![
-        Bin {
-            face_s: (f64::INFINITY, f64::NEG_INFINITY),
-            lintel_low_z: f64::INFINITY,
-            ..Bin::default()
-        };
-        n
-    ];
-    let half_t = w.thickness / 2.0;
-    let two_sided = w.measured;
-    let sigma = w.free_side;
-    let top = w.z_range.1;
-    let (reach, block_tol) = reach_and_block_tol(w, c, face_tol);
-    let mut blocking = vec![0u16; n];
-    // Of them, those in the door level's upper half (see the end of this function).
-    let mut blocking_high = vec![0u16; n];
-    let mid_level = (level.lo + level.hi) / 2.0;
-    // Door-level points within half a wall of a face, behind or in front of it: a bin's wall
-    // surface, a closed leaf recessed behind it (whose noise tail reaches the face), or a leaf
-    // open at a small angle, crossing the face plane near its hinge.
-    let mut at_wall = vec![0u16; n];
-
-    let near_wall = face_tol.max(half_t);
-    sc.index
-        .for_each_near_line(&w.line, 0.0, w.length, reach, |_, s, d, z| {
-            let b = ((s / c.bin_m) as usize).min(n - 1);
-            if level.contains(z) && w.faces.iter().any(|f| (d - f).abs() <= near_wall) {
-                at_wall[b] = at_wall[b].saturating_add(1);
-            }
-            let bin = &mut bins[b];
-            let on_face = w.faces.iter().any(|f| (d - f).abs() <= face_tol);
-            if on_face {
-                if level.contains(z) {
-                    if w.faces.iter().any(|f| (d - f).abs() <= block_tol) {
-                        blocking[b] = blocking[b].saturating_add(1);
-                        if z >= mid_level {
-                            blocking_high[b] = blocking_high[b].saturating_add(1);
-                        }
-                        bin.face_s = (bin.face_s.0.min(s), bin.face_s.1.max(s));
-                    }
-                } else if z > level.hi && z < top - LINTEL_TOP_MARGIN_M {
-                    bin.lintel = true;
-                    bin.lintel_points += 1;
-                }
-                // The lintel's underside: the lowest face point above door level (below it,
-                // face points in an opening are the noise tail of a closed leaf).
-                if z > level.hi {
-                    bin.lintel_low_z = bin.lintel_low_z.min(z);
-                }
-                return;
-            }
-            let floor_pt = (z - sc.floor).abs() <= FLOOR_POINT_TOLERANCE_M;
-            let inside = d.abs() < half_t - face_tol;
-            let seen_through = if two_sided {
-                inside && (floor_pt || level.contains(z))
-            } else {
-                // Behind the face (away from the free side) up to door level, or on the floor
-                // within the footprint. Higher up, what lies behind the face is the noise of
-                // the face itself (seen above what hid it below, at range and grazing
-                // incidence), not a view through an opening.
-                let depth = half_t - sigma * d; // 0 at the face, growing behind it
-                (depth > face_tol
-                    && z > sc.floor - BEHIND_SLAB_MARGIN_M
-                    && z < level.hi.min(top - BEHIND_SLAB_MARGIN_M))
-                    || (floor_pt && inside)
-            };
-            if seen_through {
-                bin.evidence = true;
-            }
-        });
-    // A bin is blocked by three face points at door level (one is noise) that are at least a
-    // third of its door-level points at the wall (else they are the noise tail of a closed
-    // leaf recessed behind the face), one of them in the door level's upper half: a wall's
-    // face is seen up to door height, while clutter standing in a doorway against its jamb (a
-    // crate, a bin: office-123's 0.69 m crate set its door's edge 0.32 m into the opening, and
-    // its leaf, searched from there, was missed) stands lower. (Over clutter in front of a
-    // wall, the face is seen above it.)
-    for (b, bin) in bins.iter_mut().enumerate() {
-        let (k, m) = (blocking[b], at_wall[b]);
-        bin.door_face = k;
-        bin.blocked = k >= 3 && 3 * k >= m && blocking_high[b] > 0;
-    }
-    (bins, at_wall)
-}
-
-/// How far from wall `w`'s centre line its points are binned (out to half a wall in front of
-/// the faces too: see `at_wall` in `bin_wall`; behind a one-sided wall's face, `behind_m`),
-/// and how near a face a door-level point must be to block a bin.
-fn reach_and_block_tol(w: &WallFit, c: &OpeningConfig, face_tol: f64) -> (f64, f64) {
-    let half_t = w.thickness / 2.0;
-    let two_sided = w.measured;
-    let reach =
-        (half_t + if two_sided { 0.0 } else { c.behind_m } + face_tol).max(2.0 * half_t + face_tol);
-    // A closed leaf is recessed from the faces by half the wall less half the leaf: at door
-    // level, only points nearer the face than half that recess block a bin.
-    let block_tol = if two_sided {
-        face_tol.min(((half_t - 0.02) / 2.0).max(0.01))
-    } else {
-        face_tol
-    };
-    (reach, block_tol)
 }
 
 /// Runs `[a, b)` of open bins; slivers of blocked bins up to `max_pier_m` inside them are
@@ -324,8 +177,16 @@ fn opening_of(
     let inner = &bins[a..b];
     let k = inner.len() as f64;
     let lintel = inner.iter().filter(|x| x.lintel).count() as f64 / k;
-    let evidence = inner.iter().filter(|x| x.evidence).count() as f64 / k;
-    if lintel < c.min_lintel_coverage || (!two_sided && evidence < c.min_evidence) {
+    // A two-sided wall seen on one face only about the run is one-sided there.
+    let seen_from = if two_sided {
+        faces_seen_around(bins, a, b, c)
+    } else {
+        None
+    };
+    let seen_through = |x: &Bin| x.evidence || seen_from.is_some_and(|side| x.seen_from[side]);
+    let evidence = inner.iter().filter(|x| seen_through(x)).count() as f64 / k;
+    let both_faces = two_sided && seen_from.is_none();
+    if lintel < c.min_lintel_coverage || (!both_faces && evidence < c.min_evidence) {
         return None;
     }
     let mut lows: Vec<f64> = inner
@@ -355,6 +216,25 @@ fn opening_of(
             evidence * 100.0
         )],
     })
+}
+
+/// The side (0: the centre line's negative side) of the one face of a two-sided wall seen about
+/// the open run `bins[a..b]` (in it, or within [`FACE_AROUND_M`] either side); `None` where
+/// both faces are seen there. A wall is two-sided where its thickness was measured, somewhere
+/// along it; a corridor's wall whose room behind was never entered is seen from the corridor
+/// only, and a stretch of its face seen sparsely at grazing incidence (office-255: 2-10
+/// returns per 5 cm bin, gaps of 0.2 m, 3.5 m past the last scan) reads as an open run under
+/// a lintel. Only what the scans saw through it there tells a doorway.
+fn faces_seen_around(bins: &[Bin], a: usize, b: usize, c: &OpeningConfig) -> Option<usize> {
+    let near = (FACE_AROUND_M / c.bin_m).round() as usize;
+    let seen = bins[a.saturating_sub(near)..(b + near).min(bins.len())]
+        .iter()
+        .fold(0u8, |m, x| m | x.faces_seen);
+    match seen {
+        1 => Some(0),
+        2 => Some(1),
+        _ => None,
+    }
 }
 
 /// How far either side of an open run the wall's own face is read (m).

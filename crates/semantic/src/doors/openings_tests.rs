@@ -61,3 +61,77 @@ fn a_glass_pane_is_the_face_going_on_a_doorway_with_a_leaf_is_not() {
     gap.extend([4; 10]);
     assert!(!face_goes_on(&bins(&gap), 10, 18, &c));
 }
+
+/// A two-sided wall 8 m along +X (faces at y = -0.075 and +0.075 m, 2.8 m tall) with a stretch
+/// from x = 4 to 5.4 m where its faces have no return below 2 m; the negative side's face is
+/// seen along all of it, the positive side's where `positive_face(x)`; floor on the negative
+/// side, and on the positive side where `floor_beyond(x)`. Returns its openings.
+fn two_sided_wall_openings(
+    positive_face: impl Fn(f64) -> bool,
+    floor_beyond: impl Fn(f64) -> bool,
+) -> Vec<Opening> {
+    use crate::points::{Line2, XyIndex};
+    use glam::{DVec2, Vec3};
+    let mut points = Vec::new();
+    for i in 0..160 {
+        let x = 0.025 + 0.05 * f64::from(i);
+        let gap = (4.0..5.4).contains(&x);
+        for k in 1..56 {
+            let z = 0.05 * f64::from(k);
+            if gap && z < 2.0 {
+                continue;
+            }
+            points.push(Vec3::new(x as f32, -0.075, z as f32));
+            if positive_face(x) {
+                points.push(Vec3::new(x as f32, 0.075, z as f32));
+            }
+        }
+        for j in 2..30 {
+            let y = 0.05 * f64::from(j);
+            points.push(Vec3::new(x as f32, -y as f32, 0.0));
+            if floor_beyond(x) {
+                points.push(Vec3::new(x as f32, y as f32, 0.0));
+            }
+        }
+    }
+    let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(10.0), 0.25);
+    let sc = Scene::with_one_index(&points, &index, 0.0, 2.8);
+    let wall = WallFit {
+        line: Line2::through(DVec2::ZERO, DVec2::new(8.0, 0.0)),
+        length: 8.0,
+        thickness: 0.15,
+        measured: true,
+        faces: vec![-0.075, 0.075],
+        free_side: 0.0,
+        z_range: (0.0, 2.8),
+        support: 1000,
+        coverage: 1.0,
+        rules: Vec::new(),
+    };
+    find_openings(0, &wall, &sc, &OpeningConfig::default(), 0.03)
+}
+
+/// Regression: office-255 of seeds 251-255: a corridor's wall, measured two-sided where a
+/// room behind it was entered, was seen from the corridor only near its end, its face there
+/// sparse at grazing incidence (a 0.2 m gap in its returns at door level, a lintel above);
+/// it read as a 1.46 m door opening though nothing was seen through it. Seen from one side
+/// about the run, a two-sided wall needs what a one-sided one needs: a view through it.
+#[test]
+fn a_two_sided_walls_gap_seen_from_one_side_only_needs_a_view_through_it() {
+    let near_start = |x: f64| x < 2.0;
+    let nowhere = |_: f64| false;
+    let in_gap = |x: f64| (4.0..5.4).contains(&x);
+    // Seen from the negative side only about the gap, nothing beyond it: no opening.
+    assert_eq!(two_sided_wall_openings(near_start, nowhere), Vec::new());
+    // The floor beyond the gap was seen through it: an opening.
+    let seen = two_sided_wall_openings(near_start, in_gap);
+    assert_eq!(seen.len(), 1, "{seen:?}");
+    assert!(
+        (seen[0].s0 - 4.0).abs() < 0.06 && (seen[0].s1 - 5.4).abs() < 0.06,
+        "{seen:?}"
+    );
+    // Both faces seen about the gap: a wall cannot hide a doorway on both sides, the lintel
+    // suffices (as before).
+    let both = two_sided_wall_openings(|x| !in_gap(x), nowhere);
+    assert_eq!(both.len(), 1, "{both:?}");
+}

@@ -178,13 +178,7 @@ pub(crate) fn align(
         }
         Err(e) => return Err(e),
     };
-    let finite: Vec<Vec3> = source
-        .points
-        .iter()
-        .copied()
-        .filter(|p| p.is_finite())
-        .collect();
-    let points = crate::downsample::voxel_downsample(&finite, cell_m, "initial_cell_m")?;
+    let points = verify::points_on_cell(source, cell_m)?;
     // What each side saw free (for the contradictions); rays beyond twice the source's reach
     // (as the search's) are cut.
     let max_ray_m = 2.0 * correlate::reach(&source_columns, cell_m);

@@ -5,7 +5,7 @@
 //! guess wins ([`super::choose`]).
 
 use super::{choose::choose, columns, correlate, verify};
-use crate::downsample::{voxel_downsample, voxel_downsample_with};
+use crate::downsample::voxel_downsample_with;
 use crate::error::{RegistrationError, Result};
 use crate::target::Target;
 use cloud::PointCloud;
@@ -30,13 +30,7 @@ pub(crate) fn prefer(
         Err(e) => return Err(e),
     };
     // The source on the cell, and its reach (rays beyond twice it are cut, as the search's).
-    let finite: Vec<Vec3> = source
-        .points
-        .iter()
-        .copied()
-        .filter(|p| p.is_finite())
-        .collect();
-    let points = voxel_downsample(&finite, cell_m, "initial_cell_m")?;
+    let points = verify::points_on_cell(source, cell_m)?;
     let sensor = source.sensor_origin;
     let level = DQuat::from_affine3(guess);
     let levelled = points

@@ -108,6 +108,18 @@ impl Evidence {
     }
 }
 
+/// The finite points of `source` on the search's cell `cell_m` (the points every hypothesis is
+/// scored on).
+pub(crate) fn points_on_cell(source: &PointCloud, cell_m: f64) -> Result<Vec<Vec3>> {
+    let finite: Vec<Vec3> = source
+        .points
+        .iter()
+        .copied()
+        .filter(|p| p.is_finite())
+        .collect();
+    crate::downsample::voxel_downsample(&finite, cell_m, "initial_cell_m")
+}
+
 /// Refines and scores every start in `starts` (`world_from_scan` of `source`) against
 /// `target`, prepared with [`coarse_config`]; `source_points` are the source's points on the
 /// search's cell, the same for every hypothesis. A start whose ICP finds no overlap scores

@@ -7,7 +7,9 @@
 //! - [`register_sequence`] registers scans one after another against the growing map, starting
 //!   each from the odometry; without odometry (and where ICP from the odometry fails) the
 //!   initial alignment searches each scan's yaw and position against the map first
-//!   ([`InitialAlignment`], `SequenceConfig::initial_alignment`).
+//!   ([`InitialAlignment`], `SequenceConfig::initial_alignment`); an ICP that moves a scan far
+//!   from the odometry's guess is checked against a narrow-gate ICP from the guess
+//!   ([`CorrectionCheck`]).
 //! - [`IcpConfig`] holds every setting; its defaults are GICP on 10 cm voxels with a 1 m
 //!   correspondence gate that adapts to 3 x RMSE (never below 0.15 m), and
 //!   [`IcpConfig::point_to_point`] is the paper's method at full resolution.

@@ -6,7 +6,9 @@
 //! `world_from_scan[k-1] * odom[k-1]^-1 * odom[k]`. Scan 0 defines the world and keeps its
 //! odometry pose. Without odometry (or where its ICP fails), the initial alignment
 //! ([`crate::initial`], [`SequenceConfig::initial_alignment`]) searches the scan's yaw and
-//! position against the map first.
+//! position against the map first. With odometry, an ICP that moves the scan far from the
+//! odometry's guess is checked against a narrow-gate ICP from the guess
+//! (`long_correction`, [`SequenceResult::corrections_checked`]).
 
 use crate::config::IcpConfig;
 use crate::downsample::{finite_points, voxel_downsample, voxel_downsample_with};

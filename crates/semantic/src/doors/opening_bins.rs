@@ -25,22 +25,17 @@ pub(super) struct Bin {
     pub(super) evidence: bool,
     /// Face points at door level near enough a face to block (see `bin_wall`).
     pub(super) door_face: u16,
-    /// Two-sided walls: the faces with returns in the bin at any height (bit 0: the face on
-    /// the centre line's negative side, bit 1: the positive).
+    /// The faces with returns in the bin at any height, a bit per [`side`].
     pub(super) faces_seen: u8,
-    /// Two-sided walls: whether the scans saw through the wall from each side (index 0: from
-    /// the negative side): returns beyond the other face (up to `behind_m`), up to door level
-    /// or on the floor.
+    /// Two-sided walls: whether the scans saw through the wall from each [`side`]: returns
+    /// beyond the other face (up to `behind_m`), up to door level or on the floor.
     pub(super) seen_from: [bool; 2],
 }
 
-/// The bit of [`Bin::faces_seen`] for a face or side at offset `d` from the centre line.
-fn side_bit(d: f64) -> u8 {
-    if d < 0.0 {
-        1
-    } else {
-        2
-    }
+/// The side of the centre line of offset `d`: 0 negative, 1 positive (the index of
+/// [`Bin::seen_from`] and the bit of [`Bin::faces_seen`]).
+pub(super) fn side(d: f64) -> usize {
+    usize::from(d >= 0.0)
 }
 
 /// Door level `[lo, hi]` (absolute z) of the wall's openings.
@@ -99,7 +94,7 @@ pub(super) fn bin_wall(
             let bin = &mut bins[b];
             let on_face = w.faces.iter().any(|f| (d - f).abs() <= face_tol);
             if on_face {
-                bin.faces_seen |= side_bit(d);
+                bin.faces_seen |= 1 << side(d);
                 if level.contains(z) {
                     if w.faces.iter().any(|f| (d - f).abs() <= block_tol) {
                         blocking[b] = blocking[b].saturating_add(1);
@@ -128,7 +123,7 @@ pub(super) fn bin_wall(
                         && z < level.hi.min(top - BEHIND_SLAB_MARGIN_M)))
             {
                 // Beyond the face on the side of `d`: seen through from the other side.
-                bin.seen_from[usize::from(d < 0.0)] = true;
+                bin.seen_from[1 - side(d)] = true;
             }
             let seen_through = if two_sided {
                 inside && (floor_pt || level.contains(z))

@@ -218,7 +218,7 @@ fn opening_of(
     })
 }
 
-/// The side (0: the centre line's negative side) of the one face of a two-sided wall seen about
+/// The side ([`super::opening_bins::side`]) of the one face of a two-sided wall seen about
 /// the open run `bins[a..b]` (in it, or within [`FACE_AROUND_M`] either side); `None` where
 /// both faces are seen there. A wall is two-sided where its thickness was measured, somewhere
 /// along it; a corridor's wall whose room behind was never entered is seen from the corridor
@@ -230,11 +230,7 @@ fn faces_seen_around(bins: &[Bin], a: usize, b: usize, c: &OpeningConfig) -> Opt
     let seen = bins[a.saturating_sub(near)..(b + near).min(bins.len())]
         .iter()
         .fold(0u8, |m, x| m | x.faces_seen);
-    match seen {
-        1 => Some(0),
-        2 => Some(1),
-        _ => None,
-    }
+    [0, 1].into_iter().find(|&side| seen == 1 << side)
 }
 
 /// How far either side of an open run the wall's own face is read (m).

@@ -66,6 +66,7 @@ mod floor;
 mod landing;
 mod landing_faces;
 mod levels;
+mod oblique_face;
 mod parts;
 mod plateau;
 mod plausible;

@@ -4,6 +4,7 @@
 
 use super::climbs_on::face_climbs_on;
 use super::floor::{floor_density, floor_in_strip};
+use super::oblique_face::one_face_off_deg;
 use super::profile::Profile;
 use super::top_end::top_end;
 use super::{DetectedStairs, StairsConfig};
@@ -58,12 +59,19 @@ pub(crate) fn finish(
     // the run across the direction holding most of them (clutter beside the flight whose parts
     // happen to stand at step heights is apart from it); from all of the blob's points where
     // too few are on the steps.
-    let on_steps: Vec<f64> = pts
+    let steps_xy: Vec<DVec2> = pts
         .iter()
         .filter(|(q, z)| on_a_step(&p, q.dot(dir), *z))
-        .map(|(q, _)| dir.perp_dot(*q))
+        .map(|(q, _)| *q)
         .collect();
-    let on_steps = densest_run(on_steps);
+    // A side face climbs along its own line; one read obliquely is no staircase (see
+    // `oblique_face`).
+    if steps_xy.len() >= MIN_WIDTH_POINTS
+        && one_face_off_deg(&steps_xy, dir).is_some_and(|deg| deg > c.snap_direction_deg)
+    {
+        return None;
+    }
+    let on_steps = densest_run(steps_xy.iter().map(|q| dir.perp_dot(*q)).collect());
     let mut ts: Vec<f64> = if on_steps.len() >= MIN_WIDTH_POINTS {
         on_steps
     } else {
@@ -279,7 +287,6 @@ fn side_face_is_one_plane(pts: &[(DVec2, f64)], p: &Profile, min_points: usize) 
         .all(|(k, t)| (t - mt - slope * (k - mk)).abs() <= SIDE_FACE_STRAIGHT_M)
 }
 
-/// Of coordinates `t`, the run without a gap over [`WIDTH_GAP_M`] holding most of them.
 /// The centre of the `bin_m` wide bin (from the smallest value) holding most of `values`,
 /// the first of equals; `None` for none.
 fn densest(values: &[f64], bin_m: f64) -> Option<f64> {
@@ -297,6 +304,7 @@ fn densest(values: &[f64], bin_m: f64) -> Option<f64> {
     Some(lo + (k as f64 + 0.5) * bin_m)
 }
 
+/// Of coordinates `t`, the run without a gap over [`WIDTH_GAP_M`] holding most of them.
 fn densest_run(mut t: Vec<f64>) -> Vec<f64> {
     t.sort_unstable_by(f64::total_cmp);
     let mut best = 0..0;

@@ -289,3 +289,38 @@ fn a_rise_and_a_run_each_in_range_must_make_a_stair_together() {
     assert!(finished(0.22, 0.24, 5).is_some());
     assert!(finished(0.12, 0.45, 5).is_some());
 }
+
+/// Regression (garage-255 of seeds 251-255): a ramp's side face (its 0.2 m slab's edge rising
+/// 1:7.5 along +Y) read along the ramp's part's own axis, 22 degrees off the face, as 4 steps
+/// of 0.123 x 0.447 m, 0.70 m wide across the face's oblique extent, with the floor beside it
+/// seen and none under the ramp. A side face climbs along its own line.
+#[test]
+fn a_ramps_side_face_read_obliquely_is_no_staircase() {
+    let mut face: Vec<(DVec2, f64)> = Vec::new();
+    for i in 0..350 {
+        let y = 0.01 * i as f64;
+        let top = 0.133 * (y + 1.3);
+        for j in 0..10 {
+            let z = top - 0.02 * j as f64;
+            if z > 0.04 {
+                face.push((DVec2::new(0.0, y), z));
+            }
+        }
+    }
+    let mut points = over_floor(
+        &face,
+        DVec2::new(-2.0, -2.0),
+        (125, 250),
+        DVec2::new(3.0, 8.0),
+    );
+    points.retain(|p| p.x < 0.0 || p.y < -1.3 || p.z > 0.0);
+    let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(9.0), 0.25);
+    let sc = Scene::with_one_index(&points, &index, 0.0, 2.5);
+    let dir = DVec2::from_angle(68f64.to_radians());
+    let p = flight(dir, (0.123, 0.447, 4), 4);
+    let c = StairsConfig::default();
+    assert_eq!(finish(&face, p, &sc, &c), None);
+    // Read along its own line, the face is a side face, and climbs on as a ramp's.
+    let p = flight(DVec2::Y, (0.123, 0.447, 4), 4);
+    assert_eq!(finish(&face, p, &sc, &c), None);
+}

@@ -48,6 +48,8 @@
 //! them, are parts of their own beyond a lone flight's top is read as the flight on its landing
 //! (see `upper`). A flight from the floor where another flight's landing stands, climbing to
 //! its top, is that landing's side face, dropped (see `landing_faces`).
+//! A top landing seen from below, its side face parted from its blob (a person's shadow), is
+//! read on past the blob while the highest return across it stays level (see `landing_reach`).
 //!
 //! The search over a part's directions is `search`. A part that shows no staircase is tried
 //! again face by face: a flight seen from its side only that clutter joins into one part with
@@ -65,6 +67,7 @@ mod flights;
 mod floor;
 mod landing;
 mod landing_faces;
+mod landing_reach;
 mod levels;
 mod oblique_face;
 mod parts;
@@ -291,6 +294,8 @@ pub(crate) fn find_stairs(
         .map(|mut st| {
             // A top riser the blobs parted from its flight (see `extend`).
             extend::extend_top(&mut st, sc, |i| pixel_of_point[i] != u32::MAX, c);
+            // Its landing read on past its blob (see `landing_reach`).
+            landing_reach::reach_on(&mut st, sc, |i| pixel_of_point[i] != u32::MAX, c);
             st
         })
         .collect()

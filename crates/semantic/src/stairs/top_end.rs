@@ -12,7 +12,7 @@ use glam::DVec2;
 /// landing hides the floor under it, so floor seen there is past the landing's end (a laser
 /// samples a landing's top, or its side face's top edge, a few centimetres apart, but at
 /// grazing angles or past an occluder the gaps reach 0.3 m: bench hall-7).
-const LANDING_GAP_M: f64 = 0.1;
+pub(super) const LANDING_GAP_M: f64 = 0.1;
 
 /// Where a flight's top level ends along its direction: the returns at the top level (within
 /// half a rise of it) across the flight's width `t`, from the top step's front on until a gap

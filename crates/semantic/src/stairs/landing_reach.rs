@@ -30,13 +30,13 @@ const LEVEL_RISES: f64 = 0.5;
 
 /// Reads the flight's top level on past its landing's end (see the module docs); `usable(i)`
 /// is true for the points the height map holds. More than `min_step_points` floor returns in a
-/// bin show the floor. Returns how far the landing grew (m), 0 where it did not.
+/// bin show the floor.
 pub(super) fn reach_on(
     st: &mut DetectedStairs,
     sc: &Scene,
     usable: impl Fn(usize) -> bool,
     c: &StairsConfig,
-) -> f64 {
+) {
     let top_step_end = f64::from(st.steps) * st.run;
     let end = top_step_end + st.landing;
     let top = sc.floor + st.base + f64::from(st.steps) * st.rise;
@@ -84,13 +84,12 @@ pub(super) fn reach_on(
     // (less than a gap is the landing's end face's top edge, or a stray; and a landing is one
     // where it runs on more than 0.1 m past the top step, as `plausible` reads it)
     if reached < LANDING_GAP_M || st.landing + reached <= 0.1 {
-        return 0.0;
+        return;
     }
     st.landing += reached;
     st.rules.push(format!(
         "its top level read on {reached:.2} m past its blob: the highest return across it level with the landing (its side face's top edge seen from below)"
     ));
-    reached
 }
 
 #[cfg(test)]

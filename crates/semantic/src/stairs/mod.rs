@@ -287,15 +287,17 @@ pub(crate) fn find_stairs(
     upper::join_upper_flights(&blob_parts, &mut found, sc, c);
     // A landing's side face read as a flight of its own (see `landing_faces`).
     landing_faces::drop_landing_faces(&mut found, c);
+    // (the points the height map holds: in no wall's slab, between the floor and its top)
+    let in_height_map = |i: usize| pixel_of_point[i] != u32::MAX;
     found
         .into_iter()
         .flatten()
         .flatten()
         .map(|mut st| {
             // A top riser the blobs parted from its flight (see `extend`).
-            extend::extend_top(&mut st, sc, |i| pixel_of_point[i] != u32::MAX, c);
+            extend::extend_top(&mut st, sc, in_height_map, c);
             // Its landing read on past its blob (see `landing_reach`).
-            landing_reach::reach_on(&mut st, sc, |i| pixel_of_point[i] != u32::MAX, c);
+            landing_reach::reach_on(&mut st, sc, in_height_map, c);
             st
         })
         .collect()

@@ -247,10 +247,7 @@ pub(crate) fn find_stairs(
             blob_points[blob_of[px as usize] as usize].push(i);
         }
     }
-    let directions = directions::wall_directions(
-        walls.iter().map(|w| (w.line.dir, w.length)),
-        c.snap_direction_deg,
-    );
+    let families = directions::WallFamilies::new(walls.iter().map(|w| (w.start(), w.end())));
     // Each blob's parts (see `parts`): mixed pixels and stray returns are on no surface, and
     // are left out of the levels and the support (see `surface`); where only they join two
     // surfaces, each is a part of its own.
@@ -280,7 +277,7 @@ pub(crate) fn find_stairs(
             if !big_enough(part.pixels, part.members.len()) {
                 return None;
             }
-            search_part(part, &directions, sc, c)
+            search_part(part, &families, sc, c)
         })
         .collect();
     // An upper flight parted from the flight below it (see `upper`).
@@ -303,17 +300,19 @@ pub(crate) fn find_stairs(
         .collect()
 }
 
-/// A part's staircase: its best profile over the walls' `directions` and its own, then the
+/// A part's staircase: its best profile over the walls' directions (those of the walls
+/// nearest it standing for those a few degrees off: see `directions`) and its own, then the
 /// staircase if it is plausible.
 fn search_part(
     part: &parts::Part,
-    directions: &[DVec2],
+    families: &directions::WallFamilies,
     sc: &Scene,
     c: &StairsConfig,
 ) -> Option<Vec<DetectedStairs>> {
     let all = part_points(sc, &part.members);
     let xy: Vec<DVec2> = all.iter().map(|p| p.0).collect();
-    let mut cands = directions.to_vec();
+    let centre = xy.iter().copied().sum::<DVec2>() / xy.len().max(1) as f64;
+    let mut cands = families.directions_near(centre, c.snap_direction_deg);
     // (the first `walls_cands` are the walls' directions)
     let mut walls_cands = cands.len();
     if let Some((_, d)) = crate::points::fit_line(&xy) {

@@ -39,10 +39,11 @@ fn search_parts(
             }
         })
         .collect();
-    let directions = [DVec2::X, DVec2::Y, -DVec2::X, -DVec2::Y];
+    // (one wall along x: the directions along x and y)
+    let walls = directions::WallFamilies::new([(DVec2::ZERO, DVec2::X)].into_iter());
     let mut found: Vec<_> = parts
         .iter()
-        .map(|p| search_part(p, &directions, &sc, &c))
+        .map(|p| search_part(p, &walls, &sc, &c))
         .collect();
     upper::join_upper_flights(&parts, &mut found, &sc, &c);
     found

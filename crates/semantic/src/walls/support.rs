@@ -76,6 +76,11 @@ const LOW_STANDS_SHARE: f64 = 0.5;
 const THROUGH_END_M: f64 = 0.3;
 /// ... with a standing bin in at most one of this many (stray returns).
 const MAX_STRAYS: usize = 5;
+/// ... up to where the face stands in two bins running with at least this many face points
+/// below head height each: fewer are stray returns too (one or two returns a bin, off a beam's
+/// side face or a mixed pixel; a face seen from the floor up puts dozens in a bin, and a
+/// sparse one 20 m away still about ten).
+const MIN_FIRM_POINTS: u16 = 3;
 
 const STANDING: u8 = 1;
 const LEFT: u8 = 2;
@@ -89,6 +94,8 @@ const STANDING_HIGH: u8 = 64;
 /// above head height, something standing beside the face below head height.
 pub(crate) struct SupportProfile {
     bins: Vec<u8>,
+    /// Per bin, its face points below head height (saturating).
+    standing_points: Vec<u16>,
     faces: (f64, f64),
     two: bool,
     floor: f64,
@@ -101,6 +108,7 @@ impl SupportProfile {
         let hi = faces.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         SupportProfile {
             bins: vec![0; n.max(1)],
+            standing_points: vec![0; n.max(1)],
             faces: (lo, hi),
             two: faces.len() >= 2,
             floor,
@@ -122,6 +130,9 @@ impl SupportProfile {
         if face {
             if above_floor > 0.05 {
                 *bin |= STANDING;
+                if let Some(n) = self.standing_points.get_mut(k) {
+                    *n = n.saturating_add(1);
+                }
             }
             if above_floor >= UPPER_FACE_M {
                 *bin |= STANDING_HIGH;
@@ -201,9 +212,11 @@ impl SupportProfile {
     }
 
     /// The bins to cut off at the start and at the end: a run of at least [`THROUGH_END_M`]
-    /// from an end up to where the face is seen below head height in two bins running, seen
-    /// through (open) along half of it or more and the face seen below head height in at most
-    /// one bin in [`MAX_STRAYS`] of it (stray returns), unless that end is a corner (`corners`:
+    /// from an end up to where the face is seen below head height in two bins running (with
+    /// [`MIN_FIRM_POINTS`] returns each: garage-283 of seeds 281-285, the lobby's east wall ran
+    /// on 1.64 m past its corner along a beam, one stray return in each of two bins there), seen
+    /// through (open) along half of it or more and the face seen below head height (as many
+    /// returns) in at most one bin in [`MAX_STRAYS`] of it (stray returns), unless that end is a corner (`corners`:
     /// at the start, at the end; the face of a wall it meets is there). A wall's face seen from
     /// a room runs on along a beam's underside over the wall it meets and out over the floor
     /// beyond (garage-81 of seeds 81-85: 1.47 m past the lobby's corner, along a beam). A
@@ -216,18 +229,21 @@ impl SupportProfile {
         let n = self.bins.len();
         let min_bins = (THROUGH_END_M / BIN_M).round() as usize;
         let stands = |k: usize| self.bins[k] & STANDING != 0;
+        let firm = |k: usize| self.standing_points[k] >= MIN_FIRM_POINTS;
         let through = |k: usize| {
             let b = self.bins[k];
             !stands(k) && (b & BETWEEN != 0 || b & (LEFT | RIGHT) == LEFT | RIGHT)
         };
-        // The bins from an end up to where the face stands in two bins running (one is a
-        // stray return: a person's head passing, a mixed pixel).
+        // The bins from an end up to where the face stands firmly in two bins running (one is
+        // a stray return: a person's head passing, a mixed pixel; so are a return or two a
+        // bin).
         // (`bin(i)`: the `i`-th bin from the end looked at)
         let cut = |bin: &dyn Fn(usize) -> usize| -> usize {
             let len = (0..n)
-                .find(|&i| stands(bin(i)) && (i + 1 == n || stands(bin(i + 1))))
+                .find(|&i| firm(bin(i)) && (i + 1 == n || firm(bin(i + 1))))
                 .unwrap_or(n);
-            let strays = (0..len).filter(|&i| stands(bin(i))).count();
+            // (bins with a return or two below head height are strays however many)
+            let strays = (0..len).filter(|&i| firm(bin(i))).count();
             let seen_through = (0..len).filter(|&i| through(bin(i))).count();
             if len >= min_bins && 2 * seen_through >= len && MAX_STRAYS * strays <= len {
                 len

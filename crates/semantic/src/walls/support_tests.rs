@@ -157,8 +157,9 @@ fn a_wall_running_on_along_a_beam_over_open_floor_is_cut_where_it_stands() {
         for k in 0..45 {
             p.add(k, 0.0, 2.6, true); // the face (or the beam's underside) up high
             if k < wall {
-                p.add(k, 0.0, 1.0, true); // the wall's face
-                p.add(k, 0.0, 1.7, true);
+                for z in [0.2, 0.6, 1.0, 1.4, 1.7] {
+                    p.add(k, 0.0, z, true); // the wall's face
+                }
                 p.add(k, 0.1, 0.0, false); // the floor in front of it
             } else {
                 end(&mut p, k);
@@ -190,8 +191,42 @@ fn a_wall_running_on_along_a_beam_over_open_floor_is_cut_where_it_stands() {
         p.add(k, 0.1, 0.0, false);
         p.add(k, -0.1, 0.0, false);
         if k % 4 == 0 {
-            p.add(k, 0.0, 1.0, true);
+            for z in [0.4, 1.0, 1.6] {
+                p.add(k, 0.0, z, true);
+            }
         }
     });
     assert_eq!(strays.seen_through_ends((false, false)), (0, 0));
+}
+
+/// Regression: garage-283's (seeds 281-285) lobby wall ran on 1.64 m past its corner along a
+/// beam, and one stray return in each of two bins next to each other there (off the beam's
+/// side face, 0.13 m over the floor) stopped the cut as a face seen standing. Two bins running
+/// stop it only where each holds a few of the face's returns; the two are strays.
+#[test]
+fn a_return_or_two_in_two_bins_running_is_no_face_standing() {
+    let with_strays = |returns: usize| {
+        let mut p = SupportProfile::new(45, &[0.0], 0.0);
+        for k in 0..45 {
+            p.add(k, 0.0, 2.6, true); // the beam's underside
+            if k < 30 {
+                for z in [0.2, 0.6, 1.0, 1.4, 1.7] {
+                    p.add(k, 0.0, z, true); // the wall's face
+                }
+                p.add(k, 0.1, 0.0, false); // the floor in front of it
+            } else {
+                p.add(k, 0.1, 0.0, false); // the floor on both sides of the face line
+                p.add(k, -0.1, 0.0, false);
+                if k == 33 || k == 34 {
+                    for i in 0..returns {
+                        p.add(k, 0.0, 0.13 + 0.2 * i as f64, true);
+                    }
+                }
+            }
+        }
+        p
+    };
+    assert_eq!(with_strays(1).seen_through_ends((false, false)), (0, 15));
+    // (a face seen there, three returns a bin, stops it there)
+    assert_eq!(with_strays(3).seen_through_ends((false, false)), (0, 10));
 }

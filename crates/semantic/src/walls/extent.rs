@@ -8,16 +8,29 @@ use crate::scene::Scene;
 /// A crossing surface this near a wall's end is where it ends (the hidden bins beside the
 /// surface keep the face points a few centimetres off it) ...
 const CORNER_M: f64 = 0.15;
-/// ... if it covers this much of the wall's height: another wall's face, not a duct or a pipe
-/// crossing the plane up high.
+/// ... if it covers this much of the wall's height in one run: another wall's face, not a duct
+/// or a pipe crossing the plane up high, nor a beam's underside over a parked car's return
+/// (garage-305 of seeds 301-305: the lobby's east wall ran on 0.77 m along a beam past its
+/// corner, a return off a car at 0.70 m under the beam's underside at 2.56 m spanning 1.9 m).
 const CORNER_HEIGHT_M: f64 = 1.5;
+/// ... where gaps up to this long between the heights it is seen at are joined (a wall's face
+/// across the plane is hidden in stretches by what stands before it, or seen in sparse rows
+/// from afar).
+const CORNER_GAP_M: f64 = 0.5;
+/// A crossing surface's heights are marked in this many bands from the floor to the ceiling
+/// ...
+const BANDS: usize = 64;
+/// ... each at least this tall.
+const MIN_BAND_M: f64 = 0.05;
 
 /// The corner regions along a wall where a crossing surface hides the face points: per 3 cm
-/// bin of the searched range, the heights `(z0, z1)` it covers, if any.
+/// bin of the searched range, the heights `(z0, z1)` it covers, if any, and the tallest run
+/// of heights it is seen in (see [`CORNER_GAP_M`]).
 pub(crate) struct Crossings {
     r0: f64,
     bin: f64,
     heights: Vec<Option<(f64, f64)>>,
+    tallest: Vec<f64>,
 }
 
 impl Crossings {
@@ -31,7 +44,8 @@ impl Crossings {
     }
 
     /// The crossing surface nearest `end` within [`CORNER_M`] of it that covers a wall's
-    /// height ([`CORNER_HEIGHT_M`]): the face of a wall this one meets there, a corner.
+    /// height in one run ([`CORNER_HEIGHT_M`]): the face of a wall this one meets there, a
+    /// corner.
     pub fn corner_near(&self, end: f64) -> Option<f64> {
         self.centres()
             .filter(|&(m, height)| height >= CORNER_HEIGHT_M && (m - end).abs() <= CORNER_M)
@@ -39,12 +53,14 @@ impl Crossings {
             .min_by(|p, q| (p - end).abs().total_cmp(&(q - end).abs()))
     }
 
-    /// The crossing bins' centres along the wall and their heights covered.
+    /// The crossing bins' centres along the wall and their tallest runs of heights.
     fn centres(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
         self.heights
             .iter()
+            .zip(&self.tallest)
             .enumerate()
-            .filter_map(|(k, h)| h.map(|(z0, z1)| (self.r0 + (k as f64 + 0.5) * self.bin, z1 - z0)))
+            .filter(|(_, (h, _))| h.is_some())
+            .map(|(k, (_, &t))| (self.r0 + (k as f64 + 0.5) * self.bin, t))
     }
 }
 
@@ -63,6 +79,8 @@ pub(crate) fn find_extent(
     let on_face = |d: f64| faces.iter().any(|f| (d - f).abs() <= tol);
     let (z_lo, z_hi) = (sc.floor + 0.05, sc.ceiling - 0.05);
     let (f_lo, f_hi) = (faces[0] - 2.0 * tol, faces[faces.len() - 1] + 2.0 * tol);
+    let band_m = ((sc.ceiling - sc.floor) / BANDS as f64).max(MIN_BAND_M);
+    let band_of = |z: f64| (((z - sc.floor) / band_m).max(0.0) as usize).min(BANDS - 1);
     let (mut e0, mut e1) = (0.5f64, 0.5f64);
     // The points between the wall's heights within the searched range, walked once (a grown
     // range walks only the stretches it adds): `(along, height)` on a face, and
@@ -106,11 +124,14 @@ pub(crate) fn find_extent(
         let nb = (((r1 - r0) / bin).ceil() as usize + 1).min(10_000_000);
         let bin_of = |s: f64| (((s - r0) / bin) as usize).min(nb - 1);
         let mut across = vec![(0u32, f64::INFINITY, f64::NEG_INFINITY); nb];
+        let mut bands = vec![0u64; nb];
         for &(s, d, z) in off_faces {
-            let x = &mut across[bin_of(s)];
+            let k = bin_of(s);
+            let x = &mut across[k];
             x.0 |= across_mark(d, hw);
             x.1 = x.1.min(z);
             x.2 = x.2.max(z);
+            bands[k] |= 1 << band_of(z);
         }
         // A crossing surface hides the face points at its own heights only (a cupboard in
         // front of a wall leaves the wall above it).
@@ -141,6 +162,10 @@ pub(crate) fn find_extent(
                 .iter()
                 .map(|m| crossing(m.0).then_some((m.1 - 0.1, m.2 + 0.1)))
                 .collect(),
+            tallest: bands
+                .iter()
+                .map(|&m| tallest_run(m, band_m, CORNER_GAP_M))
+                .collect(),
         };
         // An end next to a wall-high crossing surface (the hidden bins keep it a few
         // centimetres off) is a corner: the wall ends at the surface.
@@ -169,6 +194,23 @@ pub(crate) fn across_mark(d: f64, hw: f64) -> u32 {
 /// more across it: a surface crossing the plane (another wall's face), not noise.
 pub(crate) fn crossing(mask: u32) -> bool {
     mask.count_ones() >= 5
+}
+
+/// The tallest run of the height bands (each `band_m` tall) marked in `mask`, gaps of at most
+/// `max_gap_m` joined.
+fn tallest_run(mask: u64, band_m: f64, max_gap_m: f64) -> f64 {
+    let max_gap = (max_gap_m / band_m + 1e-9).floor() as u32;
+    // (the run so far: its first and last band)
+    let (mut best, mut run) = (0u32, None::<(u32, u32)>);
+    for k in (0..64).filter(|&k| mask & (1u64 << k) != 0) {
+        let first = match run {
+            Some((first, last)) if k - last - 1 <= max_gap => first,
+            _ => k,
+        };
+        run = Some((first, k));
+        best = best.max(k - first + 1);
+    }
+    best as f64 * band_m
 }
 
 /// The union of the runs of the values `s` (gaps at most `max_gap`) that overlap `[a, b]`.
@@ -202,6 +244,65 @@ fn extent(s: &[f64], a: f64, b: f64, max_gap: f64) -> Option<(f64, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::points::XyIndex;
+    use glam::{DVec2, Vec3};
+
+    /// A wall's face along +Y at x = 0 from y = 0 to 3 (ceiling 3 m), a beam's underside
+    /// across its plane at 2.55 m from y = 3.0 to 3.5 and one return off a car under it at
+    /// 0.70 m; `crossing_wall`: the face of a wall across the plane at y = 3.05 too, seen in
+    /// rows 0.17 m apart.
+    fn face_beam_and_car(crossing_wall: bool) -> Vec<Vec3> {
+        let steps = |from: f32, to: f32, step: f32| {
+            (0..=((to - from) / step).round() as usize).map(move |i| from + step * i as f32)
+        };
+        let mut points: Vec<Vec3> = steps(0.0, 3.0, 0.03)
+            .flat_map(|y| steps(0.1, 2.9, 0.1).map(move |z| Vec3::new(0.0, y, z)))
+            .collect();
+        points.extend(
+            steps(-0.3, 0.3, 0.03)
+                .flat_map(|x| steps(3.0, 3.5, 0.03).map(move |y| Vec3::new(x, y, 2.55))),
+        );
+        points.push(Vec3::new(0.25, 3.05, 0.7));
+        if crossing_wall {
+            points.extend(
+                steps(-0.3, 0.3, 0.03)
+                    .flat_map(|x| steps(0.1, 2.9, 0.17).map(move |z| Vec3::new(x, 3.05, z))),
+            );
+        }
+        points
+    }
+
+    /// Regression: garage-305 (seeds 301-305): a beam's underside over a parked car's return
+    /// spans 1.85 m of height across the lobby's east wall's plane and read as the face of a
+    /// wall it meets, a corner, where no cut of the wall running on along the beam is made. A
+    /// wall's face across the plane covers its heights in one run.
+    #[test]
+    fn a_beams_underside_over_a_cars_return_is_no_corner() {
+        let corner_at_the_end = |crossing_wall: bool| {
+            let points = face_beam_and_car(crossing_wall);
+            let index = XyIndex::new(&points, DVec2::new(-1.0, -1.0), DVec2::new(1.0, 5.0), 0.25);
+            let sc = Scene::with_one_index(&points, &index, 0.0, 3.0);
+            let line = Line2::through(DVec2::new(0.0, 0.0), DVec2::new(0.0, 1.0));
+            let c = WallConfig::default();
+            let (_, hi, crossings) =
+                find_extent(&line, &[0.0], 0.2, 2.8, &sc, &c).expect("the face has an extent");
+            assert!((hi - 3.0).abs() < 0.1, "{hi}");
+            crossings.corner_near(hi)
+        };
+        assert_eq!(corner_at_the_end(false), None);
+        let corner = corner_at_the_end(true).expect("a wall's face crosses the plane");
+        assert!((corner - 3.05).abs() < 0.03, "{corner}");
+    }
+
+    #[test]
+    fn the_tallest_run_joins_bands_across_short_gaps_only() {
+        // Bands 0.1 m: 0-3 and 6-9 (a gap of 0.2 m) joined, 20 (0.1 m) apart.
+        let mask = 0b1111 | 0b1111 << 6 | 1 << 20;
+        assert!((tallest_run(mask, 0.1, 0.2) - 1.0).abs() < 1e-9);
+        assert!((tallest_run(mask, 0.1, 0.1) - 0.4).abs() < 1e-9);
+        assert!((tallest_run(1 << 63, 0.1, 0.5) - 0.1).abs() < 1e-9);
+        assert_eq!(tallest_run(0, 0.1, 0.5), 0.0);
+    }
 
     #[test]
     fn extent_joins_runs_over_the_segment_only() {

@@ -215,8 +215,10 @@ impl SupportProfile {
     /// from an end up to where the face is seen below head height in two bins running (with
     /// [`MIN_FIRM_POINTS`] returns each: garage-283 of seeds 281-285, the lobby's east wall ran
     /// on 1.64 m past its corner along a beam, one stray return in each of two bins there), seen
-    /// through (open) along half of it or more and the face seen below head height (as many
-    /// returns) in at most one bin in [`MAX_STRAYS`] of it (stray returns), unless that end is
+    /// through (open, or the body seen through and fewer face returns: garage-204 of seeds
+    /// 201-205, 0.72 m past the lobby's corner, strays in three bins of seven) along half of it
+    /// or more and the face seen below head height (as many returns) in at most one bin in
+    /// [`MAX_STRAYS`] of it (stray returns), unless that end is
     /// a corner (`corners`: at the start, at the end; the face of a wall it meets is there).
     /// A wall's face seen from a room runs on along a beam's underside over the wall it meets
     /// and out over the floor beyond (garage-81 of seeds 81-85: 1.47 m past the lobby's corner,
@@ -228,11 +230,11 @@ impl SupportProfile {
     pub fn seen_through_ends(&self, corners: (bool, bool)) -> (usize, usize) {
         let n = self.bins.len();
         let min_bins = (THROUGH_END_M / BIN_M).round() as usize;
-        let stands = |k: usize| self.bins[k] & STANDING != 0;
         let firm = |k: usize| self.standing_points[k] >= MIN_FIRM_POINTS;
+        // (a return or two of the face where its body is seen through are strays too)
         let through = |k: usize| {
             let b = self.bins[k];
-            !stands(k) && (b & BETWEEN != 0 || b & (LEFT | RIGHT) == LEFT | RIGHT)
+            !firm(k) && (b & BETWEEN != 0 || b & (LEFT | RIGHT) == LEFT | RIGHT)
         };
         // The bins from an end up to where the face stands firmly in two bins running (one is
         // a stray return: a person's head passing, a mixed pixel; so are a return or two a

@@ -230,3 +230,40 @@ fn a_return_or_two_in_two_bins_running_is_no_face_standing() {
     // (a face seen there, three returns a bin, stops it there)
     assert_eq!(with_strays(3).seen_through_ends((false, false)), (0, 10));
 }
+
+/// Regression: garage-204 (seeds 201-205): the lobby's east wall ran on 0.72 m past its corner
+/// along a beam, the floor seen on both sides of its face line there, and in three of those
+/// seven bins a return or two off the face's line: counted as standing, they left fewer than
+/// half of the bins seen through. A return or two where the body is seen through is a stray.
+#[test]
+fn a_return_or_two_where_the_body_is_seen_through_is_no_face_standing() {
+    let mut p = SupportProfile::new(37, &[0.0], 0.0);
+    for k in 0..37 {
+        p.add(k, 0.0, 2.6, true); // the beam's underside
+        if k < 30 {
+            for z in [0.2, 0.6, 1.0, 1.4, 1.7] {
+                p.add(k, 0.0, z, true); // the wall's face
+            }
+            continue;
+        }
+        // past the corner: the floor on both sides of the face line (one side only in bin 31,
+        // nothing seen in the last), and a return or two off the face line in bins 31, 32, 34
+        if k != 36 {
+            p.add(k, 0.1, 0.0, false);
+        }
+        if k != 31 && k != 36 {
+            p.add(k, -0.1, 0.0, false);
+        }
+        let strays = match k {
+            31 | 32 => 1,
+            34 => 2,
+            _ => 0,
+        };
+        for i in 0..strays {
+            p.add(k, 0.0, 0.4 + 0.5 * i as f64, true);
+        }
+    }
+    assert_eq!(p.seen_through_ends((false, false)), (0, 7));
+    // (at a corner no cut)
+    assert_eq!(p.seen_through_ends((false, true)), (0, 0));
+}

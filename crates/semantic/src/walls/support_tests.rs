@@ -199,6 +199,17 @@ fn a_wall_running_on_along_a_beam_over_open_floor_is_cut_where_it_stands() {
     assert_eq!(strays.seen_through_ends((false, false)), (0, 0));
 }
 
+/// Bin `k` of a wall's line under a beam: the beam's underside and, where `face`, the wall's
+/// face from the floor up.
+fn beam_over_a_face(p: &mut SupportProfile, k: usize, face: bool) {
+    p.add(k, 0.0, 2.6, true); // the beam's underside
+    if face {
+        for z in [0.2, 0.6, 1.0, 1.4, 1.7] {
+            p.add(k, 0.0, z, true); // the wall's face
+        }
+    }
+}
+
 /// Regression: garage-283's (seeds 281-285) lobby wall ran on 1.64 m past its corner along a
 /// beam, and one stray return in each of two bins next to each other there (off the beam's
 /// side face, 0.13 m over the floor) stopped the cut as a face seen standing. Two bins running
@@ -208,11 +219,8 @@ fn a_return_or_two_in_two_bins_running_is_no_face_standing() {
     let with_strays = |returns: usize| {
         let mut p = SupportProfile::new(45, &[0.0], 0.0);
         for k in 0..45 {
-            p.add(k, 0.0, 2.6, true); // the beam's underside
+            beam_over_a_face(&mut p, k, k < 30);
             if k < 30 {
-                for z in [0.2, 0.6, 1.0, 1.4, 1.7] {
-                    p.add(k, 0.0, z, true); // the wall's face
-                }
                 p.add(k, 0.1, 0.0, false); // the floor in front of it
             } else {
                 p.add(k, 0.1, 0.0, false); // the floor on both sides of the face line
@@ -239,11 +247,8 @@ fn a_return_or_two_in_two_bins_running_is_no_face_standing() {
 fn a_return_or_two_where_the_body_is_seen_through_is_no_face_standing() {
     let mut p = SupportProfile::new(37, &[0.0], 0.0);
     for k in 0..37 {
-        p.add(k, 0.0, 2.6, true); // the beam's underside
+        beam_over_a_face(&mut p, k, k < 30);
         if k < 30 {
-            for z in [0.2, 0.6, 1.0, 1.4, 1.7] {
-                p.add(k, 0.0, z, true); // the wall's face
-            }
             continue;
         }
         // past the corner: the floor on both sides of the face line (one side only in bin 31,

@@ -25,7 +25,10 @@ const MIN_BAND_M: f64 = 0.05;
 
 /// The corner regions along a wall where a crossing surface hides the face points: per 3 cm
 /// bin of the searched range, the heights `(z0, z1)` it covers, if any, and the tallest run
-/// of heights it is seen in (see [`CORNER_GAP_M`]).
+/// of heights it is seen in there and in the bins beside it (see [`CORNER_GAP_M`]; noise
+/// spreads a surface into the neighbouring bins, and a door leaf ajar, crossing the plane at a
+/// slant, is seen in each bin at a few heights only: the default building's stair room door
+/// open 15 degrees was missed without them).
 pub(crate) struct Crossings {
     r0: f64,
     bin: f64,
@@ -162,9 +165,12 @@ pub(crate) fn find_extent(
                 .iter()
                 .map(|m| crossing(m.0).then_some((m.1 - 0.1, m.2 + 0.1)))
                 .collect(),
-            tallest: bands
-                .iter()
-                .map(|&m| tallest_run(m, band_m, CORNER_GAP_M))
+            tallest: (0..nb)
+                .map(|k| {
+                    let near = k.saturating_sub(1)..(k + 2).min(nb);
+                    let m = bands[near].iter().fold(0, |m, b| m | b);
+                    tallest_run(m, band_m, CORNER_GAP_M)
+                })
                 .collect(),
         };
         // An end next to a wall-high crossing surface (the hidden bins keep it a few
@@ -291,7 +297,8 @@ mod tests {
         };
         assert_eq!(corner_at_the_end(false), None);
         let corner = corner_at_the_end(true).expect("a wall's face crosses the plane");
-        assert!((corner - 3.05).abs() < 0.03, "{corner}");
+        // (at its bin or the one beside it: a bin's neighbours' heights count with its own)
+        assert!((corner - 3.05).abs() < 0.06, "{corner}");
     }
 
     #[test]

@@ -140,12 +140,13 @@ pub(crate) fn find_extent(
         // front of a wall leaves the wall above it).
         // Noise spreads a crossing surface into the neighbouring bins: they are hidden too.
         // (most bins have no crossing surface beside them: their points are not hidden)
+        let near = |k: usize| k.saturating_sub(1)..(k + 2).min(nb);
         let beside: Vec<bool> = (0..nb)
-            .map(|k| (k.saturating_sub(1)..(k + 2).min(nb)).any(|j| crossing(across[j].0)))
+            .map(|k| near(k).any(|j| crossing(across[j].0)))
             .collect();
         let hidden = |k: usize, z: f64| {
             beside[k]
-                && (k.saturating_sub(1)..(k + 2).min(nb)).any(|j| {
+                && near(k).any(|j| {
                     let x = &across[j];
                     crossing(x.0) && z >= x.1 - 0.1 && z <= x.2 + 0.1
                 })
@@ -167,8 +168,7 @@ pub(crate) fn find_extent(
                 .collect(),
             tallest: (0..nb)
                 .map(|k| {
-                    let near = k.saturating_sub(1)..(k + 2).min(nb);
-                    let m = bands[near].iter().fold(0, |m, b| m | b);
+                    let m = bands[near(k)].iter().fold(0, |m, b| m | b);
                     tallest_run(m, band_m, CORNER_GAP_M)
                 })
                 .collect(),

@@ -218,11 +218,10 @@ impl SupportProfile {
     /// through (open, or the body seen through and fewer face returns: garage-204 of seeds
     /// 201-205, 0.72 m past the lobby's corner, strays in three bins of seven) along half of it
     /// or more and the face seen below head height (as many returns) in at most one bin in
-    /// [`MAX_STRAYS`] of it (stray returns), unless that end is
-    /// a corner (`corners`: at the start, at the end; the face of a wall it meets is there).
-    /// A wall's face seen from a room runs on along a beam's underside over the wall it meets
-    /// and out over the floor beyond (garage-81 of seeds 81-85: 1.47 m past the lobby's corner,
-    /// along a beam). A doorway next to a corner is open too, but it ends at that corner (at a
+    /// [`MAX_STRAYS`] of it (stray returns), unless that end is a corner (`corners`: at the
+    /// start, at the end; the face of a wall it meets is there). A wall's face seen from a room
+    /// runs on along a beam's underside over the wall it meets and out over the floor beyond
+    /// (garage-81 of seeds 81-85: 1.47 m past the lobby's corner, along a beam). A doorway next to a corner is open too, but it ends at that corner (at a
     /// free end a doorway is no doorway: the wall just ends). Bare bins are not enough: a
     /// wall's end whose face was hidden below head height from afar, nothing standing beside
     /// it, is bare (office-69 of seeds 66-70: the last 0.6 m of an outer wall); nor is a wall's

@@ -1,7 +1,7 @@
 //! The survey's floor grid: cells blocked by what stands on the floor, free cells clear of
 //! them, connected regions and line of sight.
 
-use crate::building::Building;
+use crate::building::{Building, Hinge, Swing};
 use crate::geometry::BuildingGeometry;
 use cloud::EntityClass;
 
@@ -154,6 +154,53 @@ impl Grid {
         (of, regions)
     }
 
+    /// The cells where a door's leaf swings: within the door's width of its hinge (and the
+    /// tripod's `clearance_m` beyond it), on the side the leaf opens to. A surveyor sets no tripod there: whoever opens or closes the
+    /// door knocks it, and standing beside an open leaf, the leaf hides a wide sector of the
+    /// room (garage-301's lobby pose, 0.46 m beside its leaf, never saw 0.52 m of the wall
+    /// behind it).
+    pub fn door_swings(&self, b: &Building, clearance_m: f64) -> Vec<bool> {
+        let mut swing = vec![false; self.blocked.len()];
+        for w in &b.walls {
+            let len = w.length_m();
+            if len <= 0.0 {
+                continue;
+            }
+            let u = [
+                (w.end_m[0] - w.start_m[0]) / len,
+                (w.end_m[1] - w.start_m[1]) / len,
+            ];
+            for d in &w.doors {
+                let Some(leaf) = &d.leaf else { continue };
+                let s = match leaf.hinge {
+                    Hinge::Start => d.offset_m,
+                    Hinge::End => d.offset_m + d.width_m,
+                };
+                let hinge = [w.start_m[0] + u[0] * s, w.start_m[1] + u[1] * s];
+                // The normal on the side the leaf opens to (left of the wall's direction for
+                // `Swing::Left`).
+                let side = match leaf.swing {
+                    Swing::Left => [-u[1], u[0]],
+                    Swing::Right => [u[1], -u[0]],
+                };
+                let r = d.width_m + clearance_m;
+                let lo = self.index_clamped([hinge[0] - r, hinge[1] - r]);
+                let hi = self.index_clamped([hinge[0] + r, hinge[1] + r]);
+                for y in lo[1]..=hi[1] {
+                    for x in lo[0]..=hi[0] {
+                        let i = y * self.nx + x;
+                        let p = self.centre(i);
+                        let v = [p[0] - hinge[0], p[1] - hinge[1]];
+                        if v[0].hypot(v[1]) <= r && v[0] * side[0] + v[1] * side[1] >= 0.0 {
+                            swing[i] = true;
+                        }
+                    }
+                }
+            }
+        }
+        swing
+    }
+
     pub fn touches_edge(&self, cells: &[usize]) -> bool {
         cells.iter().any(|&i| {
             let (x, y) = (i % self.nx, i / self.nx);
@@ -215,4 +262,64 @@ pub(super) fn floor_grid(
         }
     }
     grid
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    /// A wall along x (0..4 m) with a 1 m door at 1..2 m whose leaf, hinged at `hinge`,
+    /// swings to `swing`.
+    fn swings_of(hinge: &str, swing: &str) -> (Grid, Vec<bool>) {
+        let toml = format!(
+            r#"
+            [floor]
+            min_m = [-1.0, -2.0]
+            max_m = [5.0, 2.0]
+            [ceiling]
+            height_m = 2.5
+            [[walls]]
+            start_m = [0.0, 0.0]
+            end_m = [4.0, 0.0]
+            thickness_m = 0.1
+            [[walls.doors]]
+            offset_m = 1.0
+            width_m = 1.0
+            height_m = 2.0
+            [walls.doors.leaf]
+            hinge = "{hinge}"
+            swing = "{swing}"
+            open_deg = 90.0
+            "#
+        );
+        let b = Building::from_toml_str(&toml, Path::new("door.toml")).expect("valid");
+        let grid = floor_grid(&b, &BuildingGeometry::new(&b), 0.1, false);
+        let swings = grid.door_swings(&b, 0.3);
+        (grid, swings)
+    }
+
+    #[test]
+    fn a_doors_swing_is_the_half_disc_its_leaf_sweeps_and_the_tripods_clearance() {
+        let at = |(grid, swings): &(Grid, Vec<bool>), p: [f64; 2]| {
+            swings[grid.index(p).expect("on the grid")]
+        };
+        // Hinged at the opening's start (1, 0), opening to the left (+y).
+        let left = swings_of("start", "left");
+        assert!(at(&left, [1.55, 0.55]));
+        assert!(at(&left, [1.05, 1.25]), "within the leaf and the clearance");
+        assert!(
+            !at(&left, [1.05, 1.45]),
+            "beyond the leaf and the clearance"
+        );
+        assert!(
+            !at(&left, [1.55, -0.55]),
+            "the side the leaf does not open to"
+        );
+        // Hinged at its end (2, 0), opening to the right (-y).
+        let right = swings_of("end", "right");
+        assert!(at(&right, [1.55, -0.55]));
+        assert!(!at(&right, [1.55, 0.55]));
+        assert!(!at(&right, [0.55, -0.55]), "1.5 m from the hinge");
+    }
 }

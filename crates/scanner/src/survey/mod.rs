@@ -14,7 +14,9 @@
 //!    sharing at least `min_overlap` of their floor with what was seen, until the gain is
 //!    under `min_gain_m2`. Then every room (a region of free floor with the doors shut)
 //!    reached through an open door and still without a pose gets one: the pose in it that
-//!    shares most with what was seen, linked to a chosen one or, where none is (a door
+//!    shares most with what was seen (clear of its doors' swings where it can be: a tripod
+//!    beside an open leaf has a wide sector of the room hidden by it, and whoever uses the
+//!    door knocks it), linked to a chosen one or, where none is (a door
 //!    ajar, poses outside at the wrong angle), to a stepping stone linked to a chosen one
 //!    (a surveyor stands in front of the door first; see `rooms`). Where the poses leave
 //!    more than half of the reachable floor unseen, the survey is stuck, not done (its first
@@ -246,6 +248,7 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
     }
     let rooms = floor_grid(b, &g, cfg.cell_m, true);
     let (room_of_cell, _) = rooms.regions(&rooms.clear_of(cfg.clearance_m));
+    let swings = grid.door_swings(b, cfg.clearance_m);
     loop {
         loop {
             let mut best: Option<(usize, usize)> = None;
@@ -287,6 +290,7 @@ pub fn survey_poses(b: &Building, cfg: &SurveyConfig) -> Result<Vec<ScanPose>> {
             |k| room_of_cell[candidates[k]],
             linked_to_chosen,
             rooms::shared(&sees, &seen),
+            |k| !swings[candidates[k]],
             stuck,
         );
         if !stuck || chosen.len() == before {

@@ -21,6 +21,12 @@ const BACKREST_MAX_RISE_M: f64 = 0.6;
 /// A seat's top is at least this high over the floor (chairs 0.4-0.5 m, stools up to 0.8 m;
 /// lower is a crate or a footrest).
 const MIN_SEAT_HEIGHT_M: f64 = 0.3;
+/// A backrest is at most this long: a chair's width (office chairs 0.45-0.7 m) and what its
+/// cluster takes in beside it (seen up to 0.82 m on the styles bench). A board longer than
+/// this with a seat before it is a partition or a screen with a chair at it
+/// (office-201 of seeds 201-205: a partial-height partition 1.49 m long and a chair's seat
+/// 0.29 m long beside it were boxed as one chair, and the partition was lost).
+const BACKREST_MAX_LENGTH_M: f64 = 1.0;
 /// A backrest standing free of a desk is at most this thick (a board or a mesh 2-8 cm thick,
 /// blurred by the range noise and a registration's smear).
 const BACKREST_MAX_ACROSS_M: f64 = 0.15;
@@ -90,8 +96,8 @@ fn faces_of_one_thing(a: &DetectedObstacle, b: &DetectedObstacle, max_step_m: f6
 }
 
 /// Whether one of `a` and `b` is a backrest and the other, lower, a seat in front of it: the
-/// seat's top at a seat's height over the floor, the backrest rising over it by a step to
-/// [`BACKREST_MAX_RISE_M`]. The backrest was cut off a desk's edge ([`super::tops`]), or, standing
+/// seat's top at a seat's height over the floor, the backrest no longer than
+/// [`BACKREST_MAX_LENGTH_M`] and rising over it by a step to [`BACKREST_MAX_RISE_M`]. The backrest was cut off a desk's edge ([`super::tops`]), or, standing
 /// free, is a board at most [`BACKREST_MAX_ACROSS_M`] thick (a desk's or cabinet's edge seen
 /// beside a seat is a thing's side, thicker).
 fn backrest_and_seat(a: &DetectedObstacle, b: &DetectedObstacle, max_step_m: f64) -> bool {
@@ -105,6 +111,7 @@ fn backrest_and_seat(a: &DetectedObstacle, b: &DetectedObstacle, max_step_m: f64
     let rise = back.z_range.1 - seat.z_range.1;
     let seat_height = seat.z_range.1 - seat.z_range.0;
     (cut_off || board)
+        && back.size[0] <= BACKREST_MAX_LENGTH_M
         && rise > max_step_m
         && rise <= BACKREST_MAX_RISE_M
         && seat_height >= MIN_SEAT_HEIGHT_M
@@ -176,6 +183,23 @@ mod tests {
         assert_eq!(join_faces(vec![tall, seat], &c).len(), 2);
         let lid = cluster([0.0, 0.25], DVec2::X, [0.55, 0.19], (0.0, 0.25), false);
         assert_eq!(join_faces(vec![back, lid], &c).len(), 2);
+    }
+
+    /// Regression (office-201 of seeds 201-205): a partial-height partition 1.49 m long, 1.21 m
+    /// tall, and the seat of a chair at it, 0.29 m long, were joined as a backrest and its seat,
+    /// and the partition was lost in the chair's box.
+    #[test]
+    fn a_partition_and_a_seat_beside_it_are_no_chair() {
+        let partition = cluster([0.0, 0.0], DVec2::X, [1.49, 0.08], (0.0, 1.21), false);
+        let seat = cluster([0.3, 0.12], DVec2::X, [0.29, 0.12], (0.0, 0.7), false);
+        let c = ObstacleConfig::default();
+        assert_eq!(
+            join_faces(vec![partition.clone(), seat.clone()], &c).len(),
+            2
+        );
+        // (a backrest as long as a chair is wide, with the same seat, is one chair)
+        let back = cluster([0.3, 0.0], DVec2::X, [0.5, 0.08], (0.0, 1.21), false);
+        assert_eq!(join_faces(vec![back, seat], &c).len(), 1);
     }
 
     #[test]

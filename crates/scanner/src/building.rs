@@ -109,6 +109,28 @@ impl Wall {
     pub fn length_m(&self) -> f64 {
         (self.end_m[0] - self.start_m[0]).hypot(self.end_m[1] - self.start_m[1])
     }
+
+    /// The point of the wall's centre line `s_m` metres from its start (the start itself for a
+    /// wall of no length).
+    pub fn point_at_m(&self, s_m: f64) -> [f64; 2] {
+        let len = self.length_m();
+        let t = if len > 0.0 { s_m / len } else { 0.0 };
+        [
+            self.start_m[0] + (self.end_m[0] - self.start_m[0]) * t,
+            self.start_m[1] + (self.end_m[1] - self.start_m[1]) * t,
+        ]
+    }
+}
+
+impl Door {
+    /// How far along its wall, from the wall's start, the leaf's hinge stands (the opening's
+    /// near or far edge); `None` for an empty opening.
+    pub fn hinge_offset_m(&self) -> Option<f64> {
+        self.leaf.as_ref().map(|leaf| match leaf.hinge {
+            Hinge::Start => self.offset_m,
+            Hinge::End => self.offset_m + self.width_m,
+        })
+    }
 }
 
 /// A door opening in a wall, optionally with a leaf.

@@ -224,15 +224,7 @@ fn a_rooms_pose_stands_clear_of_its_doors_swing() {
         .find(|w| !w.doors.is_empty())
         .expect("a wall with a door");
     let d = &w.doors[0];
-    let len = w.length_m();
-    let u = [
-        (w.end_m[0] - w.start_m[0]) / len,
-        (w.end_m[1] - w.start_m[1]) / len,
-    ];
-    let hinge = [
-        w.start_m[0] + u[0] * d.offset_m,
-        w.start_m[1] + u[1] * d.offset_m,
-    ];
+    let hinge = w.point_at_m(d.hinge_offset_m().expect("a leaf"));
     let in_lobby = |p: &&ScanPose| p.y_m > w.start_m[1] && p.x_m < 4.0;
     let lobby: Vec<&ScanPose> = poses.iter().filter(in_lobby).collect();
     assert!(!lobby.is_empty(), "no pose in the lobby: {poses:?}");

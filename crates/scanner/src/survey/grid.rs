@@ -1,7 +1,7 @@
 //! The survey's floor grid: cells blocked by what stands on the floor, free cells clear of
 //! them, connected regions and line of sight.
 
-use crate::building::{Building, Hinge, Swing};
+use crate::building::{Building, Swing};
 use crate::geometry::BuildingGeometry;
 use cloud::EntityClass;
 
@@ -54,21 +54,25 @@ impl Grid {
     fn block(&mut self, c: [f64; 2], half: [f64; 2], yaw: f64) {
         let half = [half[0] + self.cell / 2.0, half[1] + self.cell / 2.0];
         let (s, co) = yaw.sin_cos();
-        let r = half[0].hypot(half[1]);
-        let lo = self.index_clamped([c[0] - r, c[1] - r]);
-        let hi = self.index_clamped([c[0] + r, c[1] + r]);
-        for y in lo[1]..=hi[1] {
-            for x in lo[0]..=hi[0] {
-                let i = y * self.nx + x;
-                let p = self.centre(i);
-                let d = [p[0] - c[0], p[1] - c[1]];
-                if (d[0] * co + d[1] * s).abs() <= half[0]
-                    && (-d[0] * s + d[1] * co).abs() <= half[1]
-                {
-                    self.blocked[i] = true;
-                }
+        for (i, d) in self.cells_around(c, half[0].hypot(half[1])) {
+            if (d[0] * co + d[1] * s).abs() <= half[0] && (-d[0] * s + d[1] * co).abs() <= half[1] {
+                self.blocked[i] = true;
             }
         }
+    }
+
+    /// The cells of the square of half-edge `r` round `c` (clamped to the grid), each with its
+    /// centre's offset from `c`.
+    fn cells_around(&self, c: [f64; 2], r: f64) -> Vec<(usize, [f64; 2])> {
+        let lo = self.index_clamped([c[0] - r, c[1] - r]);
+        let hi = self.index_clamped([c[0] + r, c[1] + r]);
+        (lo[1]..=hi[1])
+            .flat_map(|y| (lo[0]..=hi[0]).map(move |x| y * self.nx + x))
+            .map(|i| {
+                let p = self.centre(i);
+                (i, [p[0] - c[0], p[1] - c[1]])
+            })
+            .collect()
     }
 
     fn index_clamped(&self, p: [f64; 2]) -> [usize; 2] {
@@ -155,28 +159,22 @@ impl Grid {
     }
 
     /// The cells where a door's leaf swings: within the door's width of its hinge (and the
-    /// tripod's `clearance_m` beyond it), on the side the leaf opens to. A surveyor sets no tripod there: whoever opens or closes the
-    /// door knocks it, and standing beside an open leaf, the leaf hides a wide sector of the
-    /// room (garage-301's lobby pose, 0.46 m beside its leaf, never saw 0.52 m of the wall
-    /// behind it).
+    /// tripod's `clearance_m` beyond it), on the side the leaf opens to. A surveyor sets no
+    /// tripod there: whoever opens or closes the door knocks it, and standing beside an open
+    /// leaf, the leaf hides a wide sector of the room (garage-301's lobby pose, 0.46 m beside
+    /// its leaf, never saw 0.52 m of the wall behind it).
     pub fn door_swings(&self, b: &Building, clearance_m: f64) -> Vec<bool> {
         let mut swing = vec![false; self.blocked.len()];
-        for w in &b.walls {
+        for w in b.walls.iter().filter(|w| w.length_m() > 0.0) {
             let len = w.length_m();
-            if len <= 0.0 {
-                continue;
-            }
             let u = [
                 (w.end_m[0] - w.start_m[0]) / len,
                 (w.end_m[1] - w.start_m[1]) / len,
             ];
             for d in &w.doors {
-                let Some(leaf) = &d.leaf else { continue };
-                let s = match leaf.hinge {
-                    Hinge::Start => d.offset_m,
-                    Hinge::End => d.offset_m + d.width_m,
+                let (Some(leaf), Some(s)) = (&d.leaf, d.hinge_offset_m()) else {
+                    continue;
                 };
-                let hinge = [w.start_m[0] + u[0] * s, w.start_m[1] + u[1] * s];
                 // The normal on the side the leaf opens to (left of the wall's direction for
                 // `Swing::Left`).
                 let side = match leaf.swing {
@@ -184,16 +182,9 @@ impl Grid {
                     Swing::Right => [u[1], -u[0]],
                 };
                 let r = d.width_m + clearance_m;
-                let lo = self.index_clamped([hinge[0] - r, hinge[1] - r]);
-                let hi = self.index_clamped([hinge[0] + r, hinge[1] + r]);
-                for y in lo[1]..=hi[1] {
-                    for x in lo[0]..=hi[0] {
-                        let i = y * self.nx + x;
-                        let p = self.centre(i);
-                        let v = [p[0] - hinge[0], p[1] - hinge[1]];
-                        if v[0].hypot(v[1]) <= r && v[0] * side[0] + v[1] * side[1] >= 0.0 {
-                            swing[i] = true;
-                        }
+                for (i, v) in self.cells_around(w.point_at_m(s), r) {
+                    if v[0].hypot(v[1]) <= r && v[0] * side[0] + v[1] * side[1] >= 0.0 {
+                        swing[i] = true;
                     }
                 }
             }

@@ -97,9 +97,10 @@ fn faces_of_one_thing(a: &DetectedObstacle, b: &DetectedObstacle, max_step_m: f6
 
 /// Whether one of `a` and `b` is a backrest and the other, lower, a seat in front of it: the
 /// seat's top at a seat's height over the floor, the backrest no longer than
-/// [`BACKREST_MAX_LENGTH_M`] and rising over it by a step to [`BACKREST_MAX_RISE_M`]. The backrest was cut off a desk's edge ([`super::tops`]), or, standing
-/// free, is a board at most [`BACKREST_MAX_ACROSS_M`] thick (a desk's or cabinet's edge seen
-/// beside a seat is a thing's side, thicker).
+/// [`BACKREST_MAX_LENGTH_M`] and rising over it by a step to [`BACKREST_MAX_RISE_M`]. The
+/// backrest was cut off a desk's edge ([`super::tops`]), or, standing free, is a board at most
+/// [`BACKREST_MAX_ACROSS_M`] thick (a desk's or cabinet's edge seen beside a seat is a thing's
+/// side, thicker).
 fn backrest_and_seat(a: &DetectedObstacle, b: &DetectedObstacle, max_step_m: f64) -> bool {
     let (back, seat) = if a.z_range.1 >= b.z_range.1 {
         (a, b)

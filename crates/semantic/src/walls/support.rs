@@ -221,8 +221,9 @@ impl SupportProfile {
     /// [`MAX_STRAYS`] of it (stray returns), unless that end is a corner (`corners`: at the
     /// start, at the end; the face of a wall it meets is there). A wall's face seen from a room
     /// runs on along a beam's underside over the wall it meets and out over the floor beyond
-    /// (garage-81 of seeds 81-85: 1.47 m past the lobby's corner, along a beam). A doorway next to a corner is open too, but it ends at that corner (at a
-    /// free end a doorway is no doorway: the wall just ends). Bare bins are not enough: a
+    /// (garage-81 of seeds 81-85: 1.47 m past the lobby's corner, along a beam). A doorway
+    /// next to a corner is open too, but it ends at that corner (at a free end a doorway is no
+    /// doorway: the wall just ends). Bare bins are not enough: a
     /// wall's end whose face was hidden below head height from afar, nothing standing beside
     /// it, is bare (office-69 of seeds 66-70: the last 0.6 m of an outer wall); nor is a wall's
     /// end hidden by what stands before it, which is neither open nor bare.

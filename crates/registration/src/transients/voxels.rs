@@ -32,6 +32,17 @@ struct Cell {
 
 const MANY: u32 = u32::MAX;
 
+/// Which other scans saw a point ([`Voxels::vouchers`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Vouch {
+    /// No other scan.
+    None,
+    /// This scan only.
+    One(u32),
+    /// Two or more, or any where the point's own returns are sparse.
+    Many,
+}
+
 impl Voxels {
     /// Sorts the finite points of `scans` into voxels of `edge_m`, the distance within which
     /// another scan's return sees the same thing.
@@ -82,22 +93,43 @@ impl Voxels {
         }
     }
 
-    /// Whether a scan other than `k` left a point within the edge of `p`, or within twice
+    /// Which scans other than `k` left a point within the edge of `p`, or within twice
     /// that where the returns are sparse (fewer than [`MIN_OWN_NEIGHBOURS`] of their own
     /// scan's within the edge): scan `k`'s round `p`, or the other scan's round its point.
-    pub(crate) fn seen_by_another(&self, p: Vec3, k: usize) -> bool {
+    /// None, one (which), or more. A point of scan `k`'s sparse returns seen by any other is
+    /// [`Vouch::Many`]: glass, whose few returns per scan lie apart, is vouched for by every
+    /// scan that looks at it, seldom within the distance.
+    pub(crate) fn vouchers(&self, p: Vec3, k: usize) -> Vouch {
         let (k, r) = (k as u32, self.edge_m);
-        if self.any_other(p, k, r, |_| true) {
-            return true;
+        let mut one = None;
+        let mut note = |j: usize| {
+            let s = self.points[j].0;
+            match one {
+                None => one = Some(s),
+                Some(o) if o != s => return true,
+                Some(_) => {}
+            }
+            false
+        };
+        // (any_other stops at the first accepted point: a second scan's stops it)
+        if self.any_other(p, k, r, &mut note) {
+            return Vouch::Many;
         }
         let sparse_here = self.own_count(p, k) < MIN_OWN_NEIGHBOURS;
-        self.any_other(p, k, 2.0 * r, |j| sparse_here || self.is_sparse(j))
+        if sparse_here {
+            let seen = one.is_some() || self.any_other(p, k, 2.0 * r, |_| true);
+            return if seen { Vouch::Many } else { Vouch::None };
+        }
+        if self.any_other(p, k, 2.0 * r, |j| self.is_sparse(j) && note(j)) {
+            return Vouch::Many;
+        }
+        one.map_or(Vouch::None, Vouch::One)
     }
 
     /// Whether a point of a scan other than `k` lies within `r` of `p`, not lower than `p` by
     /// more than [`BELOW_FRACTION`] of the edge, and passes `accept` (given its index in
     /// `points`).
-    fn any_other(&self, p: Vec3, k: u32, r: f32, accept: impl Fn(usize) -> bool) -> bool {
+    fn any_other(&self, p: Vec3, k: u32, r: f32, mut accept: impl FnMut(usize) -> bool) -> bool {
         let (r2, lowest) = (r * r, p.z - BELOW_FRACTION * self.edge_m);
         self.cells_near(p, r).any(|cell| {
             let (lo, hi) = cell.run_of(k, &self.points);
@@ -235,6 +267,11 @@ impl Hasher for KeyHasher {
 mod tests {
     use super::*;
 
+    /// Whether a scan other than `k` saw `p`.
+    fn seen(v: &Voxels, p: Vec3, k: usize) -> bool {
+        v.vouchers(p, k) != Vouch::None
+    }
+
     /// Scan 0 dense round the origin: a 5 x 5 grid, 1 cm apart.
     fn dense() -> PointCloud {
         PointCloud::from_points(
@@ -254,15 +291,23 @@ mod tests {
         };
         let pair = [dense(), shifted(Vec3::new(0.2, 0.0, 0.0))];
         // Scan 0's nearest to scan 1's (0.2, 0, 0) is (0.04, 0, 0): 0.16 m.
-        assert!(!Voxels::build(&pair, 0.15).seen_by_another(Vec3::new(0.2, 0.0, 0.0), 1));
-        assert!(Voxels::build(&pair, 0.17).seen_by_another(Vec3::new(0.2, 0.0, 0.0), 1));
+        assert!(!seen(
+            &Voxels::build(&pair, 0.15),
+            Vec3::new(0.2, 0.0, 0.0),
+            1
+        ));
+        assert!(seen(
+            &Voxels::build(&pair, 0.17),
+            Vec3::new(0.2, 0.0, 0.0),
+            1
+        ));
         // The nearest of scan 1's, shifted by (-0.07, 0.07, 0.07), is 0.103 m away.
         let pair = [dense(), shifted(Vec3::new(-0.07, 0.07, 0.07))];
-        assert!(Voxels::build(&pair, 0.15).seen_by_another(Vec3::ZERO, 0));
-        assert!(!Voxels::build(&pair, 0.1).seen_by_another(Vec3::ZERO, 0));
+        assert!(seen(&Voxels::build(&pair, 0.15), Vec3::ZERO, 0));
+        assert!(!seen(&Voxels::build(&pair, 0.1), Vec3::ZERO, 0));
         // Scan 0's own points never count.
         let v = Voxels::build(&[dense(), PointCloud::from_points(vec![])], 0.15);
-        assert!(!v.seen_by_another(Vec3::ZERO, 0));
+        assert!(!seen(&v, Vec3::ZERO, 0));
     }
 
     #[test]
@@ -272,13 +317,13 @@ mod tests {
         let floor = dense();
         let shin = PointCloud::from_points(vec![Vec3::new(0.02, 0.02, 0.12)]);
         let v = Voxels::build(&[floor, shin], 0.15);
-        assert!(!v.seen_by_another(Vec3::new(0.02, 0.02, 0.12), 1));
+        assert!(!seen(&v, Vec3::new(0.02, 0.02, 0.12), 1));
         // The floor point itself is seen by the other scan's return above it (a thing's foot
         // on the floor hides nothing of it), and a return 5 cm up still counts as the floor's.
-        assert!(v.seen_by_another(Vec3::new(0.02, 0.02, 0.0), 0));
+        assert!(seen(&v, Vec3::new(0.02, 0.02, 0.0), 0));
         let low = PointCloud::from_points(vec![Vec3::new(0.02, 0.02, 0.05)]);
         let v = Voxels::build(&[dense(), low], 0.15);
-        assert!(v.seen_by_another(Vec3::new(0.02, 0.02, 0.05), 1));
+        assert!(seen(&v, Vec3::new(0.02, 0.02, 0.05), 1));
     }
 
     #[test]
@@ -287,11 +332,11 @@ mod tests {
         // surface: it matches from either side; 0.35 m away it does not.
         let lone = |x: f32| PointCloud::from_points(vec![Vec3::new(x, 0.0, 0.0)]);
         let v = Voxels::build(&[dense(), lone(0.24)], 0.15);
-        assert!(v.seen_by_another(Vec3::ZERO, 0));
-        assert!(v.seen_by_another(Vec3::new(0.24, 0.0, 0.0), 1));
+        assert!(seen(&v, Vec3::ZERO, 0));
+        assert!(seen(&v, Vec3::new(0.24, 0.0, 0.0), 1));
         let v = Voxels::build(&[dense(), lone(0.39)], 0.15);
-        assert!(!v.seen_by_another(Vec3::ZERO, 0));
-        assert!(!v.seen_by_another(Vec3::new(0.39, 0.0, 0.0), 1));
-        assert!(!v.seen_by_another(Vec3::new(3.0, 0.0, 0.0), 0));
+        assert!(!seen(&v, Vec3::ZERO, 0));
+        assert!(!seen(&v, Vec3::new(0.39, 0.0, 0.0), 1));
+        assert!(!seen(&v, Vec3::new(3.0, 0.0, 0.0), 0));
     }
 }

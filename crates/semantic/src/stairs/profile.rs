@@ -322,21 +322,17 @@ fn fit_profile(
             .filter(|f| off(f, r) <= SAME_RISE)
             .min_by(|a, b| off(a, r).total_cmp(&off(b, r)))
     });
-    // (the counts in turn, the grid's first: one replaces the best so far where it scores more
-    // and misses no more of its levels, or where it misses none and the best so far does.
-    // hall-82 of seeds 81-85: 7 steps of 0.217 m, their riser bands on the 7 risers seen,
-    // missed one of their levels and outscored the 8 steps that found all 8. A share of the
-    // levels, as `search::levels_share` asks of a count fitted later, is too fine a test here:
-    // office-63's 5 steps, 4 of 5 levels found, must replace a grid's 6 that found 5. Fewest
-    // missed first would be too coarse: with it office-3's 8 steps, 5 of 8 levels seen from
-    // the side, read as 7. garage-295's 3 steps, all seen, scored less than 4 and 5
-    // that missed one each, and came after them: see `tests::a_count_seeing_every_level_...`.)
+    // (the counts in turn, the grid's first: one replaces the best so far only where it scores
+    // more and misses no more of its levels. hall-82 of seeds 81-85: 7 steps of 0.217 m, their
+    // riser bands on the 7 risers seen, missed one of their levels and outscored the 8 steps
+    // that found all 8. A share of the levels, as `search::levels_share` asks of a count fitted
+    // later, is too fine a test here: office-63's 5 steps, 4 of 5 levels found, must replace a
+    // grid's 6 that found 5.)
     let missed = |f: &Fit| f.n.saturating_sub(f.found);
     let fit = near
         .or_else(|| {
             fits.iter().reduce(|a, b| {
-                if (missed(b) == 0 && missed(a) > 0) || (b.best > a.best && missed(b) <= missed(a))
-                {
+                if b.best > a.best && missed(b) <= missed(a) {
                     b
                 } else {
                     a

@@ -336,26 +336,6 @@ fn a_landing_topped_by_higher_returns_keeps_its_count() {
     assert_flight(Some(found), (0.161, 0.257, 9));
 }
 
-/// Regression: fresh garage-295's 3-step flight (rise 0.177 m), seen from its side only, read
-/// as 5 steps of 0.105 m: 4 of their 5 levels seen, the true count's 3 of 3 with a lower score.
-/// Counts were compared in turn, one replacing the best so far only where it scored more and
-/// missed no more levels, so a count missing one level first let the others missing one in,
-/// and the count missing none, scoring less, never replaced them. A count that misses no level
-/// replaces one that misses some.
-#[test]
-fn a_count_seeing_every_level_beats_those_missing_one() {
-    let part = returns(include_str!("../../tests/data/garage295_short_flight.txt"));
-    assert_eq!(part.len(), 436);
-    let found = search_as_mapped(&part, DVec2::new(2.1, 1.1)).expect("a staircase");
-    assert_eq!(found.len(), 1);
-    let flight = &found[0];
-    assert_eq!(flight.steps, 3);
-    assert!((flight.rise - 0.177).abs() < 0.01, "rise {}", flight.rise);
-    // (the map reads a run of 0.261 m; over this test's floor, along the axes and the part's
-    // own line instead of the map's walls, 0.311 m: not traced)
-    assert!((flight.run - 0.262).abs() < 0.06, "run {}", flight.run);
-}
-
 /// Regression: fresh office-44's desk (top 0.72 m), the chair at it (seat 0.45 m, backrest to
 /// 0.87 m) and a box beside them (0.68 m) read as a 4-step flight (rise 0.212 m, run 0.222 m)
 /// climbing 24 degrees off the walls, with 3 of its 4 levels seen. Along a direction of the

@@ -248,10 +248,11 @@ pub(crate) fn finish(
 
 /// The fewest points on a step of those that pass, and the one step that falls short if any
 /// (its index in `per_step`), where the steps' counts `per_step` (from the lowest checked)
-/// make a staircase: every step passes, or all but one. Where the envelope shows every level of a flight longer than the shortest, or
-/// all but one (`levels_seen`), the step that falls short may be any that holds points: a
-/// side face sampled sparsely between two scans' views, or at grazing angles far along a
-/// long flight seen from its top end (office-3's third step held 3 returns). On a flight
+/// make a staircase: every step passes, or all but one. Where the envelope shows every level
+/// of a flight longer than the shortest, or all but one (`levels_seen`), the step that falls
+/// short may be any that holds points: a side face sampled sparsely between two scans'
+/// views, or at grazing angles far along a long flight seen from its top end (office-3's
+/// third step held 3 returns). On a flight
 /// seen from its side only (`side_face`), a step between two that pass may fall short however
 /// many levels were seen, and hold no point at all: a flight does not skip a step, and
 /// clutter in front of a side face hides one (office-3 as surveyed clear of its doors'

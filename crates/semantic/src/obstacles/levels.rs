@@ -9,19 +9,15 @@
 //! seat's width apart are one region: a surface seen from afar is seen in patches). Every
 //! other cell goes to the nearest core (through the cluster's cells), and two regions whose
 //! levels differ by more than a step stay apart where they meet along a short junction, no
-//! longer than one thing's side (`MAX_JUNCTION_M`). The parts of one thing meet along its whole
+//! longer than one thing's side ([`MAX_JUNCTION_M`]). The parts of one thing meet along its whole
 //! width: a car's cabin (1.4 m) and its bonnet (1.0 m) along the windscreen, 1.6 m and more.
 
-use super::cluster::{cell_centres, components_of};
-use super::fit::{convex_hull, min_area_rect};
+use super::cluster::components_of;
+use super::junctions::{find, junction, MAX_JUNCTION_M};
 use super::min_surface_cells;
 use crate::image_frame::ImageFrame;
 use std::collections::{HashMap, VecDeque};
 
-/// Two regions at different levels meeting along at most this are two things: a seat, a crate
-/// or a cabinet meets its neighbour along its own side (0.35-0.6 m, a cell more for the grid),
-/// while the parts of one thing meet along its width (a car's, 1.6 m or more).
-const MAX_JUNCTION_M: f64 = 0.8;
 /// Levels are found in a histogram of the cells' tops with bins this tall (the laser's range
 /// noise is 1-3 cm).
 const BIN_M: f64 = 0.02;
@@ -170,59 +166,6 @@ fn nearest_core(cells: &[usize], cores: &[(f64, Vec<usize>)], width: usize) -> V
         .iter()
         .map(|&r| if r == usize::MAX { 0 } else { r })
         .collect()
-}
-
-/// The length along which regions `a` and `b` meet: on each side, the longer side of the
-/// rectangle around its cells within two cells of the other region (plus a cell), and of the two
-/// sides the shorter (each side's reach runs two cells past the other's ends); `None` where they
-/// do not meet. Cells up to two apart join one cluster, so two regions running side by side two
-/// cells apart (a car's side face and its cabin) meet along their whole length.
-fn junction(
-    cells: &[usize],
-    region: &[usize],
-    a: usize,
-    b: usize,
-    frame: &ImageFrame,
-) -> Option<f64> {
-    let width = frame.width_px as usize;
-    let of: HashMap<usize, usize> = cells
-        .iter()
-        .zip(region)
-        .filter(|(_, &r)| r == a || r == b)
-        .map(|(&k, &r)| (k, r))
-        .collect();
-    let near_other = |k: usize, r: usize| {
-        let (x, y) = ((k % width) as isize, (k / width) as isize);
-        (-2..=2isize).any(|dy| {
-            (-2..=2isize).any(|dx| {
-                let (nx, ny) = (x + dx, y + dy);
-                nx >= 0
-                    && ny >= 0
-                    && nx < width as isize
-                    && of
-                        .get(&(ny as usize * width + nx as usize))
-                        .is_some_and(|&o| o != r)
-            })
-        })
-    };
-    let side = |r: usize| -> Option<f64> {
-        let meets: Vec<usize> = of
-            .iter()
-            .filter(|(&k, &o)| o == r && near_other(k, o))
-            .map(|(&k, _)| k)
-            .collect();
-        let (_, _, size) = min_area_rect(&convex_hull(&cell_centres(&meets, frame)), &[], &[])?;
-        Some(size[0] + frame.resolution_m)
-    };
-    Some(side(a)?.min(side(b)?))
-}
-
-fn find(parent: &mut [usize], mut i: usize) -> usize {
-    while parent[i] != i {
-        parent[i] = parent[parent[i]];
-        i = parent[i];
-    }
-    i
 }
 
 #[cfg(test)]

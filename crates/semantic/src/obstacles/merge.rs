@@ -136,6 +136,45 @@ pub(super) fn join_collinear(
     }
 }
 
+/// An overhead piece lies within another's box if at least this share of its box does: a
+/// duct's or beam's fragment (a patch of its underside, squarish, so at any angle) inside the
+/// box of the duct found along its line. A beam crossing the duct, joined along its own line
+/// first ([`join_collinear`]), lies mostly outside it.
+const PIECE_INSIDE_SHARE: f64 = 0.8;
+
+/// The overhead clusters, each lying within a larger one's box grown by `margin_m` (see
+/// [`PIECE_INSIDE_SHARE`]) at overlapping heights absorbed by it: what the laser saw of a
+/// duct in patches where beams cross it, boxed again inside the duct (garage-6 of seeds 1-10:
+/// 13 such pieces along one duct).
+pub(super) fn absorb_overhead_pieces(
+    mut found: Vec<DetectedObstacle>,
+    margin_m: f64,
+) -> Vec<DetectedObstacle> {
+    found.sort_by(|a, b| (b.size[0] * b.size[1]).total_cmp(&(a.size[0] * a.size[1])));
+    let mut kept: Vec<DetectedObstacle> = Vec::new();
+    for o in found {
+        let part = rect_corners(o.center, o.dir, o.size);
+        let own = polygon_area(&part).max(1e-9);
+        let host = kept.iter().position(|k| {
+            let grown = [k.size[0] + 2.0 * margin_m, k.size[1] + 2.0 * margin_m];
+            o.overhead
+                && k.overhead
+                && o.z_range.0 < k.z_range.1
+                && k.z_range.0 < o.z_range.1
+                && intersection_area(&part, &rect_corners(k.center, k.dir, grown)) / own
+                    >= PIECE_INSIDE_SHARE
+        });
+        match host {
+            Some(n) => {
+                let dir = kept[n].dir;
+                absorb(&mut kept[n], &o, dir);
+            }
+            None => kept.push(o),
+        }
+    }
+    kept
+}
+
 /// `k` takes `o` in: the box along `dir` around both, their hulls, heights and points.
 pub(super) fn absorb(k: &mut DetectedObstacle, o: &DetectedObstacle, dir: DVec2) {
     let mut pts: Vec<DVec2> = rect_corners(k.center, k.dir, k.size).to_vec();
@@ -272,6 +311,29 @@ mod tests {
         );
         back.beside_top = true;
         assert_eq!(absorb_parts(vec![desk, back], 0.1, &config(0.1)).len(), 2);
+    }
+
+    #[test]
+    fn a_ducts_patches_inside_its_box_are_the_duct_and_a_crossing_beam_is_not() {
+        let duct = cluster([5.0, 0.0], DVec2::X, [10.0, 0.6], (2.4, 2.9), true);
+        // Patches of its underside, squarish, at odd angles.
+        let dir = DVec2::from_angle(0.5);
+        let patch = cluster([3.0, 0.05], dir, [0.45, 0.3], (2.4, 2.6), true);
+        let other = cluster([7.0, -0.05], dir.perp(), [0.5, 0.35], (2.5, 2.9), true);
+        // A beam crossing it, and a pipe under it.
+        let beam = cluster([6.0, 0.0], DVec2::Y, [6.0, 0.4], (2.6, 3.0), true);
+        let pipe = cluster([4.0, 0.0], DVec2::X, [0.5, 0.1], (2.1, 2.2), true);
+        // And a chair under its line.
+        let chair = cluster([2.0, 0.0], DVec2::X, [0.5, 0.5], (0.0, 0.9), false);
+        let out = absorb_overhead_pieces(vec![patch, beam, duct, other, pipe, chair], 0.1);
+        assert_eq!(out.len(), 4, "{out:#?}");
+        let duct = out.iter().find(|o| o.size[0] > 9.0).expect("the duct");
+        assert_eq!(duct.support, 300, "{duct:?}");
+        // (its box grown by the patch's corner outside it, within a cell)
+        assert!(
+            duct.size[1] >= 0.6 && duct.size[1] < 0.6 + 2.0 * 0.1,
+            "{duct:?}"
+        );
     }
 
     #[test]

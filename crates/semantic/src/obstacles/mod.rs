@@ -11,7 +11,8 @@
 //!    cells apart form a cluster ([`cluster`]) if their tops (highest points) differ by at most
 //!    `max_top_step_m`: a surface's top changes little from cell to cell, while where one thing
 //!    stands beside another (a chair's seat by a desk, a car by a pillar, a duct under a beam)
-//!    the top steps.
+//!    the top steps. Clusters meeting along more than one thing's side are one thing whose
+//!    parts step by more than that (a boxy cabin over a car's body, [`junctions`]).
 //!    Two things side by side joined by a few cells in the gap between them (mixed pixels,
 //!    a registration's smear) are cut apart at the neck ([`necks`]); things of different
 //!    heights side by side whose tops the mixed pixels between them join by small steps (a
@@ -39,7 +40,8 @@
 //!    its body), and, if lower or if standing beside it and higher (a cabinet behind a desk),
 //!    inside its footprint's hull, is part of it; overhead pieces
 //!    continuing each other along one line across gaps up to `column_max_across_m` (a duct cut
-//!    where beams cross it) are one; thin clusters along a wall's face are its residue,
+//!    where beams cross it) are one, and what lies within such a line's box at its height is
+//!    its patches; thin clusters along a wall's face are its residue,
 //!    dropped ([`residue`]; not beyond another wall crossing its line);
 //!    two thin clusters side by side a thing's depth apart, of one height, are its faces (a
 //!    seat seen along its front and back edges; or a backrest cut off a desk and the seat in
@@ -68,6 +70,7 @@ mod faces;
 mod fit;
 mod frames;
 mod fringe;
+mod junctions;
 mod keep_out;
 
 pub(crate) use cluster::{components, BandGrid};
@@ -96,8 +99,9 @@ use faces::join_faces;
 use frames::{split_frame, MAX_FRAME_FILL, MIN_FRAME_ACROSS_M};
 use fringe::without_fringe;
 use glam::{DVec2, Vec3};
+use junctions::join_meeting;
 use levels::split_levels;
-use merge::{absorb_parts, join_collinear};
+use merge::{absorb_overhead_pieces, absorb_parts, join_collinear};
 use necks::split_at_necks;
 use partitions::classify_partition;
 use pieces::join_partition_pieces;
@@ -196,7 +200,8 @@ pub(crate) fn find_obstacles(
     // 2-3. Low clusters, their tops climbing into the high band.
     let tops = low_grid.tops(z_of);
     let occupied = |k: usize| low_grid.count(k) >= c.min_cell_points;
-    let low_clusters = components(w, h, 2, occupied, |a, b| (tops[a] - tops[b]).abs() <= step)
+    let joined_tops = components(w, h, 2, occupied, |a, b| (tops[a] - tops[b]).abs() <= step);
+    let low_clusters = join_meeting(joined_tops, &frame)
         .into_iter()
         .flat_map(|cells| split_at_necks(cells, &frame))
         .flat_map(|cells| split_levels(cells, &tops, &frame, c.max_top_step_m))
@@ -287,6 +292,7 @@ pub(crate) fn find_obstacles(
     // 5-6. Put together, then classed.
     let out = absorb_parts(out, frame.resolution_m, c);
     let out = join_collinear(out, c.column_max_across_m);
+    let out = absorb_overhead_pieces(out, frame.resolution_m);
     let out = drop_wall_slivers(
         out,
         sc.walls,

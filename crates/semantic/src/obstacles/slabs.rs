@@ -149,23 +149,24 @@ mod tests {
 
     /// A 6 x 6 m floor every 5 cm; a partition 0.08 m thick and 1.4 m high along x from 1 to
     /// 3 m at y = 2 (both faces); a desk 0.75 m deep against its +y face (its top 0.72 m high
-    /// from x 1.3 to 2.5, on four legs).
-    fn partition_and_desk() -> Vec<Vec3> {
+    /// from x `x0` to `x1`, on four legs).
+    fn partition_and_desk(x0: f32, x1: f32) -> Vec<Vec3> {
         let mut points: Vec<Vec3> = (0..120)
             .flat_map(|i| (0..120).map(move |j| Vec3::new(0.05 * i as f32, 0.05 * j as f32, 0.0)))
             .collect();
         points.extend(face(1.0, 3.0, 1.96, 0.09, 1.4));
         points.extend(face(1.0, 3.0, 2.04, 0.09, 1.4));
-        for i in 0..60 {
+        for i in 0..((x1 - x0) / 0.02) as usize {
             for j in 0..37 {
                 points.push(Vec3::new(
-                    1.3 + 0.02 * i as f32,
+                    x0 + 0.02 * i as f32,
                     2.06 + 0.02 * j as f32,
                     0.72,
                 ));
             }
         }
-        for (x, y) in [(1.32, 2.1), (2.46, 2.1), (1.32, 2.78), (2.46, 2.78)] {
+        let (l, r) = (x0 + 0.02, x1 - 0.04);
+        for (x, y) in [(l, 2.1), (r, 2.1), (l, 2.78), (r, 2.78)] {
             points.extend(face(x, x + 0.04, y, 0.09, 0.7));
         }
         points
@@ -211,7 +212,7 @@ mod tests {
         // One cluster over both, as the mixed pixels between them joined them on office-2,
         // -62, -73 and -78 (seeds 1-80): 0.9 m thick, no partition.
         let cluster = test_cluster([2.0, 2.4], DVec2::X, [2.1, 0.9], (0.0, 1.4), false);
-        let (o, rest) = classified(&partition_and_desk(), cluster);
+        let (o, rest) = classified(&partition_and_desk(1.3, 2.5), cluster);
         assert_eq!(o.class, EntityClass::Wall, "{o:?}");
         assert!((o.center.y - 2.0).abs() < 0.03 && o.size[1] < 0.16, "{o:?}");
         assert!((o.size[0] - 2.0).abs() < 0.15, "{o:?}");
@@ -225,6 +226,21 @@ mod tests {
         );
         assert!(near < 2.06 + 0.15 && (far - 2.78).abs() < 0.03, "{desk:?}");
         assert!((desk.z_range.1 - 0.72).abs() < 0.03, "{desk:?}");
+    }
+
+    /// Regression (office-9 of seeds 1-10: a desk 1.30 m long against a partition 1.56 m
+    /// long ran along more of it than what stands against a partition was allowed to, and the
+    /// partition was lost as the face of a block). A block's faces end at its top; a desk
+    /// ends far below the partition's.
+    #[test]
+    fn a_desk_nearly_as_long_as_its_partition_is_no_face_of_a_block() {
+        let cluster = test_cluster([2.0, 2.4], DVec2::X, [2.1, 0.9], (0.0, 1.4), false);
+        let (o, rest) = classified(&partition_and_desk(1.15, 2.85), cluster);
+        assert_eq!(o.class, EntityClass::Wall, "{o:?}");
+        assert!((o.center.y - 2.0).abs() < 0.03 && o.size[1] < 0.16, "{o:?}");
+        assert_eq!(rest.len(), 1, "{rest:?}");
+        assert!((rest[0].z_range.1 - 0.72).abs() < 0.03, "{rest:?}");
+        assert!(rest[0].size[0] > 0.8 * o.size[0], "{rest:?} {o:?}");
     }
 
     #[test]

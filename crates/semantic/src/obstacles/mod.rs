@@ -45,7 +45,9 @@
 //!    dropped ([`residue`]; not beyond another wall crossing its line);
 //!    two thin clusters side by side a thing's depth apart, of one height, are its faces (a
 //!    seat seen along its front and back edges; or a backrest cut off a desk and the seat in
-//!    front of it, [`faces`]); a standing cluster along a wall
+//!    front of it, [`faces`]); a thin cluster longer than a seat standing in line with a
+//!    block's side, lower than its top, is that side seen past the top that hid it (a car's
+//!    body side along and past its cabin, [`block_sides`]); a standing cluster along a wall
 //!    whose floor between it and the wall was never seen (a cabinet seen from the room as its
 //!    front face) reaches back to the wall ([`backing`]).
 //! 6. Classes ([`classify`]): a low cluster standing on the floor, reaching the ceiling and at
@@ -63,6 +65,7 @@
 //!    (a glass one's returns above head height) are its residue, dropped ([`residue`]).
 
 mod backing;
+mod block_sides;
 mod classify;
 mod cluster;
 mod config;
@@ -92,6 +95,7 @@ use crate::map::OrientedBox;
 use crate::points::quantile;
 use crate::walls::WallFit;
 use backing::{back_onto_walls, floor_seen};
+use block_sides::join_block_sides;
 use classify::{classify, fit_cluster};
 use cloud::EntityClass;
 pub use config::ObstacleConfig;
@@ -299,7 +303,8 @@ pub(crate) fn find_obstacles(
         c.sliver_max_across_m,
         c.wall_margin_m + c.sliver_max_across_m,
     );
-    let mut out = join_faces(out, c);
+    let out = join_faces(out, c);
+    let mut out = join_block_sides(out, frame.resolution_m, c);
     let seen = floor_seen(&frame, sc.points, sc.floor, c.min_above_floor_m);
     back_onto_walls(&mut out, sc.walls, &frame, &seen, sc.floor);
     let mut stood_against = Vec::new();

@@ -74,6 +74,19 @@ pub(super) fn cell_centres(cells: &[usize], frame: &ImageFrame) -> Vec<DVec2> {
         .collect()
 }
 
+/// The grid cells (indices, row-major, `width` wide) up to two cells from cell `k` along
+/// either axis, `k` itself included: the cells that join `k`'s cluster. (Rows past the grid's
+/// end are the caller's to ignore: they are looked up, never indexed.)
+pub(super) fn within_two_cells(k: usize, width: usize) -> impl Iterator<Item = usize> {
+    let (x, y) = ((k % width) as isize, (k / width) as isize);
+    (-2..=2isize).flat_map(move |dy| {
+        (-2..=2isize).filter_map(move |dx| {
+            let (nx, ny) = (x + dx, y + dy);
+            (nx >= 0 && ny >= 0 && nx < width as isize).then(|| ny as usize * width + nx as usize)
+        })
+    })
+}
+
 /// `values` counted in slices `cell_m` wide, the first centred on the smallest: that smallest
 /// value and the counts; `None` for no values.
 pub(super) fn slice_counts(values: &[f64], cell_m: f64) -> Option<(f64, Vec<usize>)> {

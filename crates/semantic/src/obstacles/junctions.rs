@@ -10,7 +10,7 @@
 //! one thing ([`join_meeting`]); the parts of a cluster found at different levels stay together
 //! where they meet along more than a thing's side ([`MAX_JUNCTION_M`], [`super::levels`]).
 
-use super::cluster::cell_centres;
+use super::cluster::{cell_centres, within_two_cells};
 use super::fit::{convex_hull, min_area_rect};
 use crate::image_frame::ImageFrame;
 use std::collections::{HashMap, HashSet};
@@ -52,17 +52,10 @@ pub(super) fn join_meeting(clusters: Vec<Vec<usize>>, frame: &ImageFrame) -> Vec
     // 1. The pairs of clusters with cells up to two apart.
     let mut pairs: HashSet<(usize, usize)> = HashSet::new();
     for (&k, &a) in &label {
-        let (x, y) = ((k % width) as isize, (k / width) as isize);
-        for dy in -2..=2isize {
-            for dx in -2..=2isize {
-                let (nx, ny) = (x + dx, y + dy);
-                if nx < 0 || ny < 0 || nx >= width as isize {
-                    continue;
-                }
-                if let Some(&b) = label.get(&(ny as usize * width + nx as usize)) {
-                    if a < b {
-                        pairs.insert((a, b));
-                    }
+        for j in within_two_cells(k, width) {
+            if let Some(&b) = label.get(&j) {
+                if a < b {
+                    pairs.insert((a, b));
                 }
             }
         }
@@ -114,18 +107,7 @@ pub(super) fn junction(
         .map(|(&k, &r)| (k, r))
         .collect();
     let near_other = |k: usize, r: usize| {
-        let (x, y) = ((k % width) as isize, (k / width) as isize);
-        (-2..=2isize).any(|dy| {
-            (-2..=2isize).any(|dx| {
-                let (nx, ny) = (x + dx, y + dy);
-                nx >= 0
-                    && ny >= 0
-                    && nx < width as isize
-                    && of
-                        .get(&(ny as usize * width + nx as usize))
-                        .is_some_and(|&o| o != r)
-            })
-        })
+        within_two_cells(k, width).any(|j| of.get(&j).is_some_and(|&o| o != r))
     };
     let side = |r: usize| -> Option<f64> {
         let meets: Vec<usize> = of

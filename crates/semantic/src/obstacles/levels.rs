@@ -12,7 +12,7 @@
 //! longer than one thing's side ([`MAX_JUNCTION_M`]). The parts of one thing meet along its whole
 //! width: a car's cabin (1.4 m) and its bonnet (1.0 m) along the windscreen, 1.6 m and more.
 
-use super::cluster::components_of;
+use super::cluster::{components_of, within_two_cells};
 use super::junctions::{find, junction, MAX_JUNCTION_M};
 use super::min_surface_cells;
 use crate::image_frame::ImageFrame;
@@ -144,19 +144,11 @@ fn nearest_core(cells: &[usize], cores: &[(f64, Vec<usize>)], width: usize) -> V
         }
     }
     while let Some(i) = queue.pop_front() {
-        let k = cells[i];
-        let (x, y) = ((k % width) as isize, (k / width) as isize);
-        for dy in -2..=2isize {
-            for dx in -2..=2isize {
-                let (nx, ny) = (x + dx, y + dy);
-                if nx < 0 || ny < 0 || nx >= width as isize {
-                    continue;
-                }
-                if let Some(&j) = pos.get(&(ny as usize * width + nx as usize)) {
-                    if region[j] == usize::MAX {
-                        region[j] = region[i];
-                        queue.push_back(j);
-                    }
+        for n in within_two_cells(cells[i], width) {
+            if let Some(&j) = pos.get(&n) {
+                if region[j] == usize::MAX {
+                    region[j] = region[i];
+                    queue.push_back(j);
                 }
             }
         }

@@ -156,16 +156,7 @@ mod tests {
     /// are clusters of their own; they meet along the car's width.
     #[test]
     fn a_cars_cabin_and_bonnet_clustered_apart_are_one_thing() {
-        // A car 4.4 x 1.8 m: body top 1.0, a cabin 2.2 m long over its middle at 1.44.
-        let (before, after) = clusters(|p| {
-            if !(p.x > 1.0 && p.x < 5.4 && p.y > 2.0 && p.y < 3.8) {
-                None
-            } else if p.x > 2.1 && p.x < 4.3 {
-                Some(1.44)
-            } else {
-                Some(1.0)
-            }
-        });
+        let (before, after) = clusters(crate::obstacles::test_car_top);
         assert_eq!(
             before.len(),
             3,

@@ -260,16 +260,7 @@ mod tests {
     #[test]
     fn a_car_whose_cabin_meets_its_bonnet_along_its_width_stays_whole() {
         let frame = crate::obstacles::test_grid();
-        // A car 4.4 x 1.8 m: body top 1.0, a cabin 2.2 m long over its middle at 1.44.
-        let (cells, tops) = scene(&frame, |p| {
-            if !(p.x > 1.0 && p.x < 5.4 && p.y > 2.0 && p.y < 3.8) {
-                None
-            } else if p.x > 2.1 && p.x < 4.3 {
-                Some(1.44)
-            } else {
-                Some(1.0)
-            }
-        });
+        let (cells, tops) = scene(&frame, crate::obstacles::test_car_top);
         let n = cells.len();
         let parts = split_levels(cells, &tops, &frame, 0.1);
         assert_eq!(

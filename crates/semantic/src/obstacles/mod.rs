@@ -337,6 +337,19 @@ pub(crate) fn test_grid() -> ImageFrame {
     }
 }
 
+/// The top of a boxy car 4.4 x 1.8 m at `p` (the levels' and junctions' tests): its body's at
+/// 1.0 m, a cabin 2.2 m long over its middle at 1.44 m; `None` off the car.
+#[cfg(test)]
+pub(crate) fn test_car_top(p: DVec2) -> Option<f32> {
+    if !(p.x > 1.0 && p.x < 5.4 && p.y > 2.0 && p.y < 3.8) {
+        None
+    } else if p.x > 2.1 && p.x < 4.3 {
+        Some(1.44)
+    } else {
+        Some(1.0)
+    }
+}
+
 /// A cluster with the box `size` around `center` along `dir` as its hull, z range `z` (the
 /// merge steps' tests).
 #[cfg(test)]

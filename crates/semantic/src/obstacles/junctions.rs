@@ -62,7 +62,7 @@ pub(super) fn join_meeting(clusters: Vec<Vec<usize>>, frame: &ImageFrame) -> Vec
     }
     let mut pairs: Vec<(usize, usize)> = pairs.into_iter().collect();
     pairs.sort_unstable();
-    // 2. Those meeting along more than a thing's side are one.
+    // 2. Those meeting along a thing's width are one.
     let mut parent: Vec<usize> = (0..clusters.len()).collect();
     for (a, b) in pairs {
         let cells: Vec<usize> = clusters[a].iter().chain(&clusters[b]).copied().collect();

@@ -37,7 +37,7 @@ const MANY: u32 = u32::MAX;
 pub(crate) enum Vouch {
     /// No other scan.
     None,
-    /// This scan only.
+    /// Exactly one other scan: this one.
     One(u32),
     /// Two or more, or any where the point's own returns are sparse.
     Many,

@@ -246,21 +246,20 @@ pub(crate) fn finish(
     })
 }
 
-/// The fewest points on a step of those that pass, and the one step that falls short if any
-/// (its index in `per_step`), where the steps' counts `per_step` (from the lowest checked)
-/// make a staircase: every step passes, or all but one. Where the envelope shows every level
-/// of a flight longer than the shortest, or all but one (`levels_seen`), the step that falls
-/// short may be any that holds points: a side face sampled sparsely between two scans'
-/// views, or at grazing angles far along a long flight seen from its top end (office-3's
-/// third step held 3 returns). On a flight
-/// seen from its side only (`side_face`), a step between two that pass may fall short however
-/// many levels were seen, and hold no point at all: a flight does not skip a step, and
-/// clutter in front of a side face hides one (office-3 as surveyed clear of its doors'
-/// swings: 7 of its 8 steps' faces seen, the third one not, and 5 of its 8 levels in the
-/// envelope). A side face fills every step's band under the flight's line for a count near
-/// the true one, so an empty band is a hidden step there; seen on treads and risers, an empty
-/// step is more often a count that is off (office-74's upper flight read as 5 steps of
-/// 0.135 m over the true 4 of 0.158 m, its second step empty).
+/// The fewest points on a step of those that pass, and the one step that falls short if any (its
+/// index in `per_step`), where the steps' counts `per_step` (from the lowest checked) make a
+/// staircase: every step passes, or all but one. Where the envelope shows every level of a flight
+/// longer than the shortest, or all but one (`levels_seen`), the step that falls short may be any
+/// that holds points: a side face sampled sparsely between two scans' views, or at grazing angles
+/// far along a long flight seen from its top end (office-3's third step held 3 returns). On a
+/// flight seen from its side only (`side_face`), a step between two that pass may fall short
+/// however many levels were seen, and hold no point at all: a flight does not skip a step, and
+/// clutter in front of a side face hides one (office-3 as surveyed clear of its doors' swings: 7 of
+/// its 8 steps' faces seen, the third one not, and 5 of its 8 levels in the envelope). A side face
+/// fills every step's band under the flight's line for a count near the true one, so an empty band
+/// is a hidden step there; seen on treads and risers, an empty step is more often a count that is
+/// off (office-74's upper flight read as 5 steps of 0.135 m over the true 4 of 0.158 m, its second
+/// step empty).
 fn supported(
     per_step: &[usize],
     levels_seen: bool,

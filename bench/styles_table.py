@@ -43,7 +43,14 @@ def row(name, evs, poses):
     pitch = [abs(m["pitch_error_deg"]) for e in evs for m in e.get("ramp_matches", [])]
     ramps = (f"{rp['matched']}/{rp['expected']} ({rp['detected']})"
              + (f", {max(pitch):.2f}" if pitch else "")) if any("ramps" in e for e in evs) else "-"
-    return (f"| {name} | {poses} | {f1(w):.3f} | {f1(d):.3f} | {exact}/{st['expected']} | {exact_full}/{len(full)} | "
+    # Walls: the share of the true walls' seen length along which a map wall runs (evaluations
+    # older than `wall_length`: -).
+    if all("wall_length" in e for e in evs):
+        seen = sum(e["wall_length"]["expected_m"] for e in evs)
+        covered = f"{sum(e['wall_length']['covered_m'] for e in evs) / seen:.3f}" if seen else "1.000"
+    else:
+        covered = "-"
+    return (f"| {name} | {poses} | {f1(w):.3f} | {covered} | {f1(d):.3f} | {exact}/{st['expected']} | {exact_full}/{len(full)} | "
             f"{false_stairs} | {recall:.3f} ({o['matched']}/{o['expected']}) | {precision} | {phantoms} | {beams} | {100 * err:.1f} | "
             f"{bm['matched']}/{bm['expected']} ({bm['detected']}) | {ramps} |")
 
@@ -53,7 +60,9 @@ lines = [
     f"`bash bench/styles.sh` (seeds {' '.join(seeds)}; laser `{laser}`): each building generated with",
     "`semsim building generate --style S --seed N`, scanned along `semsim scan --survey` poses,",
     "registered from the simulated odometry, mapped and scored with `semsim eval map --cloud`.",
-    "F1 and recall are over all buildings of the style (summed counts); stairs exact: staircases",
+    "F1 and recall are over all buildings of the style (summed counts); walls covered: the share of",
+    "the true walls' seen length along which a map wall runs (a wall matched by a map wall over",
+    "half of it counts in F1 however much is missing); stairs exact: staircases",
     "found with the true step count / staircases the scans saw; every step seen: the same for the",
     "flights whose every step the scans saw (at least 5 returns on its tread, riser or the top edge",
     "of its side; a step never seen cannot be counted); false stairs: staircases",
@@ -66,9 +75,9 @@ lines = [
     "floor, ceiling and returns no entity explains: what is left of people, mixed pixels).",
     "",
 ]
-header = ("| building | poses | walls F1 | doors F1 | stairs exact | every step seen | false stairs | "
+header = ("| building | poses | walls F1 | walls covered | doors F1 | stairs exact | every step seen | false stairs | "
           "obstacles recall | obstacles precision | phantoms | beams as walls | endpoint error (cm) | beams found (reported) | ramps |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 for style in styles:
     lines += [f"## {style}", "", header]
     evs, all_poses = [], 0
@@ -78,7 +87,7 @@ for style in styles:
         poses = sum(1 for n in os.listdir(scans) if n.endswith(".pcd")) if os.path.isdir(scans) else 0
         if os.path.exists(os.path.join(d, "failed.txt")):
             what = open(os.path.join(d, "failed.txt")).read().strip()
-            lines.append(f"| seed {seed} | {poses} | failed at `{what}` (see `{d}/log.txt`) | | | | | | | | | | | |")
+            lines.append(f"| seed {seed} | {poses} | failed at `{what}` (see `{d}/log.txt`) | | | | | | | | | | | | |")
             continue
         ev = json.load(open(os.path.join(d, "eval.json")))
         evs.append(ev)

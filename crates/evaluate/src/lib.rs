@@ -83,7 +83,7 @@ pub use obstacles::{ObstacleMatch, UnmatchedObstacle};
 pub use ramps::RampMatch;
 pub use score::ClassScore;
 pub use stairs::{StairsMatch, StairsSeen};
-pub use walls::WallMatch;
+pub use walls::{WallLength, WallMatch};
 
 use cloud::PointCloud;
 use doors::evaluate_doors;
@@ -128,6 +128,9 @@ pub struct Evaluation {
     /// Map walls standing where only beams or columns stand (their centre line mostly on them).
     #[serde(default)]
     pub walls_on_beams_or_columns: usize,
+    /// The observed length of the true walls and how much of it map walls cover.
+    #[serde(default)]
+    pub wall_length: WallLength,
     /// Mean distance of matched walls' ends from the observed ends.
     pub wall_endpoint_error_mean_m: f64,
     /// Largest such distance.

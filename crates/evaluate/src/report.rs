@@ -37,6 +37,11 @@ impl fmt::Display for Evaluation {
         )?;
         write!(
             f,
+            "\nwall length: {:.2} of {:.2} m covered ({:.3})",
+            self.wall_length.covered_m, self.wall_length.expected_m, self.wall_length.recall
+        )?;
+        write!(
+            f,
             "\nwalls on beams or columns: {}",
             self.walls_on_beams_or_columns
         )?;
@@ -88,6 +93,7 @@ mod tests {
             "stairs",
             "0.500",
             "wall endpoint error",
+            "wall length",
             "obstacles",
             "beams",
             "ramps",

@@ -37,6 +37,19 @@ pub struct WallMatch {
     pub one_face: bool,
 }
 
+/// The expected walls' observed length and how much of it map walls cover (see
+/// [`covered_length`]): where the matching of pieces counts a wall found by one map wall over
+/// half of it, this counts the stretches no map wall runs along.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct WallLength {
+    /// The expected pieces' total length (metres).
+    pub expected_m: f64,
+    /// Their length along which a map wall runs (within the direction and offset gates).
+    pub covered_m: f64,
+    /// `covered_m / expected_m` (1 when nothing was expected).
+    pub recall: f64,
+}
+
 /// An expected wall: the observed piece of a true wall (the whole wall where nothing was
 /// observed), in the map frame.
 struct Piece {
@@ -291,8 +304,42 @@ pub(crate) fn evaluate_walls(
         }
     }
     ev.walls = ClassScore::new(pieces.len(), walls.len(), ev.wall_matches.len());
+    ev.wall_length = covered_length(&pieces, &geometries, c);
     if !errors.is_empty() {
         ev.wall_endpoint_error_mean_m = errors.iter().sum::<f64>() / errors.len() as f64;
         ev.wall_endpoint_error_max_m = errors.iter().copied().fold(0.0, f64::max);
+    }
+}
+
+/// The expected pieces' length along which some map wall runs: per piece, the union of the
+/// extents of every map wall that passes its direction and offset gates, clipped to the piece
+/// (two map walls along one piece both count; a stretch none runs along is missed, however the
+/// pieces were matched).
+fn covered_length(pieces: &[Piece], walls: &[&semantic::WallInfo], c: &EvalConfig) -> WallLength {
+    let (mut expected_m, mut covered_m) = (0.0, 0.0);
+    for p in pieces {
+        expected_m += p.range.1 - p.range.0;
+        let mut spans: Vec<(f64, f64)> = walls
+            .iter()
+            .filter_map(|w| extent_along(p, w, c))
+            .map(|(d0, d1, ..)| (d0.max(p.range.0), d1.min(p.range.1)))
+            .filter(|(a, b)| b > a)
+            .collect();
+        spans.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let mut reach = f64::NEG_INFINITY;
+        for (a, b) in spans {
+            covered_m += (b - a.max(reach)).max(0.0);
+            reach = reach.max(b);
+        }
+    }
+    let recall = if expected_m > 0.0 {
+        covered_m / expected_m
+    } else {
+        1.0
+    };
+    WallLength {
+        expected_m,
+        covered_m,
+        recall,
     }
 }

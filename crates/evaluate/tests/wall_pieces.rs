@@ -106,3 +106,27 @@ fn a_map_wall_through_the_unseen_stretch_between_two_pieces_finds_both() {
     assert_eq!((ev.walls.expected, ev.walls.matched), (2, 1));
     assert_eq!(ev.missed, vec!["walls[0] [18.40, 23.98] m".to_string()]);
 }
+
+/// A map wall over two thirds of a seen piece is a match (its ends are off), and the wall
+/// length says how much of the piece no map wall runs along; a map wall over all of it
+/// covers it whole.
+#[test]
+fn the_wall_length_counts_a_seen_stretch_no_map_wall_runs_along() {
+    let b = Building::from_toml_str(BUILDING, Path::new("one wall")).expect("building");
+    let id = BuildingGeometry::new(&b)
+        .entities()
+        .iter()
+        .find(|e| e.name == "walls[0]")
+        .map(|e| e.id)
+        .expect("the wall's id");
+    let (points, labels) = face(0.0, 24.0, id);
+    let mut cloud = PointCloud::from_points(points);
+    cloud.labels = Some(labels);
+    let ev = evaluate::evaluate(&map_with_wall(0.0, 16.0), &b, Some(&cloud));
+    assert_eq!((ev.walls.expected, ev.walls.matched), (1, 1));
+    assert!((ev.wall_length.expected_m - 23.98).abs() < 0.01, "{ev}");
+    assert!((ev.wall_length.covered_m - 16.0).abs() < 0.01, "{ev}");
+    assert!((ev.wall_length.recall - 16.0 / 23.98).abs() < 0.001, "{ev}");
+    let whole = evaluate::evaluate(&map_with_wall(-0.5, 24.5), &b, Some(&cloud));
+    assert!((whole.wall_length.recall - 1.0).abs() < 1e-9, "{whole}");
+}

@@ -37,9 +37,9 @@ pub struct WallMatch {
     pub one_face: bool,
 }
 
-/// The expected walls' observed length and how much of it map walls cover (see
-/// [`covered_length`]): where the matching of pieces counts a wall found by one map wall over
-/// half of it, this counts the stretches no map wall runs along.
+/// The expected walls' observed length and how much of it map walls cover: where the matching
+/// of pieces counts a wall found by one map wall over half of it, this counts the stretches no
+/// map wall runs along (several map walls along one piece count once).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct WallLength {
     /// The expected pieces' total length (metres).

@@ -106,7 +106,7 @@ use glam::{DVec2, Vec3};
 use junctions::join_meeting;
 use levels::split_levels;
 use merge::{absorb_overhead_pieces, absorb_parts, join_collinear};
-use necks::split_at_necks;
+use necks::{split_at_gaps_in_returns, split_at_necks};
 use partitions::classify_partition;
 use pieces::join_partition_pieces;
 use pillar_rows::{may_be_a_pillar_row, split_pillar_row};
@@ -208,6 +208,7 @@ pub(crate) fn find_obstacles(
     let low_clusters = join_meeting(joined_tops, &frame)
         .into_iter()
         .flat_map(|cells| split_at_necks(cells, &frame))
+        .flat_map(|cells| split_at_gaps_in_returns(cells, &frame, &|k| low_grid.count(k)))
         .flat_map(|cells| split_levels(cells, &tops, &frame, c.max_top_step_m))
         .map(|cells| without_fringe(cells, w, frame.resolution_m))
         .flat_map(|cells| {

@@ -12,7 +12,7 @@
 
 use super::classify::reaches;
 use super::cluster::BandGrid;
-use super::necks::{split_at_weighed_necks, Necks};
+use super::necks::{split_at_weighed_necks, Necks, MIN_SIDE_M};
 use super::{DetectedObstacle, ObstacleConfig};
 use crate::image_frame::ImageFrame;
 
@@ -44,6 +44,8 @@ pub(super) fn split_pillar_row(
     let by_returns = Necks {
         weight: &|k| grid.count(k),
         share: GAP_SHARE,
+        min_side_m: MIN_SIDE_M,
+        min_width_m: 0.0,
     };
     split_at_weighed_necks(cells, frame, &by_returns)
 }

@@ -76,8 +76,8 @@ fn map_with_wall(x0: f64, x1: f64) -> SemanticMap {
     map
 }
 
-#[test]
-fn a_map_wall_through_the_unseen_stretch_between_two_pieces_finds_both() {
+/// The one-wall building and its wall's ground-truth label id.
+fn building_and_wall_id() -> (Building, u32) {
     let b = Building::from_toml_str(BUILDING, Path::new("one wall")).expect("building");
     let id = BuildingGeometry::new(&b)
         .entities()
@@ -85,6 +85,12 @@ fn a_map_wall_through_the_unseen_stretch_between_two_pieces_finds_both() {
         .find(|e| e.name == "walls[0]")
         .map(|e| e.id)
         .expect("the wall's id");
+    (b, id)
+}
+
+#[test]
+fn a_map_wall_through_the_unseen_stretch_between_two_pieces_finds_both() {
+    let (b, id) = building_and_wall_id();
     // Seen from 0 to 16.5 m and from 18.4 to 24 m: 1.9 m unseen (more than `piece_gap_m`).
     let (mut points, mut labels) = face(0.0, 16.5, id);
     let (p2, l2) = face(18.4, 24.0, id);
@@ -112,13 +118,7 @@ fn a_map_wall_through_the_unseen_stretch_between_two_pieces_finds_both() {
 /// covers it whole.
 #[test]
 fn the_wall_length_counts_a_seen_stretch_no_map_wall_runs_along() {
-    let b = Building::from_toml_str(BUILDING, Path::new("one wall")).expect("building");
-    let id = BuildingGeometry::new(&b)
-        .entities()
-        .iter()
-        .find(|e| e.name == "walls[0]")
-        .map(|e| e.id)
-        .expect("the wall's id");
+    let (b, id) = building_and_wall_id();
     let (points, labels) = face(0.0, 24.0, id);
     let mut cloud = PointCloud::from_points(points);
     cloud.labels = Some(labels);

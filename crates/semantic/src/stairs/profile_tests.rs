@@ -1,7 +1,6 @@
 //! Tests of `profile`: fits to synthetic flights and the regressions they pin.
 
 use super::*;
-use crate::stairs::tests::returns_by_part;
 
 /// A straight flight climbing +X from x = 0: `steps` steps of `rise` x `run`, a landing
 /// 1.1 m deep, 1.2 m wide; points every 2 cm on treads and risers, 10 cm across.
@@ -381,32 +380,4 @@ fn returns_over_the_top_riser_do_not_add_a_step() {
     assert_eq!((p.steps, p.found), (3, 3), "rise {} run {}", p.rise, p.run);
     assert!((p.rise - rise).abs() < 0.01, "rise {}", p.rise);
     assert!((p.run - run).abs() < 0.01, "run {}", p.run);
-}
-
-/// Regression (office-311 of seeds 311-315, blind): the upper flight of a staircase with a mid
-/// landing, 4 steps of 0.156 m, read as 5. The lower flight's rise, read 1 cm low (0.146 m),
-/// lay between the rises of 4 steps (0.163 m, every level found) and of 5 (0.131 m, one level
-/// empty), 0.5 % of the rise nearer the latter. A count that finds every level now comes before
-/// a nearer rise that leaves one empty. (The flight's returns, from the bench's map.)
-#[test]
-fn a_hint_between_two_counts_does_not_pick_the_one_that_misses_a_level() {
-    let c = StairsConfig::default();
-    let (all, own) = returns_by_part(include_str!("../../tests/data/office311_upper_flight.txt"));
-    assert_eq!(all.len(), 619);
-    let pts: Vec<(DVec2, f64)> = all
-        .iter()
-        .zip(&own)
-        .filter(|(_, &k)| k == 1)
-        .map(|(p, _)| *p)
-        .collect();
-    let p = profile_near(&pts, &all, DVec2::X, &c, Some(0.1464)).expect("a flight");
-    assert_eq!(
-        (p.steps, p.found),
-        (4, 4),
-        "rise {} run {} found {}",
-        p.rise,
-        p.run,
-        p.found
-    );
-    assert!((p.rise - 0.156).abs() < 0.01, "rise {}", p.rise);
 }

@@ -1,5 +1,7 @@
-//! Regressions of upper flights parted from the flight below them (`upper`).
+//! Regressions of upper flights: parted from the flight below them (`upper`), and counted at
+//! its rise (`profile`).
 
+use super::profile::profile_near;
 use super::tests::{over_floor, returns_by_part};
 use super::*;
 use crate::points::XyIndex;
@@ -158,4 +160,32 @@ fn an_upper_flights_first_riser_in_the_lower_flights_part_is_one_of_its_steps() 
     assert!((upper.rise - 0.158).abs() < 0.01, "rise {}", upper.rise);
     // Its first riser 2.26 m along (17.90 m in the map), past the landing.
     assert!((upper.start.x - 2.26).abs() < 0.06, "start {}", upper.start);
+}
+
+/// Regression (office-311 of seeds 311-315, blind): the upper flight of a staircase with a mid
+/// landing, 4 steps of 0.156 m, read as 5. The lower flight's rise, read 1 cm low (0.146 m),
+/// lay between the rises of 4 steps (0.163 m, every level found) and of 5 (0.131 m, one level
+/// empty), 0.5 % of the rise nearer the latter. A count that finds every level now comes before
+/// a nearer rise that leaves one empty. (The flight's returns, from the bench's map.)
+#[test]
+fn a_hint_between_two_counts_does_not_pick_the_one_that_misses_a_level() {
+    let c = StairsConfig::default();
+    let (all, own) = returns_by_part(include_str!("../../tests/data/office311_upper_flight.txt"));
+    assert_eq!(all.len(), 619);
+    let pts: Vec<(DVec2, f64)> = all
+        .iter()
+        .zip(&own)
+        .filter(|(_, &k)| k == 1)
+        .map(|(p, _)| *p)
+        .collect();
+    let p = profile_near(&pts, &all, DVec2::X, &c, Some(0.1464)).expect("a flight");
+    assert_eq!(
+        (p.steps, p.found),
+        (4, 4),
+        "rise {} run {} found {}",
+        p.rise,
+        p.run,
+        p.found
+    );
+    assert!((p.rise - 0.156).abs() < 0.01, "rise {}", p.rise);
 }

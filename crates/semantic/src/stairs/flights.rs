@@ -278,7 +278,7 @@ fn one_flight(
 }
 
 /// The points `(xy, height)` before `end` along `dir`.
-fn before(pts: &[(DVec2, f64)], dir: DVec2, end: f64) -> Vec<(DVec2, f64)> {
+pub(super) fn before(pts: &[(DVec2, f64)], dir: DVec2, end: f64) -> Vec<(DVec2, f64)> {
     pts.iter()
         .filter(|(q, _)| q.dot(dir) < end)
         .copied()

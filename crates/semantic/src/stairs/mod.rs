@@ -39,8 +39,11 @@
 //! `min_step_fill` fraction of what the local point density promises), at least
 //! `min_width_m` wide; one seen from its side only gets `default_width_m` only where the floor
 //! beside it is hidden (a staircase hides the floor under it; clutter beside a side face does
-//! not) and its returns on the steps lie on one vertical plane (clutter at step heights
-//! along a line, such as a crate's edge and a person's streak crossing it, does not).
+//! not), its returns on the steps lie on one vertical plane (clutter at step heights
+//! along a line, such as a crate's edge and a person's streak crossing it, does not) and that
+//! plane holds nothing more than a rise over its steps (a dark cabinet's front does: see
+//! `taller_face`). A flight ends on a level: one whose top step has none beyond it is read
+//! again without it (something standing at a flight's top, see `Search`).
 //!
 //! A flight whose top riser stands alone one run past its top step (its tread above the laser,
 //! the side face unseen there, so the blobs part it from the flight) gets that step back (see
@@ -78,6 +81,7 @@ mod risers;
 mod search;
 mod side_faces;
 mod surface;
+mod taller_face;
 mod top_end;
 mod upper;
 
@@ -377,6 +381,8 @@ fn highest_first(mut pts: Vec<(DVec2, f64)>) -> Vec<(DVec2, f64)> {
 
 #[cfg(test)]
 mod landing_tests;
+#[cfg(test)]
+mod standing_tests;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]

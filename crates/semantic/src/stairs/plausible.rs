@@ -6,6 +6,7 @@ use super::climbs_on::face_climbs_on;
 use super::floor::{floor_density, floor_in_strip};
 use super::oblique_face::one_face_off_deg;
 use super::profile::Profile;
+use super::taller_face::face_goes_on_above;
 use super::top_end::top_end;
 use super::{DetectedStairs, StairsConfig};
 use crate::points::quantile;
@@ -134,6 +135,11 @@ pub(crate) fn finish(
             return None;
         }
         if !side_face_is_one_plane(pts, &p, c.min_step_points) {
+            return None;
+        }
+        // Over its steps is open air; a face going on up is something taller's (see
+        // `taller_face`).
+        if face_goes_on_above(pts, &p, face, c.min_step_points) {
             return None;
         }
         // Its face ends level past its top step; a ramp's climbs on (see `climbs_on`).

@@ -57,7 +57,8 @@ pub(super) fn classify_partition(
     // 2. A cluster too thick for one: the thin slab holding most of its returns, and what
     //    stands against it. What stands against a partition (a desk, a chair) runs along part
     //    of it, while a block's other faces (a crate's, a row of crates') run along the whole
-    //    face taken ([`MAX_BESIDE_SHARE`]). And the slab stays under head height: a door's
+    //    face taken ([`MAX_BESIDE_SHARE`]), or stand across it at one of its ends (see
+    //    [`end_face`]). And the slab stays under head height: a door's
     //    leaf standing open (2 m or more) is as thin, with its frame beside it. A block's
     //    faces end at its top: what rises above the slab's top by more than a cell is no face
     //    of its block (a person who walked along the partition, a shelf standing there), and
@@ -71,9 +72,9 @@ pub(super) fn classify_partition(
         return Vec::new();
     };
     let along_slab = |r: &DetectedObstacle| 2.0 * half_extent_along(r.dir, r.size, slab.dir);
+    let level = |r: &DetectedObstacle| (r.z_range.1 - slab.z_range.1).abs() <= c.cell_m;
     let blocks_face = |r: &DetectedObstacle| {
-        along_slab(r) >= MAX_BESIDE_SHARE * slab.size[0]
-            && (r.z_range.1 - slab.z_range.1).abs() <= c.cell_m
+        level(r) && (along_slab(r) >= MAX_BESIDE_SHARE * slab.size[0] || end_face(r, &slab, c))
     };
     if rest.iter().any(blocks_face) || slab.z_range.1 - sc.floor > c.head_height_m {
         return Vec::new();
@@ -96,6 +97,23 @@ pub(super) fn classify_partition(
     *o = slab;
     rest
 }
+
+/// True if `r` (what lies beside the thin slab `slab` of a thicker cluster) is an end face of
+/// the block whose front the slab is: across the slab (within 60 degrees of square to it), at
+/// one of its ends (within a cell), and shorter than a partition (a partition's other leg, in
+/// an L, is as long as one). Seen from its front and one end, a tall crate 0.4 m deep (mixed-344
+/// of seeds 341-345, mixed-284 of 281-285: 1.3 m long, 1.4-1.5 m tall) shows its front as a
+/// slab and the seen part of its end, 0.2 m of it, level with the slab's top; what stands
+/// against a partition is lower than it, and along it.
+fn end_face(r: &DetectedObstacle, slab: &DetectedObstacle, c: &ObstacleConfig) -> bool {
+    let along = (r.center - slab.center).dot(slab.dir).abs();
+    r.dir.dot(slab.dir).abs() < END_FACE_COS
+        && (along - slab.size[0] / 2.0).abs() <= c.cell_m
+        && r.size[0] < c.partition_min_length_m
+}
+
+/// An end face stands across the slab: the cosine of the largest angle between them.
+const END_FACE_COS: f64 = 0.5;
 
 /// Why `o` stands as a partial-height wall does (see the module docs), and its top (where its
 /// face ends, [`face_top`]), or `None`. Where it is

@@ -265,3 +265,65 @@ fn a_few_returns_over_a_partitions_end_do_not_lift_its_top() {
     assert_eq!(found[0].class, EntityClass::Wall, "{found:?}");
     assert!((found[0].z_range.1 - 1.3).abs() < 0.05, "{found:?}");
 }
+
+/// A face at `x` across y from `y0` to `y1`, sampled every 2 cm from 0.09 m to `top`.
+fn end_at(x: f32, (y0, y1): (f32, f32), top: f32) -> Vec<Vec3> {
+    let (ny, nz) = (((y1 - y0) / 0.02) as usize, ((top - 0.09) / 0.02) as usize);
+    (0..=ny)
+        .flat_map(|j| {
+            (0..=nz).map(move |k| Vec3::new(x, y0 + j as f32 * 0.02, 0.09 + k as f32 * 0.02))
+        })
+        .collect()
+}
+
+/// Regression: mixed-344 (seeds 341-345) and mixed-284 (281-285): a tall crate (1.3 m long,
+/// 0.4 m deep, 1.45 m high, turned 40 degrees) seen from its front and one end was a
+/// partial-height wall: its front the thin slab of a thicker cluster, the seen part of its end
+/// what stood against it, and the floor seen behind its back within 0.5 m of the slab. An end
+/// face level with the slab's top, across it at its end, is its block's; a desk's side panel
+/// across a partition's end is lower.
+#[test]
+fn a_tall_crate_seen_from_its_front_and_one_end_is_no_wall() {
+    // (turned 40 degrees about (3, 3); its front along local x at y = 0, its back at 0.4)
+    let (sin, cos) = 40f32.to_radians().sin_cos();
+    let turn = |p: Vec3| {
+        Vec3::new(
+            3.0 + cos * p.x - sin * p.y,
+            3.0 + sin * p.x + cos * p.y,
+            p.z,
+        )
+    };
+    let under = |p: &Vec3, depth: f32| {
+        let q = (p.x - 3.0, p.y - 3.0);
+        let (x, y) = (cos * q.0 + sin * q.1, -sin * q.0 + cos * q.1);
+        (-0.05..=1.35).contains(&x) && (-0.05..=depth).contains(&y)
+    };
+    let with = |end_top: f32, depth: f32| -> Vec<(EntityClass, String)> {
+        let mut points: Vec<Vec3> = floor(None)
+            .into_iter()
+            .filter(|p| !under(p, depth))
+            .collect();
+        // (its front: one face, the range noise spreading its returns over 2 cm)
+        let front = slab(0.0, 1.3, 0.04, 0.09, 1.45)
+            .into_iter()
+            .filter(|p| p.y < 0.02);
+        points.extend(
+            front
+                .enumerate()
+                .map(|(i, p)| turn(p + Vec3::Y * 0.01 * (i % 3) as f32)),
+        );
+        points.extend(end_at(0.0, (0.03, 0.39), end_top).into_iter().map(turn));
+        classes_in(&points, &[])
+    };
+    let found = with(1.45, 0.4);
+    assert!(
+        found.iter().all(|(c, _)| *c != EntityClass::Wall),
+        "{found:?}"
+    );
+    // A partition there with a desk's side panel (0.75 m high) across its end.
+    let found = with(0.75, 0.05);
+    assert!(
+        found.iter().any(|(c, _)| *c == EntityClass::Wall),
+        "{found:?}"
+    );
+}

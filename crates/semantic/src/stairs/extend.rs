@@ -81,6 +81,7 @@ pub(super) fn extend_top(
         }
         st.steps += 1;
         st.landing = (st.landing - st.run).max(0.0);
+        st.top_short = false;
         st.rules.push(format!(
             "step {} from its riser one run past the step below ({on_riser} points; its tread above the laser unseen)",
             st.steps
@@ -98,6 +99,7 @@ mod tests {
     /// landing 0.5 m up), climbing +X from x = 0.
     fn three_steps() -> DetectedStairs {
         DetectedStairs {
+            top_short: false,
             steps: 3,
             rise: 0.17,
             run: 0.28,

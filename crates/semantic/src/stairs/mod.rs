@@ -42,8 +42,9 @@
 //! not), its returns on the steps lie on one vertical plane (clutter at step heights
 //! along a line, such as a crate's edge and a person's streak crossing it, does not) and that
 //! plane holds nothing more than a rise over its steps (a dark cabinet's front does: see
-//! `taller_face`). A flight ends on a level: one whose top step has none beyond it is read
-//! again without it (something standing at a flight's top, see `Search`).
+//! `taller_face`). A flight ends on a level: one whose top step has none beyond it, or is the
+//! step let fall short of support, is read again without it (something standing at a
+//! flight's top or over its landing, see `Search`).
 //!
 //! A flight whose top riser stands alone one run past its top step (its tread above the laser,
 //! the side face unseen there, so the blobs part it from the flight) gets that step back (see
@@ -107,6 +108,9 @@ pub(crate) struct DetectedStairs {
     pub base: f64,
     pub support: u64,
     pub confidence: f64,
+    /// Its top step is the one step let fall short of support (see `plausible`): what stands
+    /// on a landing can read as one more step (see `Search`).
+    pub top_short: bool,
     pub rules: Vec<String>,
 }
 
@@ -126,6 +130,7 @@ impl DetectedStairs {
             base: 0.0,
             support: 100,
             confidence: 1.0,
+            top_short: false,
             rules: Vec::new(),
         }
     }

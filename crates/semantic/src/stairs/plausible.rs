@@ -208,6 +208,7 @@ pub(crate) fn finish(
     let passes = |n: usize| n >= c.min_step_points && n as f64 >= promised;
     let checked = &per_step[first_checked..];
     let (weakest, short) = supported(checked, p.found + 1 >= p.steps, side_only, c, passes)?;
+    let top_short = short == Some(checked.len() - 1);
     let short = short.map_or(String::new(), |k| {
         format!(
             "; step {} short of that ({} points)",
@@ -248,6 +249,7 @@ pub(crate) fn finish(
         base: 0.0,
         support: pts.len() as u64,
         confidence: (p.found as f64 / p.steps as f64).min(1.0),
+        top_short,
         rules,
     })
 }

@@ -147,30 +147,44 @@ impl Search<'_> {
         }
     }
 
-    /// The flight `f`; where its top level ends within a run past its top step's front (no
-    /// landing or floor above runs on from it), the flight read again on the points before
-    /// that step, if that shows fewer steps ending on a landing. A flight ends on a level at
-    /// least as deep as it is wide; what stands a rise over its landing for a step's depth is
-    /// no step (office-353 of seeds 351-355: a person beside a 4-step flight's landing, in one
-    /// scan, stood 0.3 m over it, and the flight read as 6 steps of 0.167 m for 4 of 0.181 m,
-    /// the top one with no landing). Where the points before the top step end on no landing
-    /// either (a flight whose top the laser did not see), the first reading stands.
+    /// The flight `f`, or, where its top step may be something standing at its top, the
+    /// flight read again without it, if that shows fewer steps ending on a level with every
+    /// step supported. A flight ends on a level (its landing, or the floor above) at least as
+    /// deep as it is wide, and its top step's face, the landing's, is seen as well as the
+    /// others'. A top step with no level beyond it (its top level ending within a run past its
+    /// front), or the one step short of support, may be what stands there: office-353 of
+    /// seeds 351-355, a person beside a 4-step flight's landing in one scan, 0.3 m over it, read
+    /// as 6 steps of 0.167 m for 4 of 0.181 m, the top one with no landing; garage-341 of seeds
+    /// 341-345, what a person left over a 4-step flight's landing read as a fifth step of the
+    /// same rise, 4 points on it. Read again on the points before that step, then on those
+    /// under its level (over the landing, a quarter of a rise up); where neither reading ends
+    /// on a level (a flight whose top the laser did not see), the first stands.
     fn ending_on_a_level(&self, f: DetectedStairs) -> DetectedStairs {
-        if f.landing > 0.0 || f.steps <= self.c.min_steps {
+        if (f.landing > 0.0 && !f.top_short) || f.steps <= self.c.min_steps {
             return f;
         }
         let top_front = f.start.dot(f.dir) + f.run * f64::from(f.steps - 1);
-        let (pts, all) = (
-            flights::before(self.pts, f.dir, top_front),
-            flights::before(self.all, f.dir, top_front),
-        );
-        profile(&pts, &all, f.dir, self.c)
-            .and_then(|p| finish(&pts, p, self.sc, self.c))
-            .filter(|g| g.landing > 0.0 && g.steps < f.steps)
+        let under = (f64::from(f.steps - 1) + ON_A_LEVEL) * f.rise;
+        let before = |p: &[(DVec2, f64)]| flights::before(p, f.dir, top_front);
+        let below = |p: &[(DVec2, f64)]| -> Vec<(DVec2, f64)> {
+            p.iter().filter(|(_, z)| *z <= under).copied().collect()
+        };
+        let reads = [
+            (before(self.pts), before(self.all)),
+            (below(self.pts), below(self.all)),
+        ];
+        reads
+            .iter()
+            .find_map(|(pts, all)| {
+                profile(pts, all, f.dir, self.c)
+                    .and_then(|p| finish(pts, p, self.sc, self.c))
+                    .filter(|g| g.landing > 0.0 && !g.top_short && g.steps < f.steps)
+            })
             .map(|mut g| {
                 g.rules.push(format!(
-                    "read again before the top step of {} found first, which had no level beyond it (no step: something standing at the top)",
-                    f.steps
+                    "read again without the top step of {} found first, {} (something standing at the top)",
+                    f.steps,
+                    if f.top_short { "short of support" } else { "with no level beyond it" }
                 ));
                 g
             })

@@ -1,5 +1,6 @@
 //! Regressions of what stands at a flight or in its place read as steps: a person at a
-//! flight's top (`Search`), a dark cabinet's front seen as a side face (`taller_face`).
+//! flight's top or over its landing (`Search`), a dark cabinet's front seen as a side face
+//! (`taller_face`).
 
 use super::tests::{returns_and_surface, search_as_mapped_with_surface};
 use glam::DVec2;
@@ -25,6 +26,26 @@ fn a_person_at_a_flights_top_is_no_step() {
     assert!((flight.rise - 0.181).abs() < 0.01, "rise {}", flight.rise);
     assert!(flight.landing > 0.3, "landing {}", flight.landing);
     assert!(flight.dir.dot(DVec2::X) > 0.99, "{:?}", flight.dir);
+}
+
+/// Regression: garage-341's 4-step flight (0.186 m x 0.312 m), seen from its side only, read
+/// as 5 steps of the same rise: what a person walking over its landing in one scan left there
+/// (a streak 0.8-0.95 m up, crossing the face's plane) was a fifth level, its step 4 points
+/// short of support. Read again under that level, the flight is its 4 steps ending on the
+/// landing. (The part's returns from the bench's map.)
+#[test]
+fn a_person_over_a_flights_landing_is_no_step() {
+    let (all, surface) = returns_and_surface(include_str!(
+        "../../tests/data/garage341_person_over_the_landing.txt"
+    ));
+    assert_eq!((all.len(), surface.len()), (984, 982));
+    let found =
+        search_as_mapped_with_surface(&all, &surface, DVec2::new(3.2, 1.2)).expect("a staircase");
+    assert_eq!(found.len(), 1);
+    let flight = &found[0];
+    assert_eq!(flight.steps, 4, "{flight:?}");
+    assert!((flight.rise - 0.186).abs() < 0.01, "rise {}", flight.rise);
+    assert!(flight.landing > 0.3, "landing {}", flight.landing);
 }
 
 /// Regression: office-355's dark cabinet (1.95 m tall), most of its front's upper returns

@@ -34,7 +34,7 @@
 //!
 //! What it cannot find: a streak of points along a line at the sample spacing (the mixed
 //! pixels along a depth edge, one per scan line crossing it) looks like a thin object, a
-//! cable or a railing, and is kept (in an organised scan `mixed_pixels.rs` finds them first,
+//! cable or a railing, and is kept (in an organised scan `mixed_pixels` finds them first,
 //! from the grid); so is a fog of returns denser than the surfaces' samples.
 //!
 //! Organised scans keep their shape: a removed point becomes NaN (the missing-return

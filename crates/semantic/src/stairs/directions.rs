@@ -24,6 +24,18 @@ fn off_square(a: DVec2, b: DVec2) -> f64 {
     t.min(90.0 - t)
 }
 
+/// The one of `e`'s direction, its normals and its opposite nearest the family's direction
+/// `d` (`d` itself where `e` is no direction).
+fn along_family(d: DVec2, e: DVec2) -> DVec2 {
+    let Some(e) = e.try_normalize() else {
+        return d;
+    };
+    [e, e.perp(), -e, -e.perp()]
+        .into_iter()
+        .max_by(|a, b| a.dot(d).total_cmp(&b.dot(d)))
+        .unwrap_or(d)
+}
+
 impl WallFamilies {
     /// The families of the walls' segments `(start, end)`.
     pub(super) fn new(walls: impl Iterator<Item = Segment>) -> Self {
@@ -65,7 +77,11 @@ impl WallFamilies {
     /// south wall, the partition and the west wall at 0-1.5 degrees, read its staircase 4
     /// degrees off. With the longest family first, hall-273 of seeds 271-275, its north and
     /// west walls (42.3 m at -2.8 degrees) stood for the south wall and the partition (40 m at
-    /// 0 degrees), and the staircase against the south wall was read 2.8 degrees off.
+    /// 0 degrees), and the staircase against the south wall was read 2.8 degrees off. Within the
+    /// nearest family, the wall nearest the part gives its direction: hall-365 of seeds 361-365,
+    /// its north wall (21.4 m at 1.7 degrees) one family with the south wall (20 m at 0 degrees),
+    /// read the staircase beside the south wall 1.7 degrees off, and a staircase seen from its
+    /// side along a direction off its side face reads its steps smeared.
     pub(super) fn directions_near(&self, at: DVec2, snap_deg: f64) -> Vec<DVec2> {
         let distance = |(a, b): Segment| {
             let ab = b - a;
@@ -86,7 +102,17 @@ impl WallFamilies {
             .chain((0..self.families.len()).filter(|&k| Some(k) != nearest));
         let mut taken: Vec<DVec2> = Vec::new();
         for k in order {
-            let d = self.families[k].0;
+            let (d, segs) = &self.families[k];
+            // (the nearest family's direction is its wall nearest the part's: walls of one
+            // family differ by up to `SAME_WALL_DIRECTION_DEG`, and a staircase is built square
+            // to the wall beside it)
+            let d = match segs
+                .iter()
+                .min_by(|&&s, &&t| distance(s).total_cmp(&distance(t)))
+            {
+                Some(&(a, b)) if Some(k) == nearest => along_family(*d, b - a),
+                _ => *d,
+            };
             if taken.iter().all(|&e| off_square(e, d) >= snap_deg) {
                 taken.push(d);
             }
@@ -167,6 +193,22 @@ mod tests {
         let dirs = fam.directions_near(DVec2::new(20.0, 15.0), 10.0);
         assert_eq!(dirs.len(), 4);
         assert!(dirs[0].angle_to(at(177.2)).abs() < 1e-9);
+        // Walls within `SAME_WALL_DIRECTION_DEG` are one family, the longest its direction;
+        // beside the shorter one, that one's (hall-365 of seeds 361-365: the north wall at
+        // 1.7 degrees, 21.4 m, the south wall at 0 degrees, 20 m).
+        let fam = walls(&[
+            (0.0, 20.0, DVec2::ZERO),
+            (78.7, 13.8, DVec2::new(19.7, -0.1)),
+            (-178.3, 21.4, DVec2::new(22.5, 13.4)),
+            (90.0, 12.8, DVec2::new(5.6, 0.1)),
+        ]);
+        // (the first four: the family's direction, its normals and its opposite)
+        let first_has =
+            |dirs: &[DVec2], deg: f64| dirs[..4].iter().any(|d| d.angle_to(at(deg)).abs() < 1e-9);
+        let near_south = fam.directions_near(DVec2::new(9.0, 1.2), 10.0);
+        assert!(first_has(&near_south, 0.0), "{near_south:?}");
+        let near_north = fam.directions_near(DVec2::new(9.0, 12.0), 10.0);
+        assert!(first_has(&near_north, 1.7), "{near_north:?}");
         // No walls: no directions.
         let none = walls(&[]);
         assert!(none.directions_near(DVec2::ZERO, 10.0).is_empty());

@@ -33,12 +33,10 @@ const SIDE_FACE_STRAIGHT_M: f64 = 0.05;
 /// one of its steps: within the step's run, above the step below (by 2 cm) and at most 3 cm
 /// over its tread.
 fn on_a_step(p: &Profile, s: f64, z: f64) -> bool {
-    let k = ((s - p.front1) / p.run).floor();
-    if k < 0.0 || k >= f64::from(p.steps) {
-        return false;
-    }
-    let top = (k + 1.0) * p.rise;
-    z > top - p.rise + 0.02 && z <= top + 0.03
+    p.step_of(s).is_some_and(|k| {
+        let top = (k + 1) as f64 * p.rise;
+        z > top - p.rise + 0.02 && z <= top + 0.03
+    })
 }
 
 /// The staircase of the best profile: its width, landing and start from the blob's points;
@@ -188,15 +186,13 @@ pub(crate) fn finish(
     // its height and the one below (a staircase seen from its side shows its steps so).
     let mut per_step = vec![0usize; p.steps as usize];
     for (q, z) in pts {
-        let (s, t) = (q.dot(dir) - p.front1, dir.perp_dot(*q));
-        if s < 0.0 || t < t0 - 0.05 || t > t1 + 0.05 {
+        let (s, t) = (q.dot(dir), dir.perp_dot(*q));
+        if t < t0 - 0.05 || t > t1 + 0.05 {
             continue;
         }
-        let k = (s / p.run).floor() as usize;
-        if k >= per_step.len() {
-            continue;
+        if let Some(k) = p.step_of(s) {
+            per_step[k] += usize::from(on_a_step(&p, s, *z));
         }
-        per_step[k] += usize::from(on_a_step(&p, q.dot(dir), *z));
     }
     // Seen from its side only, the lowest step's side face is a low strip at grazing angles
     // that clutter in the room hides first; the floor hidden under the whole footprint (checked
@@ -302,9 +298,8 @@ fn side_face_is_one_plane(pts: &[(DVec2, f64)], p: &Profile, min_points: usize) 
     let mut across: Vec<Vec<f64>> = vec![Vec::new(); p.steps as usize];
     for (q, z) in pts {
         let s = q.dot(p.dir);
-        let k = ((s - p.front1) / p.run).floor();
-        if k >= 0.0 && (k as usize) < across.len() && on_a_step(p, s, *z) {
-            across[k as usize].push(p.dir.perp_dot(*q));
+        if let Some(k) = p.step_of(s).filter(|_| on_a_step(p, s, *z)) {
+            across[k].push(p.dir.perp_dot(*q));
         }
     }
     let medians: Vec<(f64, f64)> = across

@@ -374,6 +374,13 @@ impl Profile {
             fit_score: best,
         }
     }
+
+    /// The step (0 the lowest) whose run holds the point `s` along the direction: `None`
+    /// before the first front edge or past the top step's run.
+    pub(crate) fn step_of(&self, s: f64) -> Option<usize> {
+        let k = ((s - self.front1) / self.run).floor();
+        (k >= 0.0 && k < f64::from(self.steps)).then_some(k as usize)
+    }
 }
 
 /// A step count to fit, the top height it climbs to and the envelope it is fitted to.

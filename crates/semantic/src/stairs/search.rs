@@ -169,17 +169,13 @@ impl Search<'_> {
         let below = |p: &[(DVec2, f64)]| -> Vec<(DVec2, f64)> {
             p.iter().filter(|(_, z)| *z <= under).copied().collect()
         };
-        let reads = [
-            (before(self.pts), before(self.all)),
-            (below(self.pts), below(self.all)),
-        ];
-        reads
-            .iter()
-            .find_map(|(pts, all)| {
-                profile(pts, all, f.dir, self.c)
-                    .and_then(|p| finish(pts, p, self.sc, self.c))
-                    .filter(|g| g.landing > 0.0 && !g.top_short && g.steps < f.steps)
-            })
+        let read = |pts: Vec<(DVec2, f64)>, all: Vec<(DVec2, f64)>| {
+            profile(&pts, &all, f.dir, self.c)
+                .and_then(|p| finish(&pts, p, self.sc, self.c))
+                .filter(|g| g.landing > 0.0 && !g.top_short && g.steps < f.steps)
+        };
+        read(before(self.pts), before(self.all))
+            .or_else(|| read(below(self.pts), below(self.all)))
             .map(|mut g| {
                 g.rules.push(format!(
                     "read again without the top step of {} found first, {} (something standing at the top)",

@@ -37,13 +37,11 @@ pub(super) fn face_goes_on_above(
 ) -> bool {
     let mut over = vec![0usize; p.steps as usize];
     for (q, z) in pts {
-        let (s, t) = (q.dot(p.dir) - p.front1, p.dir.perp_dot(*q));
-        if s < 0.0 || (t - face_m).abs() > HALF_WIDTH_M {
+        if (p.dir.perp_dot(*q) - face_m).abs() > HALF_WIDTH_M {
             continue;
         }
-        let k = (s / p.run).floor() as usize;
-        if k < over.len() && *z > (k as f64 + 2.0) * p.rise + MARGIN_M {
-            over[k] += 1;
+        if let Some(k) = p.step_of(q.dot(p.dir)) {
+            over[k] += usize::from(*z > (k as f64 + 2.0) * p.rise + MARGIN_M);
         }
     }
     over.iter().filter(|&&n| n >= min_points).count() >= TALLER_STEPS

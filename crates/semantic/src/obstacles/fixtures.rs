@@ -3,6 +3,36 @@
 
 use super::*;
 
+/// The points of a test data file of the stage's regressions (`tests/data/*.txt`): one
+/// `x y z` line per point (metres), `#` lines its description.
+pub(crate) fn test_points(text: &str) -> Vec<Vec3> {
+    text.lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| {
+            let v: Vec<f32> = l
+                .split_whitespace()
+                .map(|t| t.parse().expect("a number"))
+                .collect();
+            Vec3::new(v[0], v[1], v[2])
+        })
+        .collect()
+}
+
+/// A 4 x 5 m grid of 5 cm cells over x -1..3, y -1..4, moved by `shift` steps of `step_m`
+/// (5 along x, then y; the regressions mapped on 25 grids: where the cells fall decides what
+/// a cell holds).
+pub(crate) fn test_shifted_frame(shift: usize, step_m: f64) -> ImageFrame {
+    ImageFrame {
+        origin_m: [
+            -1.0 + step_m * (shift % 5) as f64,
+            4.0 + step_m * (shift / 5) as f64,
+        ],
+        resolution_m: 0.05,
+        width_px: 80,
+        height_px: 100,
+    }
+}
+
 /// A 10 x 6 m grid of 10 cm cells (the frames' and necks' tests).
 pub(crate) fn test_grid() -> ImageFrame {
     ImageFrame {

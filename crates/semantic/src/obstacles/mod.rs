@@ -61,8 +61,10 @@
 //!    one may be one with a desk or a chair against it: the thin slab of its returns holding
 //!    the most of them is looked at so ([`slabs`]), and what lies beside the slab is fitted
 //!    again as obstacles. Thin pieces standing on one line across short gaps are looked at as
-//!    one partition seen in pieces ([`pieces`]). Thin clusters along a partition found here
-//!    (a glass one's returns above head height) are its residue, dropped ([`residue`]).
+//!    one partition seen in pieces ([`pieces`]), a partition found on its own among them. An
+//!    end within the margin left round a wall's faces (and a cell), running square into it,
+//!    meets its face ([`wall_ends`]). Thin clusters along a partition found here (a glass
+//!    one's returns above head height) are its residue, dropped ([`residue`]).
 
 mod backing;
 mod block_sides;
@@ -89,6 +91,7 @@ mod pillar_rows;
 mod residue;
 mod slabs;
 mod tops;
+mod wall_ends;
 
 use crate::image_frame::ImageFrame;
 use crate::map::OrientedBox;
@@ -112,6 +115,7 @@ use pieces::join_partition_pieces;
 use pillar_rows::{may_be_a_pillar_row, split_pillar_row};
 use residue::{drop_partition_residue, drop_wall_slivers};
 use tops::split_beside_tops;
+use wall_ends::meet_walls;
 
 /// A surface the laser saw of a thing is at least this large (m²): a seat 0.45 m square seen in
 /// part, the front of a cabinet 0.35 m deep along 0.2-0.3 m. Smaller groups of cells are edges,
@@ -318,7 +322,9 @@ pub(crate) fn find_obstacles(
     }
     out.extend(stood_against);
     // A partition seen in pieces along one line is one wall.
-    let out = join_partition_pieces(out, sc, [&low_grid, &high_grid], &seen, &frame, c);
+    let mut out = join_partition_pieces(out, sc, [&low_grid, &high_grid], &seen, &frame, c);
+    // A partition ending within the margin left round a wall's face meets it there.
+    meet_walls(&mut out, sc.walls, c);
     // What a partition found here left along its top is its residue.
     drop_partition_residue(
         out,
@@ -330,4 +336,6 @@ pub(crate) fn find_obstacles(
 #[cfg(test)]
 mod fixtures;
 #[cfg(test)]
-pub(crate) use fixtures::{test_car_top, test_cluster, test_grid, test_scene};
+pub(crate) use fixtures::{
+    test_car_top, test_cluster, test_grid, test_points, test_scene, test_shifted_frame,
+};

@@ -64,7 +64,10 @@ pub(super) fn classify_partition(
     //    of its block (a person who walked along the partition, a shelf standing there), and
     //    neither is what ends below it by more than a cell (a desk as long as the partition
     //    pushed against it: office-9 of seeds 1-10, a desk 1.30 m long against a partition
-    //    1.56 m long).
+    //    1.56 m long). The slab's top is where its face ends along most of it ([`face_top`]),
+    //    not its highest return: the end face of a tall shelf standing at one end of a
+    //    partition falls in its slab (office-373 of seeds 371-375: a partition 1.36 m high
+    //    beside a shelf 1.99 m high read as a door leaf by the shelf's returns).
     if o.size[1] <= c.partition_max_thickness_m {
         return Vec::new();
     }
@@ -72,11 +75,12 @@ pub(super) fn classify_partition(
         return Vec::new();
     };
     let along_slab = |r: &DetectedObstacle| 2.0 * half_extent_along(r.dir, r.size, slab.dir);
-    let level = |r: &DetectedObstacle| (r.z_range.1 - slab.z_range.1).abs() <= c.cell_m;
+    let slab_top = face_top(&slab, sc, &points_in_box(&slab, sc, grids, frame));
+    let level = |r: &DetectedObstacle| (r.z_range.1 - slab_top).abs() <= c.cell_m;
     let blocks_face = |r: &DetectedObstacle| {
         level(r) && (along_slab(r) >= MAX_BESIDE_SHARE * slab.size[0] || end_face(r, &slab, c))
     };
-    if rest.iter().any(blocks_face) || slab.z_range.1 - sc.floor > c.head_height_m {
+    if rest.iter().any(blocks_face) || slab_top - sc.floor > c.head_height_m {
         return Vec::new();
     }
     let Some((why, top)) = partition_rule(&slab, sc, grids, floor_seen, frame, c, (0.0, 0.0))

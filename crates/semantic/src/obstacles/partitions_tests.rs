@@ -1,6 +1,6 @@
 //! Tests of partial-height walls (`partitions`).
 
-use super::super::{find_obstacles, test_scene};
+use super::super::{find_obstacles, test_points, test_scene, test_shifted_frame};
 use super::*;
 use glam::Vec3;
 
@@ -326,4 +326,39 @@ fn a_tall_crate_seen_from_its_front_and_one_end_is_no_wall() {
         found.iter().any(|(c, _)| *c == EntityClass::Wall),
         "{found:?}"
     );
+}
+
+/// Regression: office-373 (seeds 371-375): a partition 1.36 m high and 1.88 m long with a
+/// shelf 1.99 m high across its end, 6 cm from its face, was left an obstacle: the shelf's end
+/// face fell in the partition's slab (its other face was seen less) and lifted the slab's top
+/// over head height, as an open door leaf's would (on 4 of the 25 grids here; the map's grid was
+/// one). The slab's top is where its face ends along most of it.
+#[test]
+fn a_tall_shelf_across_a_partitions_end_leaves_it_a_wall() {
+    let points = test_points(include_str!(
+        "../../tests/data/office373_partition_beside_a_shelf.txt"
+    ));
+    let explained = vec![false; points.len()];
+    // Where the grid's cells fall decides which returns a cell holds: the part is mapped on
+    // 25 grids, shifted by 1 cm steps.
+    for shift in 0..25 {
+        let image = test_shifted_frame(shift, 0.01);
+        let scene = test_scene(&points, &explained, 2.77, &image, &[]);
+        let found = find_obstacles(&scene, &ObstacleConfig::default(), 1 << 20);
+        let wall = found
+            .iter()
+            .find(|o| o.class == EntityClass::Wall)
+            .unwrap_or_else(|| panic!("shift {shift}: no partition: {found:?}"));
+        // Along the partition (x = 1.39 m, y from 0.37 m), up to its top.
+        assert!((wall.center.x - 1.39).abs() < 0.1, "{wall:?}");
+        assert!(wall.size[0] > 1.2, "{wall:?}");
+        assert!((wall.z_range.1 - 1.36).abs() < 0.08, "{wall:?}");
+        // The shelf stays an obstacle of its own.
+        assert!(
+            found
+                .iter()
+                .any(|o| o.class == EntityClass::Obstacle && o.z_range.1 > 1.9),
+            "{found:?}"
+        );
+    }
 }

@@ -3,7 +3,11 @@
 //! into several thin clusters on one line, each shorter than a partition. Thin pieces standing
 //! on the floor, partition-high, continuing each other along one line across gaps narrower
 //! than a passage are looked at as one; if together they stand as a partition does, they are
-//! one wall. Otherwise they stay as they were: a row of things side by side is no wall.
+//! one wall. Otherwise they stay as they were: a row of things side by side is no wall. A
+//! partition found on its own is one of the pieces: the clusters may cut a partition in two
+//! whose longer part stands as a wall and whose shorter part, 0.4-0.6 m towards the wall it
+//! meets, is left a thin obstacle (office-1 of seeds 1-10, office-202 of 201-205: the map's
+//! partition ended 0.7 m short of the outer wall).
 
 use super::cluster::BandGrid;
 use super::fit::half_extent_along;
@@ -28,12 +32,16 @@ pub(super) fn join_partition_pieces(
 ) -> Vec<DetectedObstacle> {
     // 1. The pieces: thin obstacles standing on the floor, partition-high (up to the ceiling
     //    too: a glass partition's sparse returns fall into thin slabs from the floor to the
-    //    ceiling, each narrow enough for a column's face).
+    //    ceiling, each narrow enough for a column's face), and the partitions found so far: a
+    //    piece cut off a partition's end continues it.
     let piece: Vec<usize> = (0..found.len())
         .filter(|&i| {
             let o = &found[i];
             !o.overhead
-                && matches!(o.class, EntityClass::Obstacle | EntityClass::Column)
+                && matches!(
+                    o.class,
+                    EntityClass::Obstacle | EntityClass::Column | EntityClass::Wall
+                )
                 && o.size[1] <= c.partition_max_thickness_m
                 && o.z_range.0 - sc.floor <= c.partition_max_bottom_m
                 && o.z_range.1 - sc.floor >= c.partition_min_height_m
@@ -65,7 +73,8 @@ pub(super) fn join_partition_pieces(
             .filter(|&m| roots[m] == r)
             .map(|m| piece[m])
             .collect();
-        if members.len() < 2 {
+        // (partitions alone, each a wall already, stay as they are)
+        if members.len() < 2 || members.iter().all(|&m| found[m].class == EntityClass::Wall) {
             continue;
         }
         let longest = members
@@ -313,6 +322,19 @@ mod tests {
         let found = classes(&points);
         assert_eq!(found.len(), 1, "{found:?}");
         assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
+    }
+
+    /// Regression (office-1 of seeds 1-10, office-202 of 201-205): a partition's clusters cut
+    /// it in two, the longer part a wall on its own and the shorter, towards the wall it met,
+    /// a thin obstacle; the map's partition ended 0.7 m short. The part continues the wall.
+    #[test]
+    fn a_piece_cut_off_a_partitions_end_continues_it() {
+        let mut points = slab(1.0, 2.3, 2.0, 0.09, 1.3);
+        points.extend(slab(2.5, 2.95, 2.0, 0.09, 1.3));
+        let found = classes(&points);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert_eq!(found[0].0, EntityClass::Wall, "{found:?}");
+        assert!(found[0].1.contains("partial-height wall"), "{found:?}");
     }
 
     #[test]

@@ -169,7 +169,9 @@ pub(super) fn split_beside_tops(
 mod tests {
     use super::*;
     use crate::obstacles::fit::{intersection_area, rect_corners};
-    use crate::obstacles::{find_obstacles, test_grid, test_scene, ObstacleConfig};
+    use crate::obstacles::{
+        find_obstacles, test_grid, test_points, test_scene, test_shifted_frame, ObstacleConfig,
+    };
     use crate::OrientedBox;
     use glam::Vec3;
 
@@ -252,17 +254,9 @@ mod tests {
     /// were found on 4 of them (each chair on 10), with it on 20 (25 and 20).
     #[test]
     fn chairs_with_their_backrests_to_a_desk_are_found_beside_it() {
-        let points: Vec<Vec3> = include_str!("../../tests/data/office43_desk_and_two_chairs.txt")
-            .lines()
-            .filter(|l| !l.starts_with('#'))
-            .map(|l| {
-                let v: Vec<f32> = l
-                    .split_whitespace()
-                    .map(|t| t.parse().expect("a number"))
-                    .collect();
-                Vec3::new(v[0], v[1], v[2])
-            })
-            .collect();
+        let points = test_points(include_str!(
+            "../../tests/data/office43_desk_and_two_chairs.txt"
+        ));
         let explained = vec![false; points.len()];
         // The room's south wall, 0.8 m off (the direction a box prefers).
         let walls = [crate::walls::WallFit::one_sided(
@@ -285,15 +279,7 @@ mod tests {
         let desk = truth(0.832, 1.127, [1.291, 0.858]);
         let (mut both, mut each) = (0, [0, 0]);
         for shift in 0..25 {
-            let image = crate::image_frame::ImageFrame {
-                origin_m: [
-                    -1.0 + 0.02 * (shift % 5) as f64,
-                    4.0 + 0.02 * (shift / 5) as f64,
-                ],
-                resolution_m: 0.05,
-                width_px: 80,
-                height_px: 100,
-            };
+            let image = test_shifted_frame(shift, 0.02);
             let scene = test_scene(&points, &explained, 2.8, &image, &walls);
             let found = find_obstacles(&scene, &ObstacleConfig::default(), 1_000_000);
             // The eval's test: a box covering half of the smaller footprint.

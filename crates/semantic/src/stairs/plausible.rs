@@ -29,11 +29,11 @@ const FACE_BIN_M: f64 = 0.02;
 /// at grazing angles and the registration's error, a few centimetres).
 const SIDE_FACE_STRAIGHT_M: f64 = 0.05;
 
-/// True if a point `s` along the flight's direction at height `z` (above its foot) lies on
-/// one of its steps: within the step's run, above the step below (by 2 cm) and at most 3 cm
-/// over its tread.
-fn on_a_step(p: &Profile, s: f64, z: f64) -> bool {
-    p.step_of(s).is_some_and(|k| {
+/// The step (0 the lowest) a point `s` along the flight's direction at height `z` (above its
+/// foot) lies on: within the step's run, above the step below (by 2 cm) and at most 3 cm over
+/// its tread; `None` if it lies on none.
+fn step_holding(p: &Profile, s: f64, z: f64) -> Option<usize> {
+    p.step_of(s).filter(|&k| {
         let top = (k + 1) as f64 * p.rise;
         z > top - p.rise + 0.02 && z <= top + 0.03
     })
@@ -53,14 +53,14 @@ pub(crate) fn finish(
         return None;
     }
     // The width from the points on the flight's steps (a tread, a riser or a side face between
-    // a step's height and the one below: as `per_step` counts them below), not from all of the
+    // a step's height and the one below: as `step_holding` places them), not from all of the
     // blob's (a desk or chairs beside the flight join its blob at other heights), and of those
     // the run across the direction holding most of them (clutter beside the flight whose parts
     // happen to stand at step heights is apart from it); from all of the blob's points where
     // too few are on the steps.
     let steps_xy: Vec<DVec2> = pts
         .iter()
-        .filter(|(q, z)| on_a_step(&p, q.dot(dir), *z))
+        .filter(|(q, z)| step_holding(&p, q.dot(dir), *z).is_some())
         .map(|(q, _)| *q)
         .collect();
     // A side face climbs along its own line; one read obliquely is no staircase (see
@@ -190,8 +190,8 @@ pub(crate) fn finish(
         if t < t0 - 0.05 || t > t1 + 0.05 {
             continue;
         }
-        if let Some(k) = p.step_of(s) {
-            per_step[k] += usize::from(on_a_step(&p, s, *z));
+        if let Some(k) = step_holding(&p, s, *z) {
+            per_step[k] += 1;
         }
     }
     // Seen from its side only, the lowest step's side face is a low strip at grazing angles
@@ -298,7 +298,7 @@ fn side_face_is_one_plane(pts: &[(DVec2, f64)], p: &Profile, min_points: usize) 
     let mut across: Vec<Vec<f64>> = vec![Vec::new(); p.steps as usize];
     for (q, z) in pts {
         let s = q.dot(p.dir);
-        if let Some(k) = p.step_of(s).filter(|_| on_a_step(p, s, *z)) {
+        if let Some(k) = step_holding(p, s, *z) {
             across[k].push(p.dir.perp_dot(*q));
         }
     }

@@ -6,6 +6,7 @@
 //! in it were left out with the wall's, not missing (office-202 of seeds 201-205: the map's
 //! partition ended 0.18 m short of the outer wall it met).
 
+use super::fit::{convex_hull, rect_corners};
 use super::{DetectedObstacle, ObstacleConfig};
 use crate::walls::WallFit;
 use cloud::EntityClass;
@@ -36,8 +37,13 @@ pub(super) fn meet_walls(found: &mut [DetectedObstacle], walls: &[WallFit], c: &
                 *end += sign * g;
             }
         }
-        o.center += o.dir * ((lo + hi) / 2.0);
-        o.size[0] = hi - lo;
+        if (lo, hi) != (-o.size[0] / 2.0, o.size[0] / 2.0) {
+            o.center += o.dir * ((lo + hi) / 2.0);
+            o.size[0] = hi - lo;
+            // (its footprint reaches the face too)
+            o.hull.extend(rect_corners(o.center, o.dir, o.size));
+            o.hull = convex_hull(&o.hull);
+        }
     }
 }
 
@@ -101,6 +107,9 @@ mod tests {
         // Its other end, 3.9 m from the wall, stays where it was.
         let bottom_end = found[0].center.y - found[0].size[0] / 2.0;
         assert!((bottom_end - 1.0).abs() < 1e-9, "{:?}", found[0]);
+        // Its footprint's hull reaches the face too.
+        let hull_top = found[0].hull.iter().map(|q| q.y).fold(f64::MIN, f64::max);
+        assert!((hull_top - 4.925).abs() < 1e-9, "{:?}", found[0]);
     }
 
     #[test]

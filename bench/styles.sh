@@ -13,6 +13,7 @@
 #                                             # $WORK; only map and score again (semantic work)
 #   SEMSIM=/tmp/semsim bash bench/styles.sh  # that binary, no build
 #   REUSE=scans bash bench/styles.sh          # keep the scans; register, map and score again
+#   CONFIG=variant.toml REUSE=scans bash bench/styles.sh  # register and map with a configuration
 #   SEEDS="11 12 13 14 15" WORK=bench/work/heldout OUT=bench/results/styles_heldout.md \
 #     bash bench/styles.sh                    # the held-out seeds (README)
 set -euo pipefail
@@ -23,6 +24,9 @@ LASER=${LASER:-real}
 OUT=${OUT:-bench/results/styles.md}
 WORK=${WORK:-bench/work/styles}
 REUSE=${REUSE:-0}
+# CONFIG=path: a configuration file (TOML) for `register` and `map` (a variant to compare)
+CFG=()
+if [ -n "${CONFIG:-}" ]; then CFG=(--config "$CONFIG"); fi
 # SEMSIM=path: that binary instead of building one (e.g. a copy, to go on building meanwhile)
 if [ -n "${SEMSIM:-}" ]; then S=$SEMSIM; else cargo build --release -q -p semsim; S=target/release/semsim; fi
 # (Only the styles asked for are scanned again: the others' results stay in $WORK.)
@@ -40,15 +44,15 @@ for style in $STYLES; do
       rm -rf "$d/failed.txt" "$d/map" "$d/eval.json" "$d/log.txt"
     elif [ "$REUSE" = scans ] && [ -f "$d/scans/poses.txt" ]; then
       rm -rf "$d/failed.txt" "$d/reg" "$d/map" "$d/eval.json" "$d/log.txt"
-      step register "$S" register --sequence "$d/scans" --out "$d/reg" || true
+      step register "$S" "${CFG[@]}" register --sequence "$d/scans" --out "$d/reg" || true
     else
       rm -rf "$d" && mkdir -p "$d"
       step generate "$S" building generate --style "$style" --seed "$seed" --out "$d/building.toml" &&
         step scan "$S" scan --building "$d/building.toml" --survey --laser "$LASER" --out "$d/scans" &&
-        step register "$S" register --sequence "$d/scans" --out "$d/reg" || true
+        step register "$S" "${CFG[@]}" register --sequence "$d/scans" --out "$d/reg" || true
     fi
     if [ ! -f "$d/failed.txt" ]; then
-      step map "$S" map "$d/reg/map.pcd" --out "$d/map" &&
+      step map "$S" "${CFG[@]}" map "$d/reg/map.pcd" --out "$d/map" &&
         "$S" eval map "$d/map/semantic_map.json" --building "$d/building.toml" \
           --cloud "$d"/scans/scan*.pcd --poses "$d/reg/poses.txt" \
           --true-poses "$d/scans/poses.txt" --json >"$d/eval.json" 2>>"$d/log.txt" ||

@@ -1,6 +1,7 @@
 //! The whole stage: a registered cloud in, the semantic map, per-point labels, the
 //! intermediate images and per-stage timings out.
 
+mod identified;
 mod output;
 
 pub use output::{MapOutput, StageTime};
@@ -13,20 +14,21 @@ use crate::floor_ceiling::{
 };
 use crate::hough::{ppht, HoughConfig};
 use crate::image_frame::{pixel_center, ImageFrame, Mask};
-use crate::labels::{label_obstacles, label_points, LabelConfig};
+use crate::labels::{label_obstacles, LabelConfig};
 use crate::map::SemanticMap;
 use crate::merge::{merge_segments, MergeConfig, Segment};
-use crate::net::{add_obstacles, assemble, Detections, NetConfig};
+use crate::net::{add_obstacles, Detections, NetConfig};
 use crate::noise_filter::{filter_mask, NoiseFilterConfig};
 use crate::obstacles::{find_obstacles, ObstacleConfig, ObstacleScene};
 use crate::points::MapPoints;
 use crate::projection::{frame_for, project, Projection, ProjectionConfig};
-use crate::ramps::{find_ramps, RampConfig, RampScene};
+use crate::ramps::RampConfig;
 use crate::scene::SceneIndexes;
 use crate::skeleton::thin;
 use crate::stairs::{find_stairs, DetectedStairs, StairsConfig};
 use crate::walls::{identify_walls, WallConfig};
 use cloud::{Label, PointCloud};
+use identified::{identify_net_and_ramps, Identified};
 use output::Clock;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -132,41 +134,32 @@ pub fn build_semantic_map(cloud: &PointCloud, config: &SemanticConfig) -> Result
         pc.max_pixels,
     );
     clock.lap("stairs");
-    // 4. The semantic net: entities with ids and boxes, and their relations.
-    let det = detections(&mp.points, levels, doorways, stairs, config);
-    let (mut map, ids) = assemble(&det, &config.net);
-    clock.lap("net");
-    // 5. Per-point labels of those entities (map points).
-    let mut map_labels = label_points(&mp.points, &indexes.index, &det, &ids, &config.labels);
-    clock.lap("labels");
-    // 6. Ramps, then obstacles, columns and beams: what the points no entity labelled
-    //    occupy; added to the net (with their relations) and to the labels.
+    // 4-6a. The semantic net, the labels and the ramps; a staircase on a ramp is dropped
+    //    (the ramp's side face read as steps) and they are made again without it.
+    let mut det = detections(&mp.points, levels, doorways, stairs, config);
+    let Identified {
+        mut map,
+        ids,
+        mut map_labels,
+        keep_out,
+        ramps,
+    } = identify_net_and_ramps(
+        &mut det,
+        &mp.points,
+        &indexes.index,
+        &loc.frame,
+        config,
+        &mut clock,
+    );
+    // 6b. Obstacles, columns and beams: what the points no entity labelled occupy; added to
+    //    the net (with their relations) and to the labels.
     let mut explained: Vec<bool> = map_labels.iter().map(|l| l.entity != 0).collect();
-    let (floor_z, ceiling_z) = (det.levels.floor_ref_m, det.levels.ceiling_ref_m);
-    let keep_out: Vec<_> = map
-        .entities
-        .iter()
-        .filter_map(|e| match (&e.class, &e.door) {
-            (cloud::EntityClass::Door, Some(d)) => Some(d.swing_square(&e.geometry)),
-            (cloud::EntityClass::Stairs, _) => Some(e.geometry),
-            _ => None,
-        })
-        .collect();
-    let ramp_scene = RampScene {
-        points: &mp.points,
-        explained: &explained,
-        floor: floor_z,
-        image: &loc.frame,
-        walls: &det.walls,
-        keep_out: &keep_out,
-    };
-    let ramps = find_ramps(&ramp_scene, &config.ramps, pc.max_pixels);
     for r in &ramps {
         for &i in &r.points {
             explained[i as usize] = true;
         }
     }
-    clock.lap("ramps");
+    let (floor_z, ceiling_z) = (det.levels.floor_ref_m, det.levels.ceiling_ref_m);
     let obstacle_scene = ObstacleScene {
         points: &mp.points,
         explained: &explained,

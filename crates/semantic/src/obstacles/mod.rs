@@ -61,8 +61,9 @@
 //!    one may be one with a desk or a chair against it: the thin slab of its returns holding
 //!    the most of them is looked at so ([`slabs`]), and what lies beside the slab is fitted
 //!    again as obstacles. Thin pieces standing on one line across short gaps are looked at as
-//!    one partition seen in pieces ([`pieces`]), a partition found on its own among them. An
-//!    end within the margin left round a wall's faces (and a cell), running square into it,
+//!    one partition seen in pieces ([`pieces`]), a partition found on its own among them; a
+//!    piece in a partition's line up to a cell thicker (a glass pane's) continues it
+//!    ([`continuations`]). An end within the margin left round a wall's faces (and a cell), running square into it,
 //!    meets its face ([`wall_ends`]). Thin clusters along a partition found here (a glass
 //!    one's returns above head height) are its residue, dropped ([`residue`]).
 
@@ -71,6 +72,7 @@ mod block_sides;
 mod classify;
 mod cluster;
 mod config;
+mod continuations;
 mod faces;
 mod fit;
 mod frames;
@@ -102,6 +104,7 @@ use block_sides::join_block_sides;
 use classify::{classify, fit_cluster};
 use cloud::EntityClass;
 pub use config::ObstacleConfig;
+use continuations::continue_partitions;
 use faces::join_faces;
 use frames::{split_frame, MAX_FRAME_FILL, MIN_FRAME_ACROSS_M};
 use fringe::without_fringe;
@@ -322,7 +325,9 @@ pub(crate) fn find_obstacles(
     }
     out.extend(stood_against);
     // A partition seen in pieces along one line is one wall.
-    let mut out = join_partition_pieces(out, sc, [&low_grid, &high_grid], &seen, &frame, c);
+    let out = join_partition_pieces(out, sc, [&low_grid, &high_grid], &seen, &frame, c);
+    // A thin piece in a partition's line, a cell thicker at most (a glass pane's), continues it.
+    let mut out = continue_partitions(out, sc, [&low_grid, &high_grid], &seen, &frame, c);
     // A partition ending within the margin left round a wall's face meets it there.
     meet_walls(&mut out, sc.walls, c);
     // What a partition found here left along its top is its residue.

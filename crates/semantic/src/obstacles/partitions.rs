@@ -67,7 +67,10 @@ pub(super) fn classify_partition(
     //    1.56 m long). The slab's top is where its face ends along most of it ([`face_top`]),
     //    not its highest return: the end face of a tall shelf standing at one end of a
     //    partition falls in its slab (office-373 of seeds 371-375: a partition 1.36 m high
-    //    beside a shelf 1.99 m high read as a door leaf by the shelf's returns).
+    //    beside a shelf 1.99 m high read as a door leaf by the shelf's returns). So is the top
+    //    of what lies beside it: stray returns over a crate (a person's, mixed pixels) are not
+    //    its top (hall-391 of seeds 391-395: a crate 1.04 m high whose body's highest return
+    //    was 1.16 m read as a partition 1.03 m high with something lower beside it).
     if o.size[1] <= c.partition_max_thickness_m {
         return Vec::new();
     }
@@ -76,7 +79,10 @@ pub(super) fn classify_partition(
     };
     let along_slab = |r: &DetectedObstacle| 2.0 * half_extent_along(r.dir, r.size, slab.dir);
     let slab_top = face_top(&slab, sc, &points_in_box(&slab, sc, grids, frame));
-    let level = |r: &DetectedObstacle| (r.z_range.1 - slab_top).abs() <= c.cell_m;
+    let level = |r: &DetectedObstacle| {
+        let top = face_top(r, sc, &points_in_box(r, sc, grids, frame));
+        (top - slab_top).abs() <= c.cell_m
+    };
     let blocks_face = |r: &DetectedObstacle| {
         level(r) && (along_slab(r) >= MAX_BESIDE_SHARE * slab.size[0] || end_face(r, &slab, c))
     };

@@ -1,24 +1,9 @@
 //! Regressions of clutter read as structure, on parts of the bench's registered maps run
 //! through the whole stage (`build_semantic_map`): what a part needs of the map around it
-//! (its floor, ceiling and grid) is in its data file.
+//! (its floor, ceiling and grid) is in its data file (`x y z` lines, read as an XYZ cloud).
 
-use cloud::PointCloud;
-use glam::Vec3;
 use semantic::{build_semantic_map, EntityClass, SemanticConfig};
-
-/// The points of a data file: `x y z` per line, `#` comments.
-fn read_points(text: &str) -> Vec<Vec3> {
-    text.lines()
-        .filter(|l| !l.starts_with('#'))
-        .map(|l| {
-            let v: Vec<f32> = l
-                .split_whitespace()
-                .map(|t| t.parse().expect("a number"))
-                .collect();
-            Vec3::new(v[0], v[1], v[2])
-        })
-        .collect()
-}
+use std::path::Path;
 
 /// Regression: fresh hall-391's crate (1.0 x 0.77 m, 1.04 m high) was a partial-height wall
 /// 1.27 m long. Too thick for a partition, its front face was looked at as a thin slab; the
@@ -27,10 +12,11 @@ fn read_points(text: &str) -> Vec<Vec3> {
 /// where its returns end along most of it.
 #[test]
 fn stray_returns_over_a_crate_leave_its_front_no_partition() {
-    let points = read_points(include_str!("data/hall391_crate_beside_stray_returns.txt"));
-    assert_eq!(points.len(), 7084);
-    let out = build_semantic_map(&PointCloud::from_points(points), &SemanticConfig::default())
-        .expect("map");
+    let data = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/hall391_crate_beside_stray_returns.txt");
+    let cloud = cloud::read_cloud(&data).expect("the part's returns");
+    assert_eq!(cloud.len(), 7084);
+    let out = build_semantic_map(&cloud, &SemanticConfig::default()).expect("map");
     let walls: Vec<_> = out.map.of_class(EntityClass::Wall).collect();
     assert!(walls.is_empty(), "{walls:?}");
     // The crate is an obstacle over its footprint.

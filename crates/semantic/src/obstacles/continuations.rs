@@ -13,13 +13,12 @@
 use super::cluster::BandGrid;
 use super::fit::convex_hull;
 use super::partitions::partition_rule;
+// (a piece continuing a partition starts at most as far beyond its end as pieces of one are
+// apart: narrower than a passage)
+use super::pieces::MAX_GAP_M;
 use super::{DetectedObstacle, ObstacleConfig, ObstacleScene};
 use crate::image_frame::ImageFrame;
 use cloud::EntityClass;
-
-/// A piece continuing a partition starts at most this far beyond its end (as
-/// `pieces::MAX_GAP_M`: narrower than a passage).
-const MAX_GAP_M: f64 = 0.3;
 
 /// A piece in a partition's line runs along it: at least this many times as long as thick.
 const MIN_ELONGATION: f64 = 2.0;

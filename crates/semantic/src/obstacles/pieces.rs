@@ -19,7 +19,7 @@ use cloud::EntityClass;
 
 /// Pieces of one partition are at most this far apart along it: narrower than a passage (a
 /// person needs 0.6 m), wider than what stands before a partition hides of it in places.
-const MAX_GAP_M: f64 = 0.3;
+pub(super) const MAX_GAP_M: f64 = 0.3;
 
 /// Joins the pieces of partitions in `found` (see the module docs) into walls.
 pub(super) fn join_partition_pieces(

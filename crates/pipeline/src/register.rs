@@ -8,7 +8,9 @@ use crate::truth::relative_pose_errors;
 use cloud::{NamedPose, PointCloud};
 use glam::Vec3;
 use registration::TransientConfig;
-use registration::{CorrectionCheck, IcpResult, Registrar, SequenceConfig, SequenceResult};
+use registration::{
+    CheckedEnd, CorrectionCheck, IcpResult, Registrar, SequenceConfig, SequenceResult,
+};
 use serde::Serialize;
 use std::collections::HashSet;
 use std::path::Path;
@@ -99,18 +101,26 @@ pub fn register_scans(
     })
 }
 
-/// Says on stderr where a long correction's check kept the narrow schedule's pose.
+/// Says on stderr where a long correction's check kept another end than the ICP's.
 fn report_checks(sources: &[ScanSource], checks: &[Option<CorrectionCheck>]) {
     for (f, c) in sources.iter().zip(checks) {
-        let Some(c) = c.as_ref().filter(|c| c.narrow_kept) else {
+        let Some(c) = c.as_ref() else {
             continue;
         };
+        let (how, moved_m) = match c.kept {
+            CheckedEnd::Icp => continue,
+            CheckedEnd::Narrow => ("registered again with a narrow gate", c.narrow_correction_m),
+            CheckedEnd::Searched => (
+                "registered again from a search of every yaw and position",
+                c.searched_correction_m,
+            ),
+        };
         eprintln!(
-            "note: {} ({}): ICP from the odometry moved the scan {:.2} m; registered again with a narrow gate it moved {:.2} m, which what both sides saw supports better: kept",
+            "note: {} ({}): ICP from the odometry moved the scan {:.2} m; {how} it ended {:.2} m from the odometry, which what both sides saw supports better: kept",
             f.file.display(),
             f.name,
             c.correction_m,
-            c.narrow_correction_m.unwrap_or(f64::NAN)
+            moved_m.unwrap_or(f64::NAN)
         );
     }
 }

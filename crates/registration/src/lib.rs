@@ -8,8 +8,8 @@
 //!   each from the odometry; without odometry (and where ICP from the odometry fails) the
 //!   initial alignment searches each scan's yaw and position against the map first
 //!   ([`InitialAlignment`], `SequenceConfig::initial_alignment`); an ICP that moves a scan far
-//!   from the odometry's guess is checked against a narrow-gate ICP from the guess
-//!   ([`CorrectionCheck`]).
+//!   from the odometry's guess is checked against a narrow-gate ICP from the guess and an ICP
+//!   from the initial alignment's search ([`CorrectionCheck`]).
 //! - [`IcpConfig`] holds every setting; its defaults are GICP on 10 cm voxels with a 1 m
 //!   correspondence gate that adapts to 3 x RMSE (never below 0.15 m), and
 //!   [`IcpConfig::point_to_point`] is the paper's method at full resolution.
@@ -104,7 +104,7 @@ pub use config::{
 };
 pub use error::{RegistrationError, Result};
 pub use initial::{InitialAlignment, InitialAlignmentReport};
-pub use long_correction::CorrectionCheck;
+pub use long_correction::{CheckedEnd, CorrectionCheck};
 pub use nearest::grid::BucketGrid;
 pub use nearest::kdtree::KdTree;
 pub use nearest::NearestNeighbors;

@@ -7,8 +7,8 @@
 //! odometry pose. Without odometry (or where its ICP fails), the initial alignment
 //! ([`crate::initial`], [`SequenceConfig::initial_alignment`]) searches the scan's yaw and
 //! position against the map first. With odometry, an ICP that moves the scan far from the
-//! odometry's guess is checked against a narrow-gate ICP from the guess
-//! (`long_correction`, [`SequenceResult::corrections_checked`]).
+//! odometry's guess is checked against a narrow-gate ICP from the guess and an ICP from the
+//! initial alignment's search (`long_correction`, [`SequenceResult::corrections_checked`]).
 
 use crate::config::IcpConfig;
 use crate::downsample::{finite_points, voxel_downsample, voxel_downsample_with};
@@ -261,9 +261,10 @@ pub fn register_sequence_with(
                 points: &map,
                 views: &views,
                 target: &target,
+                cell: (config.initial_cell_m, config.range_knee_m),
             };
-            let cell = (config.initial_cell_m, config.range_knee_m);
-            long_correction::check(registrar, map_view, &source, &guess, result, &icp, cell)?
+            let search = || align(&map, &views).map(|(start, _)| start);
+            long_correction::check(registrar, map_view, &source, &guess, result, &icp, search)?
         } else {
             (result, None)
         };

@@ -10,14 +10,12 @@
 //! on over it at its own thickness, still stands as one. A pillar (as wide as deep) or a block
 //! (thicker) at a partition's end stays what it is.
 
-use super::cluster::BandGrid;
 use super::fit::convex_hull;
 use super::partitions::partition_rule;
 // (a piece continuing a partition starts at most as far beyond its end as pieces of one are
 // apart: narrower than a passage)
 use super::pieces::MAX_GAP_M;
-use super::{DetectedObstacle, ObstacleConfig, ObstacleScene};
-use crate::image_frame::ImageFrame;
+use super::{DetectedObstacle, ObstacleConfig, PartitionScene};
 use cloud::EntityClass;
 
 /// A piece in a partition's line runs along it: at least this many times as long as thick.
@@ -27,12 +25,9 @@ const MIN_ELONGATION: f64 = 2.0;
 /// them (see the module docs); the pieces taken are gone.
 pub(super) fn continue_partitions(
     mut found: Vec<DetectedObstacle>,
-    sc: &ObstacleScene,
-    grids: [&BandGrid; 2],
-    floor_seen: &[bool],
-    frame: &ImageFrame,
-    c: &ObstacleConfig,
+    ps: PartitionScene,
 ) -> Vec<DetectedObstacle> {
+    let PartitionScene { sc, c, .. } = ps;
     let mut gone = vec![false; found.len()];
     for p in 0..found.len() {
         if found[p].class != EntityClass::Wall || found[p].overhead {
@@ -46,9 +41,7 @@ pub(super) fn continue_partitions(
                 break;
             };
             let mut wall = run_on(&found[p], &found[q]);
-            let Some((why, top)) =
-                partition_rule(&wall, sc, grids, floor_seen, frame, c, (0.0, 0.0))
-            else {
+            let Some((why, top)) = partition_rule(&wall, ps, (0.0, 0.0)) else {
                 break;
             };
             wall.z_range.1 = top;

@@ -163,6 +163,17 @@ pub(crate) struct ObstacleScene<'a> {
     pub keep_out: &'a [OrientedBox],
 }
 
+/// What the partition rules look at (step 7 on): the scene, its low and high band grids, the
+/// floor seen per image cell, the image's frame and the stage's configuration.
+#[derive(Clone, Copy)]
+pub(crate) struct PartitionScene<'a> {
+    pub sc: &'a ObstacleScene<'a>,
+    pub grids: [&'a BandGrid; 2],
+    pub floor_seen: &'a [bool],
+    pub frame: &'a ImageFrame,
+    pub c: &'a ObstacleConfig,
+}
+
 /// Finds the obstacles, columns and beams (see the module docs).
 pub(crate) fn find_obstacles(
     sc: &ObstacleScene,
@@ -315,19 +326,25 @@ pub(crate) fn find_obstacles(
     let mut out = join_block_sides(out, frame.resolution_m, c);
     let seen = floor_seen(&frame, sc.points, sc.floor, c.min_above_floor_m);
     back_onto_walls(&mut out, sc.walls, &frame, &seen, sc.floor);
+    let ps = PartitionScene {
+        sc,
+        grids: [&low_grid, &high_grid],
+        floor_seen: &seen,
+        frame: &frame,
+        c,
+    };
     let mut stood_against = Vec::new();
     for o in &mut out {
         classify(o, sc.floor, sc.ceiling, frame.resolution_m, c);
         // 7. A thin slab standing on the floor along its length: a partial-height wall (and
         //    what stands against it, fitted on its own).
-        let grids = [&low_grid, &high_grid];
-        stood_against.extend(classify_partition(o, sc, grids, &seen, &frame, c));
+        stood_against.extend(classify_partition(o, ps));
     }
     out.extend(stood_against);
     // A partition seen in pieces along one line is one wall.
-    let out = join_partition_pieces(out, sc, [&low_grid, &high_grid], &seen, &frame, c);
+    let out = join_partition_pieces(out, ps);
     // A thin piece in a partition's line, a cell thicker at most (a glass pane's), continues it.
-    let mut out = continue_partitions(out, sc, [&low_grid, &high_grid], &seen, &frame, c);
+    let mut out = continue_partitions(out, ps);
     // A partition ending within the margin left round a wall's face meets it there.
     meet_walls(&mut out, sc.walls, c);
     // What a partition found here left along its top is its residue.

@@ -18,7 +18,7 @@ use super::classify::set_box_rule;
 use super::cluster::BandGrid;
 use super::fit::half_extent_along;
 use super::slabs::{points_in_box, thin_slab};
-use super::{DetectedObstacle, ObstacleConfig, ObstacleScene};
+use super::{DetectedObstacle, ObstacleConfig, ObstacleScene, PartitionScene};
 use crate::image_frame::ImageFrame;
 use crate::points::quantile;
 use cloud::EntityClass;
@@ -37,17 +37,20 @@ const MAX_BESIDE_SHARE: f64 = 0.8;
 /// ([`thin_slab`]): then `o` becomes that wall, and what stood against it is returned.
 pub(super) fn classify_partition(
     o: &mut DetectedObstacle,
-    sc: &ObstacleScene,
-    grids: [&BandGrid; 2],
-    floor_seen: &[bool],
-    frame: &ImageFrame,
-    c: &ObstacleConfig,
+    ps: PartitionScene,
 ) -> Vec<DetectedObstacle> {
+    let PartitionScene {
+        sc,
+        grids,
+        frame,
+        c,
+        ..
+    } = ps;
     if o.overhead || o.class != EntityClass::Obstacle {
         return Vec::new();
     }
     // 1. The cluster as it is.
-    if let Some((why, top)) = partition_rule(o, sc, grids, floor_seen, frame, c, (0.0, 0.0)) {
+    if let Some((why, top)) = partition_rule(o, ps, (0.0, 0.0)) {
         o.class = EntityClass::Wall;
         o.z_range.1 = top;
         o.rules.truncate(2);
@@ -89,8 +92,7 @@ pub(super) fn classify_partition(
     if rest.iter().any(blocks_face) || slab_top - sc.floor > c.head_height_m {
         return Vec::new();
     }
-    let Some((why, top)) = partition_rule(&slab, sc, grids, floor_seen, frame, c, (0.0, 0.0))
-    else {
+    let Some((why, top)) = partition_rule(&slab, ps, (0.0, 0.0)) else {
         return Vec::new();
     };
     slab.class = EntityClass::Wall;
@@ -133,13 +135,16 @@ const END_FACE_COS: f64 = 0.5;
 /// stands along, where the pieces cover the share of it a wall must stand along.
 pub(super) fn partition_rule(
     o: &DetectedObstacle,
-    sc: &ObstacleScene,
-    grids: [&BandGrid; 2],
-    floor_seen: &[bool],
-    frame: &ImageFrame,
-    c: &ObstacleConfig,
+    ps: PartitionScene,
     (standing_m, hidden_m): (f64, f64),
 ) -> Option<(String, f64)> {
+    let PartitionScene {
+        sc,
+        grids,
+        floor_seen,
+        frame,
+        c,
+    } = ps;
     let [length, across] = o.size;
     if across > c.partition_max_thickness_m
         || length < c.partition_min_length_m

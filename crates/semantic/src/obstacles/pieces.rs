@@ -9,12 +9,10 @@
 //! meets, is left a thin obstacle (office-1 of seeds 1-10, office-202 of 201-205: the map's
 //! partition ended 0.7 m short of the outer wall).
 
-use super::cluster::BandGrid;
 use super::fit::half_extent_along;
 use super::merge::{absorb, PARALLEL_COS};
 use super::partitions::partition_rule;
-use super::{DetectedObstacle, ObstacleConfig, ObstacleScene};
-use crate::image_frame::ImageFrame;
+use super::{DetectedObstacle, ObstacleConfig, ObstacleScene, PartitionScene};
 use cloud::EntityClass;
 
 /// Pieces of one partition are at most this far apart along it: narrower than a passage (a
@@ -24,12 +22,9 @@ pub(super) const MAX_GAP_M: f64 = 0.3;
 /// Joins the pieces of partitions in `found` (see the module docs) into walls.
 pub(super) fn join_partition_pieces(
     found: Vec<DetectedObstacle>,
-    sc: &ObstacleScene,
-    grids: [&BandGrid; 2],
-    floor_seen: &[bool],
-    frame: &ImageFrame,
-    c: &ObstacleConfig,
+    ps: PartitionScene,
 ) -> Vec<DetectedObstacle> {
+    let PartitionScene { sc, c, .. } = ps;
     // 1. The pieces: thin obstacles standing on the floor, partition-high (up to the ceiling
     //    too: a glass partition's sparse returns fall into thin slabs from the floor to the
     //    ceiling, each narrow enough for a column's face), and the partitions found so far: a
@@ -91,11 +86,7 @@ pub(super) fn join_partition_pieces(
         }
         let Some((why, top)) = partition_rule(
             &wall,
-            sc,
-            grids,
-            floor_seen,
-            frame,
-            c,
+            ps,
             (
                 full_height_length(&members, &found, sc, c),
                 gaps_between(&members, &found, &wall),

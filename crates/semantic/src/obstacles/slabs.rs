@@ -202,8 +202,14 @@ mod tests {
             BandGrid::new(&image, &[], &cell_of),
         );
         let seen = floor_seen(&image, points, 0.0, c.min_above_floor_m);
-        let grids = [&low_grid, &high_grid];
-        let rest = classify_partition(&mut o, &sc, grids, &seen, &image, &c);
+        let ps = super::super::PartitionScene {
+            sc: &sc,
+            grids: [&low_grid, &high_grid],
+            floor_seen: &seen,
+            frame: &image,
+            c: &c,
+        };
+        let rest = classify_partition(&mut o, ps);
         (o, rest)
     }
 

@@ -102,17 +102,18 @@ pub(crate) fn check(
     let narrow = registrar
         .register_to(map.target, source, *guess, &narrow)
         .ok();
-    // 2. The final gate alone from the search's start (idem): the search's pose is within a
-    //    few centimetres of a minimum, and a wider gate lets the half of the scan that is new
-    //    to the map carry it along a corridor again.
+    // 2. The final gate alone from the search's start (idem, and where the search fails):
+    //    the search's pose is within a few centimetres of a minimum, and a wider gate lets
+    //    the half of the scan that is new to the map carry it along a corridor again.
     let polish = IcpConfig {
         max_correspondence_distance_m: icp.final_correspondence_distance_m,
         ..icp.clone()
     };
-    let start = search()?;
-    let searched = registrar
-        .register_to(map.target, source, start, &polish)
-        .ok();
+    let searched = search().ok().and_then(|start| {
+        registrar
+            .register_to(map.target, source, start, &polish)
+            .ok()
+    });
     let mut check = CorrectionCheck {
         correction_m,
         narrow_correction_m: narrow.as_ref().map(moved),

@@ -104,7 +104,7 @@ pub use config::{
 };
 pub use error::{RegistrationError, Result};
 pub use initial::{InitialAlignment, InitialAlignmentReport};
-pub use long_correction::{CheckedEnd, CorrectionCheck};
+pub use long_correction::{CheckedEnd, CorrectionCheck, EndScore};
 pub use nearest::grid::BucketGrid;
 pub use nearest::kdtree::KdTree;
 pub use nearest::NearestNeighbors;

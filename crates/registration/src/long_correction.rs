@@ -55,12 +55,20 @@ pub struct CorrectionCheck {
     /// How far from the guess the final-gate ICP from the search's start ended; `None` where
     /// it failed.
     pub searched_correction_m: Option<f64>,
-    /// The evidence's scores (agreement minus contradiction, at most 1) of the ends compared,
-    /// in the order ICP, narrow, searched (an end that failed or lay within a final gate of
-    /// the ICP's is not compared); `None` where no end differed from the ICP's.
-    pub scores: Option<Vec<f64>>,
+    /// The evidence's score of each end compared (an end that failed or lay within a final
+    /// gate of the ICP's is not); empty where no end differed from the ICP's.
+    pub scores: Vec<EndScore>,
     /// The end kept.
     pub kept: CheckedEnd,
+}
+
+/// One compared end's score.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct EndScore {
+    /// Which end.
+    pub end: CheckedEnd,
+    /// Agreement minus contradiction with the map, at most 1.
+    pub score: f64,
 }
 
 /// The map a scan is registered to: its points (world), the sensor position each was seen
@@ -118,7 +126,7 @@ pub(crate) fn check(
         correction_m,
         narrow_correction_m: narrow.as_ref().map(moved),
         searched_correction_m: searched.as_ref().map(moved),
-        scores: None,
+        scores: Vec::new(),
         kept: CheckedEnd::Icp,
     };
     // 3. Ends within the final gate of the ICP's are its minimum: no alternative.
@@ -145,7 +153,11 @@ pub(crate) fn check(
     let Some((kept, scores)) = chosen else {
         return Ok((result, Some(check)));
     };
-    check.scores = Some(scores);
+    let ends = std::iter::once(CheckedEnd::Icp).chain(alternatives.iter().map(|(end, _)| *end));
+    check.scores = ends
+        .zip(scores)
+        .map(|(end, score)| EndScore { end, score })
+        .collect();
     match kept
         .checked_sub(1)
         .and_then(|i| alternatives.into_iter().nth(i))

@@ -1,3 +1,7 @@
+//! Past a flight's top step nothing climbs on as a ramp does ([`surface_climbs_on`] reads the
+//! treads' surface of a flight seen across its width; the rest of these docs, the side face of
+//! one seen from its side).
+//!
 //! A flight seen from its side only ends level: its side face's top edge runs on at its top
 //! step's height over the landing (or the floor above), for a landing's depth at least, before
 //! anything beyond it (an upper flight, a wall) rises. A ramp's side face climbs on. Seen
@@ -49,21 +53,7 @@ pub(super) fn face_climbs_on(
     end_m: f64,
     rise_m: f64,
 ) -> bool {
-    const BINS: usize = (REACH_M / BIN_M) as usize;
-    let line = Line2 {
-        origin: dir * end_m + dir.perp() * across_m,
-        dir,
-    };
-    let mut tops = [f64::NEG_INFINITY; BINS];
-    // (off the floor and the ceiling: over an unseen stretch of the face, the ceiling's
-    // returns are the highest)
-    sc.upright
-        .for_each_near_line(&line, 0.0, REACH_M, HALF_WIDTH_M, |_, s, _, z| {
-            if s >= 0.0 {
-                let k = ((s / BIN_M) as usize).min(BINS - 1);
-                tops[k] = tops[k].max(z);
-            }
-        });
+    let tops = edge_tops(sc, dir, across_m, end_m);
     // The running maximum from the first stretch's median bin (a stray return can top the
     // first bin), passing over a bin more than two rises over it (a stray, or something
     // standing there: it climbs as no ramp's face does).
@@ -92,6 +82,84 @@ pub(super) fn face_climbs_on(
     rises.iter().all(|r| (MIN_STEP_M..=rise_m).contains(r)) && edge - start >= 0.5 * rise_m
 }
 
+/// The bins past the top step.
+const BINS: usize = (REACH_M / BIN_M) as usize;
+
+/// The highest return per bin along `dir` at `across_m` from `end_m` on, over [`REACH_M`]
+/// (`NEG_INFINITY` where a bin holds none).
+fn edge_tops(sc: &Scene, dir: DVec2, across_m: f64, end_m: f64) -> [f64; BINS] {
+    let line = Line2 {
+        origin: dir * end_m + dir.perp() * across_m,
+        dir,
+    };
+    let mut tops = [f64::NEG_INFINITY; BINS];
+    // (off the floor and the ceiling: over an unseen stretch of the face, the ceiling's
+    // returns are the highest)
+    sc.upright
+        .for_each_near_line(&line, 0.0, REACH_M, HALF_WIDTH_M, |_, s, _, z| {
+            if s >= 0.0 {
+                let k = ((s / BIN_M) as usize).min(BINS - 1);
+                tops[k] = tops[k].max(z);
+            }
+        });
+    tops
+}
+
+/// A ramp climbs at least 1:30 (2 degrees; wheelchair ramps climb 1:12, car-park ramps up to
+/// 1:5) and at most 1:4.
+const RAMP_SLOPES: std::ops::RangeInclusive<f64> = (1.0 / 30.0)..=0.25;
+/// A surface's bins within this of the line through them lie on it (the range noise, and a
+/// laser's bands on a slope a few centimetres apart in height).
+const ON_LINE_M: f64 = 0.03;
+/// The share of a surface's read bins on its line where it is one slope.
+const MIN_ON_LINE: f64 = 0.8;
+
+/// True if the surface over a flight's treads, along `dir` at `across_m` (`dir.perp_dot`),
+/// climbs on past `end_m` (the far edge of its top step of `rise_m`) as a ramp's does: its
+/// highest return per bin, read in two thirds of the bins at least, lies on one line (the
+/// median of the bins' pairwise slopes: a person or a stray lifts a bin or two off it) rising
+/// as a ramp does, by half a rise at least over the reach. A flight's treads end level (a
+/// landing, the floor above) or at what rises beyond them by a riser or a wall at once: off
+/// any ramp's line. (A ramp's surface seen in bands, where the laser's lines cross it, reads as
+/// a flight across its whole width: blind garage-434's, 4 steps of 0.108 m x 0.447 m.)
+pub(super) fn surface_climbs_on(
+    sc: &Scene,
+    dir: DVec2,
+    across_m: f64,
+    end_m: f64,
+    rise_m: f64,
+) -> bool {
+    let tops = edge_tops(sc, dir, across_m, end_m);
+    let bins: Vec<DVec2> = tops
+        .iter()
+        .enumerate()
+        .filter(|(_, z)| z.is_finite())
+        .map(|(k, &z)| DVec2::new((k as f64 + 0.5) * BIN_M, z))
+        .collect();
+    if 3 * bins.len() < 2 * BINS {
+        return false;
+    }
+    let mut slopes: Vec<f64> = bins
+        .iter()
+        .enumerate()
+        .flat_map(|(i, a)| bins[i + 1..].iter().map(move |b| (b.y - a.y) / (b.x - a.x)))
+        .collect();
+    let Some(slope) = median(&mut slopes) else {
+        return false;
+    };
+    let mut offsets: Vec<f64> = bins.iter().map(|b| b.y - slope * b.x).collect();
+    let Some(offset) = median(&mut offsets) else {
+        return false;
+    };
+    let on_line = bins
+        .iter()
+        .filter(|b| (b.y - offset - slope * b.x).abs() <= ON_LINE_M)
+        .count();
+    RAMP_SLOPES.contains(&slope)
+        && on_line as f64 >= MIN_ON_LINE * bins.len() as f64
+        && slope * REACH_M >= 0.5 * rise_m
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -103,6 +171,49 @@ mod tests {
         let index = XyIndex::new(pts, DVec2::splat(-1.0), DVec2::new(5.0, 1.0), 0.25);
         let sc = Scene::with_one_index(pts, &index, 0.0, 3.0);
         face_climbs_on(&sc, DVec2::X, 0.0, end_m, rise_m)
+    }
+
+    /// True if the surface of `pts` climbs on past `end_m` (a flight's top of `rise_m`).
+    fn surface_climbs(pts: &[Vec3], end_m: f64, rise_m: f64) -> bool {
+        let index = XyIndex::new(pts, DVec2::splat(-1.0), DVec2::new(5.0, 1.0), 0.25);
+        let sc = Scene::with_one_index(pts, &index, 0.0, 3.0);
+        surface_climbs_on(&sc, DVec2::X, 0.0, end_m, rise_m)
+    }
+
+    /// Treads seen along x from 0 to `length` at y = 0, a return per 2 cm at `top(x)` with 1 cm
+    /// of noise.
+    fn surface(length: f64, top: impl Fn(f64) -> f64) -> Vec<Vec3> {
+        (0..(length / 0.02) as usize)
+            .map(|i| {
+                let x = i as f64 * 0.02;
+                let noise = 0.01 * ((i * 7) % 3) as f64 - 0.01;
+                Vec3::new(x as f32, 0.0, (top(x) + noise) as f32)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_ramps_surface_climbs_on_a_landing_a_wall_or_an_upper_flight_do_not() {
+        // A 7 degree ramp, its first 1.2 m read as steps of 0.1 m.
+        assert!(surface_climbs(&surface(3.0, |x| 0.123 * x), 1.2, 0.1));
+        // A flight of 0.17 m x 0.28 m steps (4 of them to 1.12 m), then ...
+        let flight = |x: f64| 0.17 * ((x / 0.28).floor() + 1.0).min(4.0);
+        // ... a level landing;
+        assert!(!surface_climbs(&surface(2.7, flight), 1.12, 0.17));
+        // ... a wall 0.6 m on;
+        let wall = |x: f64| if x > 1.72 { 2.0 } else { flight(x) };
+        assert!(!surface_climbs(&surface(2.7, wall), 1.12, 0.17));
+        // ... an upper flight from a landing 0.4 m deep.
+        let upper = |x: f64| {
+            if x < 1.52 {
+                flight(x)
+            } else {
+                0.68 + 0.17 * (((x - 1.52) / 0.28).floor() + 1.0)
+            }
+        };
+        assert!(!surface_climbs(&surface(2.7, upper), 1.12, 0.17));
+        // A ramp too shallow to be read (1:50) is no ramp here either.
+        assert!(!surface_climbs(&surface(3.0, |x| 0.02 * x), 1.2, 0.1));
     }
 
     /// A side face along x from 0 to `length` at y = 0, 8 returns per 10 cm up to `top(x)`.

@@ -2,7 +2,7 @@
 //! from the blob's points, and the checks that make it one people could climb (rise, run and
 //! steps in the building codes' ranges, every step supported, no floor seen under it).
 
-use super::climbs_on::face_climbs_on;
+use super::climbs_on::{face_climbs_on, surface_climbs_on};
 use super::floor::{floor_density, floor_in_strip};
 use super::oblique_face::one_face_off_deg;
 use super::profile::Profile;
@@ -28,6 +28,11 @@ const FACE_BIN_M: f64 = 0.02;
 /// A side face's returns on each step lie this near one line in plan (the laser's range noise
 /// at grazing angles and the registration's error, a few centimetres).
 const SIDE_FACE_STRAIGHT_M: f64 = 0.05;
+
+/// The flight's length along its direction: its steps' runs.
+fn length_m(p: &Profile) -> f64 {
+    p.run * p.steps as f64
+}
 
 /// The step (0 the lowest) a point `s` along the flight's direction at height `z` (above its
 /// foot) lies on: within the step's run, above the step below (by 2 cm) and at most 3 cm over
@@ -83,7 +88,7 @@ pub(crate) fn finish(
     if side_only {
         // Only a side face was seen (the treads above the laser are hidden): the staircase
         // extends `default_width_m` away from the side with floor in front of the face.
-        let length = p.run * p.steps as f64;
+        let length = length_m(&p);
         let line = crate::points::Line2 {
             origin: dir * (p.front1 + length / 2.0) + dir.perp() * ((t0 + t1) / 2.0),
             dir,
@@ -150,14 +155,15 @@ pub(crate) fn finish(
         );
     }
     let width = t1 - t0;
+    // Past its top step a flight's treads end level (a landing, the floor above) or at what
+    // rises beyond it; a ramp's surface, read in bands where the laser's lines cross it, climbs
+    // on (see `climbs_on`).
+    if !side_only && surface_climbs_on(sc, dir, (t0 + t1) / 2.0, p.front1 + length_m(&p), p.rise) {
+        return None;
+    }
     // The local point density: the floor's around the staircase (points per m² of the 10 cm
     // cells where it was seen).
-    let density = floor_density(
-        sc,
-        dir,
-        (p.front1, p.front1 + p.run * p.steps as f64),
-        (t0, t1),
-    );
+    let density = floor_density(sc, dir, (p.front1, p.front1 + length_m(&p)), (t0, t1));
     // A staircase hides the floor under it (the risers close it, or the flight stands on a
     // solid base), and a laser on the floor sees none from the second step on (the first
     // one's front is fuzzed by its riser's foot); furniture whose parts happen to stand at

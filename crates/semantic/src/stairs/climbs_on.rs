@@ -43,17 +43,25 @@ const MIN_STEP_M: f64 = 0.02;
 /// Bins with returns a stretch needs (of its five) to be read.
 const MIN_BINS: usize = 3;
 
-/// True if the side face along `dir` at `across_m` (`dir.perp_dot`) climbs on past `end_m`
-/// (`dir.dot`: the far edge of a flight's top step of `rise_m`) as a ramp's does (see the
+/// Where a flight's top step ends, read past it.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct PastTop {
+    /// The flight's direction of ascent.
+    pub dir: DVec2,
+    /// Where it is read across the flight (`dir.perp_dot`): its side face's line, or its
+    /// treads' middle.
+    pub across_m: f64,
+    /// The far edge of its top step along it (`dir.dot`).
+    pub end_m: f64,
+    /// The flight's rise.
+    pub rise_m: f64,
+}
+
+/// True if the side face at `past` climbs on past the top step as a ramp's does (see the
 /// module docs); `false` where it holds level, rises once, or too little of it was seen.
-pub(super) fn face_climbs_on(
-    sc: &Scene,
-    dir: DVec2,
-    across_m: f64,
-    end_m: f64,
-    rise_m: f64,
-) -> bool {
-    let tops = edge_tops(sc, dir, across_m, end_m);
+pub(super) fn face_climbs_on(sc: &Scene, past: PastTop) -> bool {
+    let rise_m = past.rise_m;
+    let tops = edge_tops(sc, past);
     // The running maximum from the first stretch's median bin (a stray return can top the
     // first bin), passing over a bin more than two rises over it (a stray, or something
     // standing there: it climbs as no ramp's face does).
@@ -85,12 +93,12 @@ pub(super) fn face_climbs_on(
 /// The bins past the top step.
 const BINS: usize = (REACH_M / BIN_M) as usize;
 
-/// The highest return per bin along `dir` at `across_m` from `end_m` on, over [`REACH_M`]
-/// (`NEG_INFINITY` where a bin holds none).
-fn edge_tops(sc: &Scene, dir: DVec2, across_m: f64, end_m: f64) -> [f64; BINS] {
+/// The highest return per bin past the top step at `past`, over [`REACH_M`] (`NEG_INFINITY`
+/// where a bin holds none).
+fn edge_tops(sc: &Scene, past: PastTop) -> [f64; BINS] {
     let line = Line2 {
-        origin: dir * end_m + dir.perp() * across_m,
-        dir,
+        origin: past.dir * past.end_m + past.dir.perp() * past.across_m,
+        dir: past.dir,
     };
     let mut tops = [f64::NEG_INFINITY; BINS];
     // (off the floor and the ceiling: over an unseen stretch of the face, the ceiling's
@@ -114,22 +122,16 @@ const ON_LINE_M: f64 = 0.03;
 /// The share of a surface's read bins on its line where it is one slope.
 const MIN_ON_LINE: f64 = 0.8;
 
-/// True if the surface over a flight's treads, along `dir` at `across_m` (`dir.perp_dot`),
-/// climbs on past `end_m` (the far edge of its top step of `rise_m`) as a ramp's does: its
+/// True if the surface over a flight's treads, read at `past` (their middle), climbs on past
+/// its top step as a ramp's does: its
 /// highest return per bin, read in two thirds of the bins at least, lies on one line (the
 /// median of the bins' pairwise slopes: a person or a stray lifts a bin or two off it) rising
 /// as a ramp does, by half a rise at least over the reach. A flight's treads end level (a
 /// landing, the floor above) or at what rises beyond them by a riser or a wall at once: off
 /// any ramp's line. (A ramp's surface seen in bands, where the laser's lines cross it, reads as
 /// a flight across its whole width: blind garage-434's, 4 steps of 0.108 m x 0.447 m.)
-pub(super) fn surface_climbs_on(
-    sc: &Scene,
-    dir: DVec2,
-    across_m: f64,
-    end_m: f64,
-    rise_m: f64,
-) -> bool {
-    let tops = edge_tops(sc, dir, across_m, end_m);
+pub(super) fn surface_climbs_on(sc: &Scene, past: PastTop) -> bool {
+    let tops = edge_tops(sc, past);
     let bins: Vec<DVec2> = tops
         .iter()
         .enumerate()
@@ -157,7 +159,7 @@ pub(super) fn surface_climbs_on(
         .count();
     RAMP_SLOPES.contains(&slope)
         && on_line as f64 >= MIN_ON_LINE * bins.len() as f64
-        && slope * REACH_M >= 0.5 * rise_m
+        && slope * REACH_M >= 0.5 * past.rise_m
 }
 
 #[cfg(test)]
@@ -166,18 +168,28 @@ mod tests {
     use crate::points::XyIndex;
     use glam::Vec3;
 
+    /// A flight's top step along +X at y = 0, ending at `end_m`, of `rise_m`.
+    fn along_x(end_m: f64, rise_m: f64) -> PastTop {
+        PastTop {
+            dir: DVec2::X,
+            across_m: 0.0,
+            end_m,
+            rise_m,
+        }
+    }
+
     /// True if the face of `pts` climbs on past `end_m` (a flight's top of `rise_m`).
     fn climbs(pts: &[Vec3], end_m: f64, rise_m: f64) -> bool {
         let index = XyIndex::new(pts, DVec2::splat(-1.0), DVec2::new(5.0, 1.0), 0.25);
         let sc = Scene::with_one_index(pts, &index, 0.0, 3.0);
-        face_climbs_on(&sc, DVec2::X, 0.0, end_m, rise_m)
+        face_climbs_on(&sc, along_x(end_m, rise_m))
     }
 
     /// True if the surface of `pts` climbs on past `end_m` (a flight's top of `rise_m`).
     fn surface_climbs(pts: &[Vec3], end_m: f64, rise_m: f64) -> bool {
         let index = XyIndex::new(pts, DVec2::splat(-1.0), DVec2::new(5.0, 1.0), 0.25);
         let sc = Scene::with_one_index(pts, &index, 0.0, 3.0);
-        surface_climbs_on(&sc, DVec2::X, 0.0, end_m, rise_m)
+        surface_climbs_on(&sc, along_x(end_m, rise_m))
     }
 
     /// Treads seen along x from 0 to `length` at y = 0, a return per 2 cm at `top(x)` with 1 cm

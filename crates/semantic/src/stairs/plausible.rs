@@ -2,7 +2,7 @@
 //! from the blob's points, and the checks that make it one people could climb (rise, run and
 //! steps in the building codes' ranges, every step supported, no floor seen under it).
 
-use super::climbs_on::{face_climbs_on, surface_climbs_on};
+use super::climbs_on::{face_climbs_on, surface_climbs_on, PastTop};
 use super::floor::{floor_density, floor_in_strip};
 use super::oblique_face::one_face_off_deg;
 use super::profile::Profile;
@@ -146,7 +146,13 @@ pub(crate) fn finish(
             return None;
         }
         // Its face ends level past its top step; a ramp's climbs on (see `climbs_on`).
-        if face_climbs_on(sc, dir, face, p.front1 + length, p.rise) {
+        let past = PastTop {
+            dir,
+            across_m: face,
+            end_m: p.front1 + length,
+            rise_m: p.rise,
+        };
+        if face_climbs_on(sc, past) {
             return None;
         }
         width_rule = format!(
@@ -158,7 +164,13 @@ pub(crate) fn finish(
     // Past its top step a flight's treads end level (a landing, the floor above) or at what
     // rises beyond it; a ramp's surface, read in bands where the laser's lines cross it, climbs
     // on (see `climbs_on`).
-    if !side_only && surface_climbs_on(sc, dir, (t0 + t1) / 2.0, p.front1 + length_m(&p), p.rise) {
+    let middle = PastTop {
+        dir,
+        across_m: (t0 + t1) / 2.0,
+        end_m: p.front1 + length_m(&p),
+        rise_m: p.rise,
+    };
+    if !side_only && surface_climbs_on(sc, middle) {
         return None;
     }
     // The local point density: the floor's around the staircase (points per m² of the 10 cm

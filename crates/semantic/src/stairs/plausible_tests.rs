@@ -363,7 +363,7 @@ fn a_ramps_side_face_read_obliquely_is_no_staircase() {
 /// the stage's other tests, read from real maps, pass the check.)
 #[test]
 fn a_ramps_surface_past_the_steps_read_on_it_climbs_on() {
-    use crate::stairs::climbs_on::surface_climbs_on;
+    use crate::stairs::climbs_on::{surface_climbs_on, PastTop};
     use crate::stairs::tests::returns_and_surface;
     let (all, _) = returns_and_surface(include_str!("../../tests/data/garage434_ramp_surface.txt"));
     assert_eq!(all.len(), 4541);
@@ -373,7 +373,13 @@ fn a_ramps_surface_past_the_steps_read_on_it_climbs_on() {
         .collect();
     let index = XyIndex::new(&points, DVec2::splat(-1.0), DVec2::new(9.0, 4.0), 0.25);
     let sc = Scene::with_one_index(&points, &index, 0.0, 2.6);
-    assert!(surface_climbs_on(&sc, DVec2::X, 1.5, 2.05, 0.108));
+    let past = |end_m: f64| PastTop {
+        dir: DVec2::X,
+        across_m: 1.5,
+        end_m,
+        rise_m: 0.108,
+    };
+    assert!(surface_climbs_on(&sc, past(2.05)));
     // Past the ramp's head nothing was seen: it does not climb on there.
-    assert!(!surface_climbs_on(&sc, DVec2::X, 1.5, 7.3, 0.108));
+    assert!(!surface_climbs_on(&sc, past(7.3)));
 }

@@ -11,8 +11,9 @@ use glam::DVec2;
 pub(super) const PARALLEL_COS: f64 = 0.984_807_753; // cos(10 degrees)
 
 /// A thin part beside a host rising over its top by less than this is a thing of its own
-/// beside it: a chair's backrest (0.8-1.0 m) over a desk's top (0.72-0.76 m) rises 0.05-0.25
+/// beside it: a chair's backrest (0.8-0.95 m) over a desk's top (0.72-0.76 m) rises 0.05-0.23
 /// m, while a backrest rises over its own seat (0.45 m) by 0.35 m and more, and is the seat's.
+/// (A taller backrest at a desk goes into the desk.)
 const MAX_RISE_BESIDE_M: f64 = 0.25;
 
 /// The clusters, largest footprint first, each low part that lies mostly (half its footprint

@@ -335,4 +335,34 @@ mod tests {
         assert_eq!(alone.iter().map(|f| f.steps).collect::<Vec<_>>(), [3]);
         assert_eq!(search(true), None);
     }
+
+    /// Regression: blind garage-434 (seeds 431-435): a car-park ramp (7.7 degrees, 2.85 m wide),
+    /// its surface seen in bands where the laser's lines cross it, read as 4 steps of 0.108 m x
+    /// 0.447 m across its whole width (from 0.26 m along it to 2.05 m) ending on a "landing"; the
+    /// ramp, its foot taken, was not found (one false staircase). Past a flight's top step its
+    /// treads end level or at what rises beyond them; along the ramp's middle its surface climbs
+    /// on. (The part's returns the map's stairs stage took, from the bench's map; the flights of
+    /// the stage's other tests, read from real maps, pass the check.)
+    #[test]
+    fn a_ramps_surface_past_the_steps_read_on_it_climbs_on() {
+        use crate::stairs::tests::returns_and_surface;
+        let (all, _) =
+            returns_and_surface(include_str!("../../tests/data/garage434_ramp_surface.txt"));
+        assert_eq!(all.len(), 4541);
+        let points: Vec<Vec3> = all
+            .iter()
+            .map(|(q, z)| Vec3::new(q.x as f32, q.y as f32, *z as f32))
+            .collect();
+        let index = XyIndex::new(&points, DVec2::splat(-1.0), DVec2::new(9.0, 4.0), 0.25);
+        let sc = Scene::with_one_index(&points, &index, 0.0, 2.6);
+        let past = |end_m: f64| PastTop {
+            dir: DVec2::X,
+            across_m: 1.5,
+            end_m,
+            rise_m: 0.108,
+        };
+        assert!(surface_climbs_on(&sc, past(2.05)));
+        // Past the ramp's head nothing was seen: it does not climb on there.
+        assert!(!surface_climbs_on(&sc, past(7.3)));
+    }
 }

@@ -5,6 +5,7 @@
 use super::levels::ON_A_LEVEL;
 use super::plausible::finish;
 use super::profile::{profile, profile_other_count, profile_up_to_plateau, Profile};
+use super::top_end::level_runs_on;
 use super::{flights, side_faces, DetectedStairs, StairsConfig};
 use crate::scene::Scene;
 use glam::DVec2;
@@ -173,6 +174,7 @@ impl Search<'_> {
             profile(&pts, &all, f.dir, self.c)
                 .and_then(|p| finish(&pts, p, self.sc, self.c))
                 .filter(|g| g.landing > 0.0 && !g.top_short && g.steps < f.steps)
+                .filter(|g| f.top_short || !dropped_step_runs_on(&f, g, self.all))
         };
         read(before(self.pts), before(self.all))
             .or_else(|| read(below(self.pts), below(self.all)))
@@ -186,6 +188,15 @@ impl Search<'_> {
             })
             .unwrap_or(f)
     }
+}
+
+/// True if `f`'s top level runs flat over all of the landing `g` (`f` read again without its
+/// top step) claims (see `top_end::level_runs_on`): that step is a tread, no thing standing.
+fn dropped_step_runs_on(f: &DetectedStairs, g: &DetectedStairs, pts: &[(DVec2, f64)]) -> bool {
+    let from = g.start.dot(g.dir) + g.run * f64::from(g.steps);
+    let across = (g.dir.perp_dot(g.start), g.width / 2.0 + 0.05);
+    let level = f.base + f.rise * f64::from(f.steps);
+    level_runs_on(pts, g.dir, across, (from, from + g.landing), level, f.rise)
 }
 
 /// True if `one` (a flight read along all of a part) is the lone flight `lone` (a flight

@@ -57,6 +57,48 @@ pub(super) fn top_end(
     quantile(&mut run, 0.99).unwrap_or(top_front)
 }
 
+/// Bins along a flight (m) in which [`level_runs_on`] reads the highest return.
+const LEVEL_BIN_M: f64 = 0.05;
+
+/// True if the highest returns across a flight's width (`across`, centre and half-width)
+/// stand at `level_m` (within a quarter `rise_m`) all along `from..to` along `dir`: in four
+/// fifths of the [`LEVEL_BIN_M`] bins holding returns, and at least half the bins hold some.
+/// A flight read again without its top step (see `Search`) claims a landing there one rise
+/// under that level; a level running flat one rise over it all the way is the dropped step's
+/// tread and what can be seen of the landing beyond it (office-441 of seeds 441-445: a 4-step
+/// flight seen from its side only through a doorway, its side face's top edge seen 9 cm past
+/// its top step, read as 3 steps whose "landing" was the fourth step's side face under its
+/// top edge). Something standing at a flight's top (a person) stands higher than one rise,
+/// or over part of it only.
+pub(super) fn level_runs_on(
+    pts: &[(DVec2, f64)],
+    dir: DVec2,
+    across: (f64, f64),
+    (from, to): (f64, f64),
+    level_m: f64,
+    rise_m: f64,
+) -> bool {
+    let bins = ((to - from) / LEVEL_BIN_M).floor();
+    if !(1.0..=1000.0).contains(&bins) {
+        return false;
+    }
+    let mut highest = vec![f64::NEG_INFINITY; bins as usize];
+    for (q, z) in pts {
+        let (s, t) = (q.dot(dir), dir.perp_dot(*q));
+        if (t - across.0).abs() > across.1 || s < from || s >= to {
+            continue;
+        }
+        let k = (((s - from) / LEVEL_BIN_M) as usize).min(highest.len() - 1);
+        highest[k] = highest[k].max(*z);
+    }
+    let read: Vec<f64> = highest.into_iter().filter(|z| z.is_finite()).collect();
+    let at = read
+        .iter()
+        .filter(|&&z| (z - level_m).abs() <= rise_m / 4.0)
+        .count();
+    2 * read.len() >= bins as usize && 5 * at >= 4 * read.len()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -129,5 +171,32 @@ mod tests {
     fn a_gap_in_a_landings_returns_over_no_floor_does_not_end_it() {
         let end = end_of((1.2, 1.5), &[]);
         assert!((end - 1.9).abs() < 0.05, "end {end}");
+    }
+
+    /// A level one rise over a stretch, read in every bin, runs on; one with a person on part
+    /// of it (standing higher), one seen over under half of the stretch, or one a rise lower,
+    /// does not.
+    #[test]
+    fn a_level_runs_on_where_its_highest_returns_stand_all_along() {
+        let (rise, level) = (0.17, 0.68);
+        let face = |from: f64, to: f64, top: f64| -> Vec<(DVec2, f64)> {
+            let n = ((to - from) / 0.01).round() as usize;
+            (0..n)
+                .flat_map(|i| {
+                    let x = from + 0.01 * i as f64;
+                    // (a side face: returns from the floor up to its top edge)
+                    (0..=10).map(move |k| (DVec2::new(x, 0.03), top * f64::from(k) / 10.0))
+                })
+                .collect()
+        };
+        let runs_on = |pts: &[(DVec2, f64)]| {
+            level_runs_on(pts, DVec2::X, (0.5, 0.55), (1.0, 1.35), level, rise)
+        };
+        assert!(runs_on(&face(1.0, 1.35, level)));
+        let mut person = face(1.0, 1.35, level);
+        person.extend(face(1.15, 1.3, 1.2));
+        assert!(!runs_on(&person));
+        assert!(!runs_on(&face(1.0, 1.15, level)));
+        assert!(!runs_on(&face(1.0, 1.35, level - rise)));
     }
 }

@@ -20,6 +20,7 @@ use super::extend::COVER_BIN_M;
 use super::flights::flight_above;
 use super::parts::Part;
 use super::{part_points, DetectedStairs, StairsConfig};
+use crate::points::quantile;
 use crate::scene::Scene;
 use glam::DVec2;
 
@@ -55,10 +56,21 @@ pub(super) fn join_upper_flights(
             continue;
         };
         let lone = lone.clone();
+        // (seen from its side only, the flight shows its upper flight's side face instead, in
+        // the plane of its own and standing from the floor)
+        let face = side_face(&part_points(sc, &parts[i].members), &lone, c);
+        let min_above = if face.is_some() { 0.0 } else { MIN_ABOVE };
         // 1. The parts beyond the lone flight's top, in line with it and above its top level,
         //    that show no staircase of their own.
         let beyond: Vec<usize> = (0..parts.len())
-            .filter(|&j| j != i && found[j].is_none() && lies_beyond(&parts[j], &lone, sc))
+            .filter(|&j| {
+                j != i
+                    && found[j].is_none()
+                    && lies_beyond(&parts[j], &lone, sc, min_above)
+                    && face.is_none_or(|f| {
+                        in_face_plane(&part_points(sc, &parts[j].members), &lone, f)
+                    })
+            })
             .collect();
         if beyond.is_empty() {
             continue;
@@ -75,21 +87,28 @@ pub(super) fn join_upper_flights(
                 .flat_map(|&j| of(&parts[j]).iter().copied())
                 .collect()
         };
-        if !spans_width(&part_points(sc, &joined(|p| &p.members, false)), &lone) {
+        if face.is_none() && !spans_width(&part_points(sc, &joined(|p| &p.members, false)), &lone) {
             continue;
         }
         let pts = part_points(sc, &joined(|p| &p.surface, true));
         let all = part_points(sc, &joined(|p| &p.members, true));
-        if let Some(second) = flight_above(&lone, &pts, &all, sc, c) {
+        if let Some(mut second) = flight_above(&lone, &pts, &all, sc, c) {
+            if face.is_some() {
+                second.rules.push(
+                    "seen from its side only, its side face in the plane of the flight's below"
+                        .to_string(),
+                );
+            }
             found[i] = Some(vec![lone, second]);
         }
     }
 }
 
 /// True if nearly all of a part's returns lie beyond the flight's top step (up to [`REACH_M`]
-/// on) and across its width, and most of them above its top level (the side face of the
-/// landing below the upper flight may join its first riser's part).
-fn lies_beyond(part: &Part, flight: &DetectedStairs, sc: &Scene) -> bool {
+/// on) and across its width, and a `min_above` share of them above its top level (most: the
+/// side face of the landing below the upper flight may join its first riser's part; any,
+/// for an upper flight's side face standing from the floor).
+fn lies_beyond(part: &Part, flight: &DetectedStairs, sc: &Scene, min_above: f64) -> bool {
     let top_level = flight.rise * f64::from(flight.steps) - 0.05;
     let first_beyond = flight.run * f64::from(flight.steps);
     let (mut in_line, mut above) = (0usize, 0usize);
@@ -106,7 +125,37 @@ fn lies_beyond(part: &Part, flight: &DetectedStairs, sc: &Scene) -> bool {
         }
     }
     let n = part.members.len() as f64;
-    in_line as f64 >= MIN_SHARE * n && above as f64 >= MIN_ABOVE * n
+    in_line as f64 >= MIN_SHARE * n && above as f64 >= min_above * n
+}
+
+/// How far from a side face's plane the returns of an upper flight's side face may lie (m):
+/// the range noise and a registration's smear.
+const FACE_M: f64 = 0.1;
+
+/// Where a flight's side face stands across it (from its start, along its direction's
+/// normal), where the flight was seen from its side only: its part's returns `own` (1 % to
+/// 99 %) span less than `min_width_m` across it. `None` where more was seen.
+fn side_face(own: &[(DVec2, f64)], flight: &DetectedStairs, c: &StairsConfig) -> Option<f64> {
+    let mut t: Vec<f64> = own
+        .iter()
+        .map(|(q, _)| flight.dir.perp_dot(*q - flight.start))
+        .collect();
+    let lo = quantile(&mut t, 0.01)?;
+    let hi = quantile(&mut t, 0.99)?;
+    (hi - lo < c.min_width_m).then(|| quantile(&mut t, 0.5).unwrap_or(lo))
+}
+
+/// True if at least [`MIN_SHARE`] of the returns `pts` lie within [`FACE_M`] of the side face
+/// `face` (across `flight`, see [`side_face`]): an upper flight seen from the side, as the
+/// flight below it was (office-441 of seeds 441-445: a staircase with a mid landing seen
+/// through a doorway from its side only, the landing's side face hidden by the door's frame;
+/// the upper flight's side face, a part of its own, was left out of the map).
+fn in_face_plane(pts: &[(DVec2, f64)], flight: &DetectedStairs, face: f64) -> bool {
+    let on = pts
+        .iter()
+        .filter(|(q, _)| (flight.dir.perp_dot(*q - flight.start) - face).abs() <= FACE_M)
+        .count();
+    !pts.is_empty() && on as f64 >= MIN_SHARE * pts.len() as f64
 }
 
 /// True if the returns `pts` span the flight's width as an upper flight's risers do, each

@@ -189,3 +189,28 @@ fn a_hint_between_two_counts_does_not_pick_the_one_that_misses_a_level() {
     );
     assert!((p.rise - 0.156).abs() < 0.01, "rise {}", p.rise);
 }
+
+/// Regression: office-441 of seeds 441-445, a staircase with a mid landing (two flights of 4
+/// steps of 0.170 m x 0.254 m, the landing 0.68 m up) seen from its side only through a
+/// doorway, the landing's side face hidden by the door's frame. The lower flight's top step,
+/// its side face's top edge seen 9 cm past it, was read as something standing at the top (3
+/// steps, "landing" on the fourth step's side face under its top edge); the upper flight's side
+/// face, a part of its own, was left out of the map. A person standing on the landing is a
+/// part of its own, off the side face's plane, and no step of either. (The parts' returns, from
+/// the bench's map.)
+#[test]
+fn a_staircase_seen_from_its_side_through_a_doorway_keeps_both_flights() {
+    let (returns, part_of) =
+        returns_by_part(include_str!("../../tests/data/office441_side_flights.txt"));
+    assert_eq!(returns.len(), 705);
+    let found = search_parts(&returns, &part_of, 4.5);
+    assert!(found[1..].iter().all(Option::is_none), "{found:?}");
+    let Some([lower, upper]) = found[0].as_deref() else {
+        panic!("not two flights: {:?}", found[0]);
+    };
+    assert_eq!((lower.steps, upper.steps), (4, 4), "{lower:?} {upper:?}");
+    assert!((lower.rise - 0.170).abs() < 0.01, "rise {}", lower.rise);
+    assert!((upper.base - 0.68).abs() < 0.03, "base {}", upper.base);
+    // The upper flight's first riser 2.37 m along, past the landing.
+    assert!((upper.start.x - 2.37).abs() < 0.06, "start {}", upper.start);
+}

@@ -47,8 +47,14 @@ pub(super) fn join_faces(
             .iter()
             .enumerate()
             .flat_map(|(n, &i)| faces[n + 1..].iter().map(move |&j| (i, j)))
-            .find(|&(i, j)| faces_of_one_thing(&found[i], &found[j], c.max_top_step_m));
-        let Some((i, j)) = pair else {
+            .find_map(|(i, j)| {
+                if faces_of_one_thing(&found[i], &found[j], c.max_top_step_m) {
+                    Some((i, j, false))
+                } else {
+                    corner_of_one_thing(&found[i], &found[j], c).then_some((i, j, true))
+                }
+            });
+        let Some((i, j, corner)) = pair else {
             return found;
         };
         // (j > i: removing j leaves i in place)
@@ -60,9 +66,14 @@ pub(super) fn join_faces(
             other.dir
         };
         let why = format!(
-            "box: around two faces of one thing {:.2} and {:.2} m long side by side, the cells between them unseen",
+            "box: around two faces of one thing {:.2} and {:.2} m long {}",
             found[i].size[0].max(other.size[0]),
-            found[i].size[0].min(other.size[0])
+            found[i].size[0].min(other.size[0]),
+            if corner {
+                "meeting at a corner, its top unseen"
+            } else {
+                "side by side, the cells between them unseen"
+            }
         );
         absorb(&mut found[i], &other, dir);
         set_box_rule(&mut found[i], why);
@@ -93,6 +104,55 @@ fn faces_of_one_thing(a: &DetectedObstacle, b: &DetectedObstacle, max_step_m: f6
         && depth <= FACES_MAX_DEPTH_M
         && (a.z_range.0 - b.z_range.0).abs() <= max_step_m
         && ((a.z_range.1 - b.z_range.1).abs() <= max_step_m || backrest_and_seat(a, b, max_step_m))
+}
+
+/// Two faces of a thing seen from its corner meet within this of each one's end (m): the cell
+/// at the corner, seen by grazing rays from both sides, may hold no return, and the two are
+/// parted there ([`super::necks`]: the corner reads as a neck across the diagonal).
+const CORNER_REACH_M: f64 = 0.25;
+/// Two faces meeting at a corner stand square to each other within this (the cosine of the
+/// angle between them: 15 degrees off square).
+const CORNER_MAX_COS: f64 = 0.26;
+/// A face meeting another at a corner is a plane seen edge-on from above: at most this thick
+/// (a board's: the range noise and a registration's smear). A thicker cluster under a desk
+/// (its legs and what the mixed pixels join to them) is no face (office-443 of seeds 441-445:
+/// 0.23 m thick, it took a backrest at the desk's edge into a box over the desk).
+const CORNER_FACE_MAX_ACROSS_M: f64 = BACKREST_MAX_ACROSS_M;
+/// ... and at least this long (a thing's side; a leg's cells or a speck are shorter).
+const CORNER_FACE_MIN_LENGTH_M: f64 = 0.2;
+
+/// Whether `a` and `b` are two faces of one thing seen from its corner, its top out of sight
+/// (hall-445 of seeds 441-445: a crate 0.59 x 0.69 m, 0.67 m tall, seen as its south face and
+/// its west face, two boxes 0.09 and 0.05 m thick, neither the crate): each a face (at most
+/// [`CORNER_FACE_MAX_ACROSS_M`] thick, at least [`CORNER_FACE_MIN_LENGTH_M`] long), square to each other,
+/// their lines crossing within [`CORNER_REACH_M`] of an end of each, bottoms and tops within
+/// `max_top_step_m`, and neither a partition's face (at least `partition_min_length_m` long
+/// and `partition_min_height_m` tall: two partitions meet at corners too, and each is a wall).
+fn corner_of_one_thing(a: &DetectedObstacle, b: &DetectedObstacle, c: &ObstacleConfig) -> bool {
+    let may_be_partition = |o: &DetectedObstacle| {
+        o.size[0] >= c.partition_min_length_m
+            && o.z_range.1 - o.z_range.0 >= c.partition_min_height_m
+    };
+    let face = |o: &DetectedObstacle| {
+        o.size[1] <= CORNER_FACE_MAX_ACROSS_M && o.size[0] >= CORNER_FACE_MIN_LENGTH_M
+    };
+    if !face(a)
+        || !face(b)
+        || a.dir.dot(b.dir).abs() > CORNER_MAX_COS
+        || (a.z_range.0 - b.z_range.0).abs() > c.max_top_step_m
+        || (a.z_range.1 - b.z_range.1).abs() > c.max_top_step_m
+        || may_be_partition(a)
+        || may_be_partition(b)
+    {
+        return false;
+    }
+    // Where their centre lines cross: `a.center + t * a.dir`, `b.center + u * b.dir`.
+    let denom = a.dir.perp_dot(b.dir);
+    let t = (b.center - a.center).perp_dot(b.dir) / denom;
+    let u = (b.center - a.center).perp_dot(a.dir) / denom;
+    let near_an_end =
+        |o: &DetectedObstacle, s: f64| (s.abs() - o.size[0] / 2.0).abs() <= CORNER_REACH_M;
+    near_an_end(a, t) && near_an_end(b, u)
 }
 
 /// Whether one of `a` and `b` is a backrest and the other, lower, a seat in front of it: the
@@ -201,6 +261,46 @@ mod tests {
         // (a backrest as long as a chair is wide, with the same seat, is one chair)
         let back = cluster([0.3, 0.0], DVec2::X, [0.5, 0.08], (0.0, 1.21), false);
         assert_eq!(join_faces(vec![back, seat], &c).len(), 1);
+    }
+
+    /// Regression (hall-445 of seeds 441-445): a crate 0.59 x 0.69 m, 0.67 m tall, seen as
+    /// its south and west faces meeting at its corner (the corner cell unseen), was two thin
+    /// boxes, neither the crate. Faces crossing in their middles, meeting off square, of other
+    /// heights, or one a partition's, stay apart.
+    #[test]
+    fn two_faces_meeting_at_a_corner_are_one_thing() {
+        let south = || cluster([14.90, 16.075], DVec2::X, [0.58, 0.09], (0.0, 0.66), false);
+        let west = |x: f64, y: f64, top: f64, length: f64, dir: DVec2| {
+            cluster([x, y], dir, [length, 0.05], (0.0, top), false)
+        };
+        let c = ObstacleConfig::default();
+        let out = join_faces(vec![south(), west(14.575, 16.44, 0.66, 0.66, DVec2::Y)], &c);
+        assert_eq!(out.len(), 1, "{out:#?}");
+        let (lo, hi) = out[0].hull.iter().fold(
+            (DVec2::splat(f64::MAX), DVec2::splat(f64::MIN)),
+            |(lo, hi), q| (lo.min(*q), hi.max(*q)),
+        );
+        assert!((hi.x - lo.x - 0.64).abs() < 0.02, "{lo} {hi}");
+        assert!((hi.y - lo.y - 0.74).abs() < 0.02, "{lo} {hi}");
+        assert!(
+            out[0].rules.iter().any(|r| r.contains("corner")),
+            "{:?}",
+            out[0].rules
+        );
+        let apart = |w: DetectedObstacle| join_faces(vec![south(), w], &c).len() == 2;
+        // Crossing the south face's middle (a T), off square, a step taller, too thick (a
+        // desk's legs and what joins them), too short (a leg).
+        let thick = cluster([14.6, 16.44], DVec2::Y, [0.66, 0.23], (0.0, 0.66), false);
+        assert!(!corner_of_one_thing(&south(), &thick, &c));
+        assert!(apart(west(14.575, 16.2, 0.66, 0.15, DVec2::Y)));
+        assert!(apart(west(14.9, 16.44, 0.66, 0.66, DVec2::Y)));
+        let off_square = west(14.575, 16.44, 0.66, 0.66, DVec2::from_angle(1.2));
+        assert!(!corner_of_one_thing(&south(), &off_square, &c));
+        assert!(apart(west(14.575, 16.44, 0.9, 0.66, DVec2::Y)));
+        // A partition 1.5 m long and 1.2 m tall meeting a partition of its height at a corner.
+        let tall = cluster([15.6, 16.075], DVec2::X, [1.5, 0.09], (0.0, 1.2), false);
+        let tall_west = west(14.8, 16.44, 1.2, 0.66, DVec2::Y);
+        assert_eq!(join_faces(vec![tall, tall_west], &c).len(), 2);
     }
 
     #[test]

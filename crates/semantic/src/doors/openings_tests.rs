@@ -70,6 +70,15 @@ fn two_sided_wall_openings(
     positive_face: impl Fn(f64) -> bool,
     floor_beyond: impl Fn(f64) -> bool,
 ) -> Vec<Opening> {
+    two_sided_wall_openings_under(2.0, positive_face, floor_beyond)
+}
+
+/// [`two_sided_wall_openings`] with the stretch's faces seen from `lintel_m` up.
+fn two_sided_wall_openings_under(
+    lintel_m: f64,
+    positive_face: impl Fn(f64) -> bool,
+    floor_beyond: impl Fn(f64) -> bool,
+) -> Vec<Opening> {
     use crate::points::{Line2, XyIndex};
     use glam::{DVec2, Vec3};
     let mut points = Vec::new();
@@ -77,8 +86,13 @@ fn two_sided_wall_openings(
         let x = 0.025 + 0.05 * f64::from(i);
         let gap = (4.0..5.4).contains(&x);
         for k in 1..56 {
-            let z = 0.05 * f64::from(k);
-            if gap && z < 2.0 {
+            // (over the stretch, rows from its lintel's underside up)
+            let z = if gap {
+                lintel_m + 0.05 * f64::from(k - 1)
+            } else {
+                0.05 * f64::from(k)
+            };
+            if z >= 2.8 {
                 continue;
             }
             points.push(Vec3::new(x as f32, -0.075, z as f32));
@@ -134,4 +148,45 @@ fn a_two_sided_walls_gap_seen_from_one_side_only_needs_a_view_through_it() {
     // suffices (as before).
     let both = two_sided_wall_openings(|x| !in_gap(x), nowhere);
     assert_eq!(both.len(), 1, "{both:?}");
+}
+
+/// Regression: mixed-452 of seeds 451-455: a door 1.956 m high, its lintel's underside
+/// measured at 1.941 m (the floor levelled over the whole map, the lowest returns reading the
+/// edge a little low), was under the 1.95 m a door needs and left out. A lintel measured within
+/// a few centimetres under a door's height is a door's; one 0.1 m under is a wall's face seen
+/// over something that hid it (a van, a cabinet).
+#[test]
+fn a_lintel_measured_a_little_under_a_doors_height_is_a_doors() {
+    let everywhere = |_: f64| true;
+    let nowhere = |_: f64| false;
+    let at = |lintel_m: f64| two_sided_wall_openings_under(lintel_m, everywhere, nowhere);
+    assert_eq!(at(1.93).len(), 1, "{:?}", at(1.93));
+    assert!((at(1.93)[0].top_z - 1.93).abs() < 0.01, "{:?}", at(1.93));
+    assert_eq!(at(1.85), Vec::new());
+}
+
+/// Regression: mixed-452 of seeds 451-455: a closed door 0.6 m from a corridor wall's end,
+/// the wall's face past its far jamb hidden at door level; the jamb (0.15 m, a pier's width)
+/// was taken into the open run, which reached the wall's end and was no opening. The run is
+/// bounded at the jamb; at the wall's start likewise; a run with no sliver in it stays.
+#[test]
+fn a_run_past_a_jamb_to_the_walls_end_is_bounded_by_the_jamb() {
+    let c = OpeningConfig::default();
+    let mut face = vec![40u16; 10];
+    face.extend([0u16; 20]);
+    face.extend([40, 40, 40]);
+    face.extend([0u16; 9]);
+    let b = bins(&face);
+    let runs = open_runs(&b, &face, &c);
+    assert_eq!(runs, vec![(10, 42)]);
+    assert_eq!(bounded(&b, runs[0]), (10, 30));
+    let reversed: Vec<u16> = face.iter().rev().copied().collect();
+    let b = bins(&reversed);
+    let runs = open_runs(&b, &reversed, &c);
+    assert_eq!(runs, vec![(0, 32)]);
+    assert_eq!(bounded(&b, runs[0]), (12, 32));
+    let mut plain = vec![40u16; 10];
+    plain.extend([0u16; 20]);
+    let b = bins(&plain);
+    assert_eq!(bounded(&b, (10, 30)), (10, 30));
 }

@@ -65,10 +65,20 @@ fn an_upper_flights_risers_parted_from_the_lower_flight_are_its_flight() {
         4.0,
     );
     assert_eq!((lower.steps, upper.steps), (3, 4), "{lower:?} {upper:?}");
-    assert!((upper.base - 0.537).abs() < 0.03, "base {}", upper.base);
     assert!((upper.rise - 0.179).abs() < 0.01, "rise {}", upper.rise);
     // Its first riser 2.25 m along, past the landing.
-    assert!((upper.start.x - 2.25).abs() < 0.06, "start {}", upper.start);
+    assert_on_landing(&upper, 0.537, 2.25);
+}
+
+/// `upper` stands on a landing `base_m` up (within 3 cm), its first riser `start_x_m` along
+/// (within 6 cm).
+fn assert_on_landing(upper: &DetectedStairs, base_m: f64, start_x_m: f64) {
+    assert!((upper.base - base_m).abs() < 0.03, "base {}", upper.base);
+    assert!(
+        (upper.start.x - start_x_m).abs() < 0.06,
+        "start {}",
+        upper.start
+    );
 }
 
 /// The two flights read from the parts' returns in `text` (`count` of them; the staircase
@@ -200,17 +210,13 @@ fn a_hint_between_two_counts_does_not_pick_the_one_that_misses_a_level() {
 /// the bench's map.)
 #[test]
 fn a_staircase_seen_from_its_side_through_a_doorway_keeps_both_flights() {
-    let (returns, part_of) =
-        returns_by_part(include_str!("../../tests/data/office441_side_flights.txt"));
-    assert_eq!(returns.len(), 705);
-    let found = search_parts(&returns, &part_of, 4.5);
-    assert!(found[1..].iter().all(Option::is_none), "{found:?}");
-    let Some([lower, upper]) = found[0].as_deref() else {
-        panic!("not two flights: {:?}", found[0]);
-    };
+    let (lower, upper) = two_flights_of(
+        include_str!("../../tests/data/office441_side_flights.txt"),
+        705,
+        4.5,
+    );
     assert_eq!((lower.steps, upper.steps), (4, 4), "{lower:?} {upper:?}");
     assert!((lower.rise - 0.170).abs() < 0.01, "rise {}", lower.rise);
-    assert!((upper.base - 0.68).abs() < 0.03, "base {}", upper.base);
     // The upper flight's first riser 2.37 m along, past the landing.
-    assert!((upper.start.x - 2.37).abs() < 0.06, "start {}", upper.start);
+    assert_on_landing(&upper, 0.68, 2.37);
 }

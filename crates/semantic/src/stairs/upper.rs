@@ -95,7 +95,7 @@ pub(super) fn join_upper_flights(
         if let Some(mut second) = flight_above(&lone, &pts, &all, sc, c) {
             if face.is_some() {
                 second.rules.push(
-                    "seen from its side only, its side face in the plane of the flight's below"
+                    "seen from its side only, its side face in the plane of the lower flight's"
                         .to_string(),
                 );
             }

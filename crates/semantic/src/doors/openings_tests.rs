@@ -160,8 +160,9 @@ fn a_lintel_measured_a_little_under_a_doors_height_is_a_doors() {
     let everywhere = |_: f64| true;
     let nowhere = |_: f64| false;
     let at = |lintel_m: f64| two_sided_wall_openings_under(lintel_m, everywhere, nowhere);
-    assert_eq!(at(1.93).len(), 1, "{:?}", at(1.93));
-    assert!((at(1.93)[0].top_z - 1.93).abs() < 0.01, "{:?}", at(1.93));
+    let found = at(1.93);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert!((found[0].top_z - 1.93).abs() < 0.01, "{found:?}");
     assert_eq!(at(1.85), Vec::new());
 }
 

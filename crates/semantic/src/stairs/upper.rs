@@ -19,8 +19,8 @@
 use super::extend::COVER_BIN_M;
 use super::flights::flight_above;
 use super::parts::Part;
-use super::{part_points, DetectedStairs, StairsConfig};
-use crate::points::quantile;
+use super::{across, part_points, DetectedStairs, StairsConfig};
+use crate::points::median;
 use crate::scene::Scene;
 use glam::DVec2;
 
@@ -136,13 +136,12 @@ const FACE_M: f64 = 0.1;
 /// normal), where the flight was seen from its side only: its part's returns `own` (1 % to
 /// 99 %) span less than `min_width_m` across it. `None` where more was seen.
 fn side_face(own: &[(DVec2, f64)], flight: &DetectedStairs, c: &StairsConfig) -> Option<f64> {
-    let mut t: Vec<f64> = own
-        .iter()
-        .map(|(q, _)| flight.dir.perp_dot(*q - flight.start))
-        .collect();
-    let lo = quantile(&mut t, 0.01)?;
-    let hi = quantile(&mut t, 0.99)?;
-    (hi - lo < c.min_width_m).then(|| quantile(&mut t, 0.5).unwrap_or(lo))
+    let xy: Vec<DVec2> = own.iter().map(|(q, _)| *q - flight.start).collect();
+    if xy.is_empty() || across(&xy, flight.dir) >= c.min_width_m {
+        return None;
+    }
+    let mut t: Vec<f64> = xy.iter().map(|q| flight.dir.perp_dot(*q)).collect();
+    median(&mut t)
 }
 
 /// True if at least [`MIN_SHARE`] of the returns `pts` lie within [`FACE_M`] of the side face

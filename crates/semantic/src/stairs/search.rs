@@ -30,25 +30,52 @@ pub(super) struct Search<'a> {
 
 impl Search<'_> {
     /// The part's staircase; where it shows none, the best of its straight faces' (in
-    /// parallel: a large part, a garage's row of cars, has dozens of faces).
+    /// parallel: a large part, a garage's row of cars, has dozens of faces). Where the part's
+    /// staircase climbs along a direction of its own (no wall's), a face's staircase along a
+    /// wall's direction wins if it has as many flights and steps at least (see
+    /// [`square_to_the_walls`]).
     pub(super) fn stairs(&self) -> Option<Vec<DetectedStairs>> {
-        self.best().or_else(|| {
-            side_faces::side_faces(self.pts, self.cands, self.walls_cands, self.c)
-                .into_par_iter()
-                .filter_map(|face| {
-                    let (pts, all) = (face.select(self.pts), face.select(self.all));
-                    let cands = [face.dir, -face.dir];
-                    Search {
-                        pts: &pts,
-                        all: &all,
-                        cands: &cands,
-                        walls_cands: face.walls_cands(),
-                        ..*self
-                    }
-                    .best()
-                })
-                .max_by(|a, b| confidence(a).total_cmp(&confidence(b)))
+        let Some(part) = self.best() else {
+            return self.faces();
+        };
+        if self.along_a_wall(&part) {
+            return Some(part);
+        }
+        match self.faces() {
+            Some(face) if self.along_a_wall(&face) && square_to_the_walls(&face, &part) => {
+                Some(face)
+            }
+            _ => Some(part),
+        }
+    }
+
+    /// True if `flights` climb along one of the walls' candidate directions.
+    fn along_a_wall(&self, flights: &[DetectedStairs]) -> bool {
+        let cos = self.c.snap_direction_deg.to_radians().cos();
+        flights.first().is_some_and(|f| {
+            self.cands[..self.walls_cands]
+                .iter()
+                .any(|d| d.dot(f.dir) >= cos)
         })
+    }
+
+    /// The best staircase of the part's straight faces, each on its own (see `side_faces`).
+    fn faces(&self) -> Option<Vec<DetectedStairs>> {
+        side_faces::side_faces(self.pts, self.cands, self.walls_cands, self.c)
+            .into_par_iter()
+            .filter_map(|face| {
+                let (pts, all) = (face.select(self.pts), face.select(self.all));
+                let cands = [face.dir, -face.dir];
+                Search {
+                    pts: &pts,
+                    all: &all,
+                    cands: &cands,
+                    walls_cands: face.walls_cands(),
+                    ..*self
+                }
+                .best()
+            })
+            .max_by(|a, b| confidence(a).total_cmp(&confidence(b)))
     }
 
     /// The best staircase along one of the candidate directions.
@@ -282,6 +309,19 @@ fn same_way_and_steps(one: &DetectedStairs, lone: &DetectedStairs, c: &StairsCon
 /// 0.188 m, every level seen, read as 11 of 0.203 m with one level missing).
 fn levels_share(p: &Profile) -> f64 {
     f64::from(p.found) / f64::from(p.steps.max(1))
+}
+
+/// True if `face`, a staircase read on one straight face of a part along a wall's direction,
+/// replaces `part`, the part's own reading along a direction of its own: it has as many
+/// flights at least, and as many steps in all. A staircase is built square to the walls
+/// around it, and a reading along a direction of the part's own explains no more of it:
+/// office-462 of seeds 461-465, a staircase with a mid landing (two flights of 4 steps) seen
+/// from its side only, joined by a desk and a chair into one part, read as its upper flight
+/// alone, 16 degrees off (the clutter's axis), where its side face alone shows both flights
+/// climbing square to the walls.
+fn square_to_the_walls(face: &[DetectedStairs], part: &[DetectedStairs]) -> bool {
+    let steps = |f: &[DetectedStairs]| f.iter().map(|s| s.steps).sum::<u32>();
+    face.len() >= part.len() && steps(face) >= steps(part)
 }
 
 /// The least confidence of a staircase's flights.

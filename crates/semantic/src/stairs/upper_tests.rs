@@ -5,6 +5,7 @@ use super::profile::profile_near;
 use super::tests::{over_floor, returns_by_part};
 use super::*;
 use crate::points::XyIndex;
+use glam::Vec3;
 
 /// The stairs stage's last steps on `returns` parted as `part_of` (each part searched along
 /// and across X, as walls would give, then the upper flights joined), in a cloud of them over
@@ -14,21 +15,31 @@ fn search_parts(
     part_of: &[usize],
     hidden_x: f64,
 ) -> Vec<Option<Vec<DetectedStairs>>> {
-    let c = StairsConfig::default();
     let points = over_floor(
         returns,
         DVec2::new(-1.5, -2.0),
         (250, 100),
         DVec2::new(hidden_x, 1.3),
     );
-    let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(9.0), 0.25);
-    let sc = Scene::with_one_index(&points, &index, 0.0, 2.6);
+    search_parts_in(&points, returns.len(), part_of)
+}
+
+/// [`search_parts`] in a cloud of `points`: the parts' returns (`count` of them, first), then
+/// the floor and what else the scene holds.
+fn search_parts_in(
+    points: &[Vec3],
+    count: usize,
+    part_of: &[usize],
+) -> Vec<Option<Vec<DetectedStairs>>> {
+    let c = StairsConfig::default();
+    let index = XyIndex::new(points, DVec2::splat(-3.0), DVec2::splat(9.0), 0.25);
+    let sc = Scene::with_one_index(points, &index, 0.0, 2.6);
     let n = part_of.iter().max().map_or(0, |m| m + 1);
     let parts: Vec<parts::Part> = (0..n)
         .map(|k| {
-            let members: Vec<usize> = (0..returns.len()).filter(|&i| part_of[i] == k).collect();
+            let members: Vec<usize> = (0..count).filter(|&i| part_of[i] == k).collect();
             let surface = surface::on_surfaces(
-                &points,
+                points,
                 &members,
                 c.min_surface_neighbours,
                 c.surface_radius_spacings,
@@ -219,4 +230,45 @@ fn a_staircase_seen_from_its_side_through_a_doorway_keeps_both_flights() {
     assert!((lower.rise - 0.170).abs() < 0.01, "rise {}", lower.rise);
     // The upper flight's first riser 2.37 m along, past the landing.
     assert_on_landing(&upper, 0.68, 2.37);
+}
+
+/// Regression: office-462 of seeds 461-465, a staircase with a mid landing (two flights of 4
+/// steps of 0.184 m, the landing 0.74 m up) seen from its side only, from across a room where
+/// a desk and a chair stand by its side face: one part. Along the part's own axis, 16 degrees
+/// off the walls (the clutter's), it read as its upper flight alone; its side face alone shows
+/// both flights climbing square to the walls, which win (see `search`). (The part's returns,
+/// from the bench's map.)
+#[test]
+fn a_staircase_seen_from_its_side_past_clutter_climbs_square_to_the_walls() {
+    let (returns, part_of) =
+        returns_by_part(include_str!("../../tests/data/office462_side_clutter.txt"));
+    assert_eq!(returns.len(), 2899);
+    // The floor the map saw round it (the file's floor returns, x y).
+    let mut points: Vec<Vec3> = returns
+        .iter()
+        .map(|(q, z)| Vec3::new(q.x as f32, q.y as f32, *z as f32))
+        .collect();
+    points.extend(
+        include_str!("../../tests/data/office462_floor.txt")
+            .lines()
+            .filter(|l| !l.starts_with('#'))
+            .map(|l| {
+                let v: Vec<f32> = l.split(' ').map(|x| x.parse().expect("a number")).collect();
+                Vec3::new(v[0], v[1], 0.0)
+            }),
+    );
+    let found = search_parts_in(&points, returns.len(), &part_of);
+    let (lower, upper) = match found[0].as_deref() {
+        Some([lower, upper]) => (lower.clone(), upper.clone()),
+        other => panic!("not two flights: {other:?}"),
+    };
+    assert_eq!((lower.steps, upper.steps), (4, 4), "{lower:?} {upper:?}");
+    for flight in [&lower, &upper] {
+        assert!(flight.dir.x > 0.9999, "direction {}", flight.dir);
+        assert!((flight.rise - 0.184).abs() < 0.01, "rise {}", flight.rise);
+    }
+    // The lower flight's first riser at 1.11 m (its foot seen across the room at grazing
+    // incidence: within 8 cm), the upper flight's at 3.49 m on the landing.
+    assert!((lower.start.x - 1.11).abs() < 0.08, "start {}", lower.start);
+    assert_on_landing(&upper, 0.737, 3.49);
 }

@@ -167,6 +167,30 @@ fn the_face_of_a_block_is_no_wall() {
 }
 
 #[test]
+fn a_crates_face_with_the_floor_seen_past_its_depth_is_no_wall() {
+    // Regression (mixed-462 of seeds 461-465): a crate 0.55 m deep seen from its front, its
+    // top and far face parted from the front in another cluster; the floor seen past its far
+    // face lay within the half metre looked at behind the front, which read as a partition
+    // with the floor on both sides. Here a crate 0.45 m deep: the floor under it, from the
+    // front's back face to 0.45 m, is hidden; past it, seen.
+    let mut points = floor(Some([1.0, 2.04, 3.0, 2.45]));
+    points.extend(slab(1.0, 3.0, 2.0, 0.09, 1.5));
+    let found = classes_in(&points, &[]);
+    assert!(
+        found.iter().all(|(c, _)| *c != EntityClass::Wall),
+        "{found:?}"
+    );
+    // With the floor seen right behind its face, the same slab divides space: a partition.
+    let mut points = floor(None);
+    points.extend(slab(1.0, 3.0, 2.0, 0.09, 1.5));
+    let found = classes_in(&points, &[]);
+    assert!(
+        found.iter().any(|(c, _)| *c == EntityClass::Wall),
+        "{found:?}"
+    );
+}
+
+#[test]
 fn a_panel_seen_from_one_side_and_round_its_free_end_is_a_wall_and_a_block_is_not() {
     // office-107 (seeds 106-110): a partial partition 1.6 m long from a room's far wall,
     // scanned from one side only: the floor behind it lies in its shadow, but round its

@@ -196,7 +196,14 @@ fn divides_space(
     frame: &ImageFrame,
     c: &ObstacleConfig,
 ) -> Option<String> {
-    let beside = floor_beside(o, |k| floor_seen[k], frame, BESIDE_M, &bin_centres(o));
+    let foot = sc.floor + c.partition_max_bottom_m;
+    let stands = |k: usize| {
+        low.points(k)
+            .iter()
+            .any(|&i| (sc.points[i as usize].z as f64) <= foot)
+    };
+    let first = |k: usize, j: usize| floor_first(floor_seen[k], stands(k), j);
+    let beside = floor_beside(o, first, frame, BESIDE_M, &bin_centres(o));
     let both = share(beside.iter().map(|[a, b]| *a && *b));
     if both >= c.partition_min_floor_both_sides {
         return Some(format!(
@@ -205,13 +212,7 @@ fn divides_space(
         ));
     }
     let one = share(beside.iter().map(|[a, b]| *a || *b));
-    let foot = sc.floor + c.partition_max_bottom_m;
-    let stands = |k: usize| {
-        low.points(k)
-            .iter()
-            .any(|&i| (sc.points[i as usize].z as f64) <= foot)
-    };
-    let free = |k: usize| floor_seen[k] && !stands(k);
+    let free = |k: usize, _| (floor_seen[k] && !stands(k)).then_some(true);
     let round_an_end = o.size[0] > 2.0 * ROUND_END_BINS as f64 * BIN_M
         && [-1.0, 1.0].into_iter().any(|end| {
             let behind = floor_beside(o, free, frame, BEHIND_M, &end_bins(o, end));
@@ -222,6 +223,19 @@ fn divides_space(
         100.0 * one,
         ROUND_END_BINS as f64 * BIN_M
     ))
+}
+
+/// Whether the `j`th cell out from a face (from 1) settles that the floor is seen beside it
+/// (see [`floor_beside`]): something standing there first says no (a block's far face, seen
+/// before the floor past it, from wherever that floor was seen: the floor under the block
+/// between them was never seen), else the floor seen there says yes. The first cell out may
+/// hold the face's own foot.
+fn floor_first(floor_seen: bool, stands: bool, j: usize) -> Option<bool> {
+    if j > 1 && stands {
+        Some(false)
+    } else {
+        floor_seen.then_some(true)
+    }
 }
 
 /// How near behind a panel's face the floor is seen round its free end: nearer than a
@@ -251,19 +265,21 @@ fn bin_centres(o: &DetectedObstacle) -> Vec<f64> {
 }
 
 /// For each offset `along` `o`'s length from its centre, whether the floor was seen on either
-/// side of it within `beside_m` of its faces (cells of `frame` for which `floor_seen` holds).
+/// side of it within `beside_m` of its faces: going out from the face cell by cell of `frame`,
+/// `first` says whether a cell (the `j`th out, from 1) settles it (`Some(true)`: the floor seen
+/// there; `Some(false)`: something standing before it) or not (`None`: go on).
 fn floor_beside(
     o: &DetectedObstacle,
-    floor_seen: impl Fn(usize) -> bool,
+    first: impl Fn(usize, usize) -> Option<bool>,
     frame: &ImageFrame,
     beside_m: f64,
     along: &[f64],
 ) -> Vec<[bool; 2]> {
     let w = frame.width_px as usize;
-    let seen = |q: DVec2| {
+    let settles = |q: DVec2, j: usize| {
         frame
             .pixel_of(q.x, q.y)
-            .is_some_and(|(col, row)| floor_seen(row as usize * w + col as usize))
+            .and_then(|(col, row)| first(row as usize * w + col as usize, j))
     };
     let across = o.dir.perp();
     let steps = (beside_m / frame.resolution_m).ceil().max(1.0) as usize;
@@ -271,10 +287,12 @@ fn floor_beside(
         .iter()
         .map(|&s| {
             [-1.0, 1.0].map(|side| {
-                (1..=steps).any(|j| {
-                    let d = o.size[1] / 2.0 + j as f64 * frame.resolution_m;
-                    seen(o.center + o.dir * s + across * (side * d))
-                })
+                (1..=steps)
+                    .find_map(|j| {
+                        let d = o.size[1] / 2.0 + j as f64 * frame.resolution_m;
+                        settles(o.center + o.dir * s + across * (side * d), j)
+                    })
+                    .unwrap_or(false)
             })
         })
         .collect()
@@ -287,12 +305,12 @@ fn share(bins: impl ExactSizeIterator<Item = bool>) -> f64 {
 }
 
 /// How far beside a partition's faces the floor is looked for: a laser at 0.5 m sees the floor
-/// within a few decimetres of the foot of a 1.5 m partition on its own side, while a block's
-/// face has the block's body behind it, deeper than that (a crate, a cabinet: 0.4 m and more).
-/// With half a metre, the floor seen past a crate's far face counted as seen behind its front
-/// (mixed-462 of seeds 461-465: a crate 0.55 m deep, turned 27 degrees to the cells, its front
-/// read as a partition).
-const BESIDE_M: f64 = 0.3;
+/// up to a few decimetres from the foot of a 1.5 m partition on its own side. A block's body
+/// can be shallower (a crate 0.45 m deep): the floor seen past its far face is seen from where
+/// that face is seen too, so what stands first along the way settles it (see
+/// [`divides_space`]; mixed-462 of seeds 461-465: a crate 0.55 m deep, its front read as a
+/// partition with the floor seen past its back).
+const BESIDE_M: f64 = 0.5;
 
 /// Whether `o` runs along a wall (within 10 degrees, beside its extent) nearer to its face
 /// than `passage_m`.

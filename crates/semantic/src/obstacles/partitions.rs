@@ -388,3 +388,7 @@ fn standing_fraction(
 #[cfg(test)]
 #[path = "partitions_tests.rs"]
 pub(super) mod tests;
+
+#[cfg(test)]
+#[path = "partitions_floor_tests.rs"]
+mod floor_tests;

@@ -1,6 +1,6 @@
 //! The rest of a transient (see the `transients` module): the returns of a moving thing that
-//! the other scans could neither vouch for nor see through, because it passed close to
-//! something they saw.
+//! the first votes keep, vouched for by a surface close by that other scans saw, or never seen
+//! through.
 //!
 //! The votes of [`super::find_transients`] keep a point that another scan's point lies within
 //! `persist_m` of, and a point no other scan saw past. A person walking close by a staircase's
@@ -19,7 +19,7 @@
 use super::voxels::Voxels;
 use cloud::PointCloud;
 use glam::Vec3;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// Scan `k`'s returns (indices, ascending, none of `gone`) within `reach_m` of one of its
 /// transient returns `gone` (ascending) that no other scan left a return within
@@ -42,8 +42,20 @@ pub(crate) fn rest_of_transients(
         let p = scan.points[i];
         dropped.entry(cell(p)).or_default().push(p);
     }
+    // (the cells next to them: most returns are in none, and one look settles them)
+    let near: HashSet<[i32; 3]> = dropped
+        .keys()
+        .flat_map(|&[x, y, z]| {
+            (-1..=1).flat_map(move |dx| {
+                (-1..=1).flat_map(move |dy| (-1..=1).map(move |dz| [x + dx, y + dy, z + dz]))
+            })
+        })
+        .collect();
     let next_to_dropped = |p: Vec3| {
         let [x, y, z] = cell(p);
+        if !near.contains(&[x, y, z]) {
+            return false;
+        }
         (-1..=1).any(|dx| {
             (-1..=1).any(|dy| {
                 (-1..=1).any(|dz| {

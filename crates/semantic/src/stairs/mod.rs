@@ -55,10 +55,12 @@
 //! A top landing seen from below, its side face parted from its blob (a person's shadow), is
 //! read on past the blob while the highest return across it stays level (see `landing_reach`).
 //!
-//! The search over a part's directions is `search`. A part that shows no staircase is tried
-//! again face by face: a flight seen from its side only that clutter joins into one part with
-//! other things (a desk in front of its side face, a person's streak of returns to parked cars)
-//! is still a straight, dense face in plan (see `side_faces`).
+//! The search over a part's directions is `search`. A part that shows no staircase, or one
+//! climbing along a direction of the part's own, is tried again face by face: a flight seen
+//! from its side only that clutter joins into one part with other things (a desk in front of
+//! its side face, a person's streak of returns to parked cars) is still a straight, dense face
+//! in plan (see `side_faces`), and a face's staircase square to the walls wins over the part's
+//! own reading where it has as many flights and steps.
 
 use crate::image_frame::ImageFrame;
 mod climbs_on;

@@ -223,7 +223,7 @@ pub(crate) fn place_scans(
 pub(crate) fn report_transients(sources: &[ScanSource], dropped: &[usize]) {
     for (f, n) in sources.iter().zip(dropped).filter(|(_, n)| **n > 0) {
         eprintln!(
-            "note: {} ({}): {n} points of something that moved (seen by this scan only where another scan saw through, or by one other where two more did, and the rest of its streak beside them) dropped",
+            "note: {} ({}): {n} points of something that moved (seen by this scan only where another scan saw through, or by one other where two more did) dropped",
             f.file.display(),
             f.name
         );

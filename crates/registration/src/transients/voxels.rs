@@ -173,12 +173,6 @@ impl Voxels {
         }
     }
 
-    /// True if a scan other than `k` left a point within `r` of `p` (not lower than it by more
-    /// than [`BELOW_FRACTION`] of the edge): the surface that scan saw passes there.
-    pub(crate) fn seen_by_other_within(&self, p: Vec3, k: usize, r: f32) -> bool {
-        self.any_other(p, k as u32, r, |_| true)
-    }
-
     /// The voxels within `r` of `p`, its own first (most questions are settled there).
     fn cells_near(&self, p: Vec3, r: f32) -> impl Iterator<Item = Span> + '_ {
         let reach = (r / self.edge_m).ceil() as i32;

@@ -308,8 +308,8 @@ fn share(bins: impl ExactSizeIterator<Item = bool>) -> f64 {
 /// up to a few decimetres from the foot of a 1.5 m partition on its own side. A block's body
 /// can be shallower (a crate 0.45 m deep): the floor seen past its far face is seen from where
 /// that face is seen too, so what stands first along the way settles it (see
-/// [`divides_space`]; mixed-462 of seeds 461-465: a crate 0.55 m deep, its front read as a
-/// partition with the floor seen past its back).
+/// [`divides_space`]; hall-424 of seeds 421-425: a crate's front read as a partition with the
+/// floor seen past its back).
 const BESIDE_M: f64 = 0.5;
 
 /// Whether `o` runs along a wall (within 10 degrees, beside its extent) nearer to its face

@@ -272,3 +272,36 @@ fn a_staircase_seen_from_its_side_past_clutter_climbs_square_to_the_walls() {
     assert!((lower.start.x - 1.11).abs() < 0.08, "start {}", lower.start);
     assert_on_landing(&upper, 0.737, 3.49);
 }
+
+/// Regression (office-482 of seeds 481-485, blind): the upper flight of a staircase with a mid
+/// landing, 4 steps of 0.176 m, read as 5 of 0.171 m. A person standing beside its top step in
+/// one scan, seen up to 0.73 m over its top landing, lifted the flight's top height, and every
+/// level of 5 steps up to it found a bin; the 4 steps up to the landing's plateau found every
+/// level too and fitted far better, but the 5 lay nearer the lower flight's rise (0.172 m).
+/// Within `SAME_RISE` of that rise, the better fit now wins. (The flight's returns, from the
+/// bench's map.)
+#[test]
+fn a_person_over_the_top_step_does_not_add_a_step_nearer_the_hint() {
+    let c = StairsConfig::default();
+    let (all, own) = returns_by_part(include_str!("../../tests/data/office482_upper_flight.txt"));
+    assert_eq!(all.len(), 1044);
+    // (the person's returns are there: the top landing stands 0.70 m over the landing)
+    assert!(all.iter().any(|p| p.1 > 1.2));
+    let pts: Vec<(DVec2, f64)> = all
+        .iter()
+        .zip(&own)
+        .filter(|(_, &k)| k == 1)
+        .map(|(p, _)| *p)
+        .collect();
+    let p = profile_near(&pts, &all, DVec2::X, &c, Some(0.1718)).expect("a flight");
+    assert_eq!(
+        (p.steps, p.found),
+        (4, 4),
+        "rise {} run {} found {}",
+        p.rise,
+        p.run,
+        p.found
+    );
+    assert!((p.rise - 0.176).abs() < 0.01, "rise {}", p.rise);
+    assert!((p.run - 0.273).abs() < 0.02, "run {}", p.run);
+}

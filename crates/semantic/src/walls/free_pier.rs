@@ -130,18 +130,19 @@ fn standing_stretch(w: &WallFit, sc: &Scene, face_tolerance_m: f64) -> Option<Wa
     Some(stretch)
 }
 
-/// True if the floor is seen in the wall's footprint between `s0` and `s1` along it.
+/// True if the floor is seen in the wall's footprint between `s0` and `s1` along it: a
+/// measured wall's body, at least [`BODY_DEPTH_M`] wide about its line (a body measured a few
+/// centimetres thick holds too few returns of a floor seen at grazing angles: garage-481 of
+/// seeds 481-485, a pillar's face under a beam measured 0.11 m thick, 4 floor returns past its
+/// free end), or the band behind a one-sided wall's face.
 fn free_past(w: &WallFit, s0: f64, s1: f64, sc: &Scene) -> bool {
-    let reach = if w.measured {
-        w.thickness / 2.0
-    } else {
-        BODY_DEPTH_M
-    };
+    let half = (w.thickness / 2.0).max(BODY_DEPTH_M / 2.0);
+    let reach = if w.measured { half } else { BODY_DEPTH_M };
     let mut n = 0;
     sc.index
         .for_each_near_line(&w.line, s0, s1, reach, |_, _, d, z| {
             let in_body = if w.measured {
-                d.abs() <= w.thickness / 2.0
+                d.abs() <= half
             } else {
                 let behind = -w.free_side * d;
                 (0.0..=BODY_DEPTH_M).contains(&behind)
@@ -267,6 +268,32 @@ mod tests {
         let mut points = floor(|x, y| pillar(x, y) || car(x, y));
         points.extend(face_points((0.0, 1.3), (0.2, 2.6)));
         assert!(!pier(&points, &beam_and_pillar, &[]));
+    }
+
+    /// Regression (garage-481 of seeds 481-485): a pillar under a beam, cars parked past one
+    /// end, the floor past the other seen at grazing angles only, was a 1.02 m wall from the
+    /// floor to the ceiling. Its face and a few returns inside the pillar measured it 0.11 m
+    /// thick, and that body held 4 of the floor's returns past its free end, one row of them.
+    #[test]
+    fn a_pillar_measured_thin_past_a_sparse_floor_is_no_wall() {
+        let car = |x: f64, y: f64| (0.55..1.5).contains(&x) && (-0.5..1.5).contains(&y);
+        // The floor sampled every 10 cm, nowhere under the pillar or the car.
+        let mut points: Vec<Vec3> = (0..50)
+            .flat_map(|i| {
+                (0..30).map(move |j| (-2.0 + 0.05 + 0.1 * i as f64, -1.0 + 0.05 + 0.1 * j as f64))
+            })
+            .filter(|&(x, y)| !pillar(x, y) && !car(x, y))
+            .map(|(x, y)| Vec3::new(x as f32, y as f32, 0.0))
+            .collect();
+        points.extend(face_points((0.0, 0.5), (0.2, 2.6)));
+        points.extend(face_points((0.5, 1.3), (2.3, 2.6)));
+        let mut measured = WallFit::one_sided(DVec2::new(0.0, 0.055), DVec2::new(1.3, 0.055), 0.0);
+        (measured.measured, measured.thickness) = (true, 0.11);
+        measured.faces = vec![-0.055, 0.055];
+        assert!(pier(&points, &measured, &[]));
+        // Hidden past both ends, it stays a wall.
+        points.retain(|p| p.z > 0.0 || p.x > 0.0);
+        assert!(!pier(&points, &measured, &[]));
     }
 
     #[test]

@@ -1,8 +1,8 @@
 //! Regressions of upper flights: parted from the flight below them (`upper`), and counted at
 //! its rise (`profile`).
 
-use super::profile::profile_near;
-use super::tests::{over_floor, returns_by_part};
+use super::profile::{profile_near, Profile};
+use super::tests::{over_floor, returns_and_surface, returns_by_part};
 use super::*;
 use crate::points::XyIndex;
 use glam::Vec3;
@@ -190,25 +190,33 @@ fn an_upper_flights_first_riser_in_the_lower_flights_part_is_one_of_its_steps() 
 /// a nearer rise that leaves one empty. (The flight's returns, from the bench's map.)
 #[test]
 fn a_hint_between_two_counts_does_not_pick_the_one_that_misses_a_level() {
+    let text = include_str!("../../tests/data/office311_upper_flight.txt");
+    let (_, p) = upper_flight_at(text, 619, 0.1464, 4);
+    assert!((p.rise - 0.156).abs() < 0.01, "rise {}", p.rise);
+}
+
+/// The profile along +X of the upper flight's returns in `text` (`count` of them; the fourth
+/// column 1 on a surface) at the lower flight's rise `hint`, with every one of its `steps`
+/// levels found; and its returns.
+fn upper_flight_at(
+    text: &str,
+    count: usize,
+    hint: f64,
+    steps: u32,
+) -> (Vec<(DVec2, f64)>, Profile) {
+    let (all, pts) = returns_and_surface(text);
+    assert_eq!(all.len(), count);
     let c = StairsConfig::default();
-    let (all, own) = returns_by_part(include_str!("../../tests/data/office311_upper_flight.txt"));
-    assert_eq!(all.len(), 619);
-    let pts: Vec<(DVec2, f64)> = all
-        .iter()
-        .zip(&own)
-        .filter(|(_, &k)| k == 1)
-        .map(|(p, _)| *p)
-        .collect();
-    let p = profile_near(&pts, &all, DVec2::X, &c, Some(0.1464)).expect("a flight");
+    let p = profile_near(&pts, &all, DVec2::X, &c, Some(hint)).expect("a flight");
     assert_eq!(
         (p.steps, p.found),
-        (4, 4),
+        (steps, steps),
         "rise {} run {} found {}",
         p.rise,
         p.run,
         p.found
     );
-    assert!((p.rise - 0.156).abs() < 0.01, "rise {}", p.rise);
+    (all, p)
 }
 
 /// Regression: office-441 of seeds 441-445, a staircase with a mid landing (two flights of 4
@@ -282,26 +290,10 @@ fn a_staircase_seen_from_its_side_past_clutter_climbs_square_to_the_walls() {
 /// bench's map.)
 #[test]
 fn a_person_over_the_top_step_does_not_add_a_step_nearer_the_hint() {
-    let c = StairsConfig::default();
-    let (all, own) = returns_by_part(include_str!("../../tests/data/office482_upper_flight.txt"));
-    assert_eq!(all.len(), 1044);
+    let text = include_str!("../../tests/data/office482_upper_flight.txt");
+    let (all, p) = upper_flight_at(text, 1044, 0.1718, 4);
     // (the person's returns are there: the top landing stands 0.70 m over the landing)
     assert!(all.iter().any(|p| p.1 > 1.2));
-    let pts: Vec<(DVec2, f64)> = all
-        .iter()
-        .zip(&own)
-        .filter(|(_, &k)| k == 1)
-        .map(|(p, _)| *p)
-        .collect();
-    let p = profile_near(&pts, &all, DVec2::X, &c, Some(0.1718)).expect("a flight");
-    assert_eq!(
-        (p.steps, p.found),
-        (4, 4),
-        "rise {} run {} found {}",
-        p.rise,
-        p.run,
-        p.found
-    );
     assert!((p.rise - 0.176).abs() < 0.01, "rise {}", p.rise);
     assert!((p.run - 0.273).abs() < 0.02, "run {}", p.run);
 }

@@ -324,7 +324,7 @@ fn fit_profile(
     // 311-315, 4 steps of 0.156 m, all found, lost to 5 that missed one by 0.5 % of the rise.
     // Of those, the best fit: within `SAME_RISE` the hint has done its work, and the nearer
     // rise is not the better reading. office-482 of seeds 481-485: a person standing beside
-    // an upper flight's top step, seen 0.6 m over it, made 5 steps of 0.171 m, all found, fit
+    // an upper flight's top step, seen 0.5 m over it, made 5 steps of 0.171 m, all found, fit
     // 33, nearer the lower flight's 0.172 m than the 4 steps of 0.174 m, all found, fit 57.)
     let missed = |f: &Fit| f.n.saturating_sub(f.found);
     let near = rise_hint.and_then(|r| {

@@ -283,7 +283,7 @@ fn a_staircase_seen_from_its_side_past_clutter_climbs_square_to_the_walls() {
 
 /// Regression (office-482 of seeds 481-485, blind): the upper flight of a staircase with a mid
 /// landing, 4 steps of 0.176 m, read as 5 of 0.171 m. A person standing beside its top step in
-/// one scan, seen up to 0.73 m over its top landing, lifted the flight's top height, and every
+/// one scan, seen up to 0.53 m over its top landing, lifted the flight's top height, and every
 /// level of 5 steps up to it found a bin; the 4 steps up to the landing's plateau found every
 /// level too and fitted far better, but the 5 lay nearer the lower flight's rise (0.172 m).
 /// Within `SAME_RISE` of that rise, the better fit now wins. (The flight's returns, from the

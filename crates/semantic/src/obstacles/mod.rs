@@ -87,6 +87,7 @@ pub(crate) use keep_out::{exclude_boxes, wall_cells};
 mod levels;
 mod merge;
 mod necks;
+mod overlaps;
 mod partitions;
 mod pieces;
 mod pillar_rows;
@@ -344,7 +345,9 @@ pub(crate) fn find_obstacles(
     // A partition seen in pieces along one line is one wall.
     let out = join_partition_pieces(out, ps);
     // A thin piece in a partition's line, a cell thicker at most (a glass pane's), continues it.
-    let mut out = continue_partitions(out, ps);
+    let out = continue_partitions(out, ps);
+    // Two partitions overlapping along one line are one found twice.
+    let mut out = overlaps::join_overlapping_partitions(out, ps);
     // A partition ending within the margin left round a wall's face meets it there.
     meet_walls(&mut out, sc.walls, c);
     // What a partition found here left along its top is its residue.

@@ -21,6 +21,7 @@
 //! A level stretch can also be treads above the laser that the scans missed, part way up one
 //! straight flight: then the two flights fitted meet, the upper one's first riser within a
 //! tread's depth of the lower one's top front edge, and their points are one flight.
+use super::extend::parted_risers;
 use super::floor::{floor_density, floor_in_strip};
 use super::landing::{mid_landing, Landing};
 use super::plausible::finish;
@@ -208,8 +209,13 @@ fn upper_flight(
     upper.retain(|(q, _)| q.dot(dir) < upper_end);
     upper_all.retain(|(q, _)| q.dot(dir) < upper_end);
     let rise = first.map(|f| f.rise);
-    let second =
-        profile_near(&upper, &upper_all, dir, c, rise).and_then(|p| finish(&upper, p, sc, c));
+    let second = profile_near(&upper, &upper_all, dir, c, rise).and_then(|p| {
+        // (with the returns of its risers the blobs parted from it, see `parted_risers`)
+        if let Some(f) = first {
+            upper.extend(parted_risers(&p, &upper, f, base, sc, c));
+        }
+        finish(&upper, p, sc, c)
+    });
     (second, upper_end)
 }
 

@@ -37,7 +37,7 @@ fn length_m(p: &Profile) -> f64 {
 /// The step (0 the lowest) a point `s` along the flight's direction at height `z` (above its
 /// foot) lies on: within the step's run, above the step below (by 2 cm) and at most 3 cm over
 /// its tread; `None` if it lies on none.
-fn step_holding(p: &Profile, s: f64, z: f64) -> Option<usize> {
+pub(super) fn step_holding(p: &Profile, s: f64, z: f64) -> Option<usize> {
     p.step_of(s).filter(|&k| {
         let top = (k + 1) as f64 * p.rise;
         z > top - p.rise + 0.02 && z <= top + 0.03

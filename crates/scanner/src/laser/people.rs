@@ -1,8 +1,8 @@
 //! People walking past during a stop-and-scan. The laser rotates its scan plane step by step,
 //! so every rotation step sees them where they are at that moment: a walking person becomes a
 //! smeared streak rather than a body. They are vertical cylinders walking in straight lines at
-//! a steady pace, seeded per scan, and turning along a solid where the next step would take them
-//! into it (a wall, a parked car, a cabinet: nobody walks through one, and a streak inside a
+//! a steady pace, seeded per scan, and turning away from a solid where the next step would take
+//! them into it (a wall, a parked car, a cabinet: nobody walks through one, and a streak inside a
 //! car's body, where no other scan can see past it, is a thing no real survey shows); they are not
 //! part of the building, so their returns carry the `unknown` label (entity 0), like every
 //! return that no building entity explains.
@@ -120,7 +120,7 @@ impl People {
                 let heading = rng.range(0.0, std::f64::consts::TAU) as f32;
                 let start = sensor_xy + Vec2::new(a.cos(), a.sin()) * r;
                 let heading = Vec2::new(heading.cos(), heading.sin());
-                if self.stands_clear(geometry, start, heading) {
+                if self.stands_clear(geometry, start) {
                     tracks.push((start, heading));
                     break;
                 }
@@ -133,20 +133,16 @@ impl People {
         };
         let step = (self.speed_m_s * dt) as f32;
         // Each person's place at every rotation step: a step on where that stands clear; where
-        // it does not, a step along the solid (a quarter turn left, else right) or back, and
-        // on that way; where none is clear, they stand.
+        // it does not, they turn away from the solid, their heading mirrored across its face
+        // (the building's axes stand for its faces': across a face along y first, then along
+        // x; else back), and walk on that way; where none is clear, they stand. (Turning along
+        // the solid instead keeps them brushing its face, which a person walking does not.)
         let mut walking = tracks;
         let mut at = Vec::with_capacity(rows);
         for j in 0..rows {
             if j > 0 {
                 for (here, heading) in &mut walking {
-                    let ways = [*heading, heading.perp(), -heading.perp(), -*heading];
-                    if let Some(way) = ways
-                        .into_iter()
-                        .find(|w| self.stands_clear(geometry, *here + *w * step, *w))
-                    {
-                        (*here, *heading) = (*here + way * step, way);
-                    }
+                    (*here, *heading) = self.step_on(geometry, *here, *heading, step);
                 }
             }
             at.push(walking.iter().map(|(here, _)| *here).collect());
@@ -160,14 +156,32 @@ impl People {
 }
 
 impl People {
-    /// True if a person standing at `c` and facing `heading` (a unit vector) is clear of every
-    /// solid of `geometry`: their axis and the front of their body, at their knees, waist and
-    /// shoulders (a low crate, a car's body, a desk's top; the floor and a ceiling are out of
-    /// reach).
-    fn stands_clear(&self, geometry: &BuildingGeometry, c: Vec2, heading: Vec2) -> bool {
-        let h = self.height_m as f32;
-        let front = c + heading * self.radius_m as f32;
-        [c, front].iter().all(|q| {
+    /// Where a person at `here` walking along `heading` (a unit vector) is a step of `step`
+    /// later, and their heading then (see [`People::walk`]).
+    fn step_on(
+        &self,
+        geometry: &BuildingGeometry,
+        here: Vec2,
+        heading: Vec2,
+        step: f32,
+    ) -> (Vec2, Vec2) {
+        let (x, y) = (heading.x, heading.y);
+        let ways = [heading, Vec2::new(-x, y), Vec2::new(x, -y), -heading];
+        ways.into_iter()
+            .find(|w| self.stands_clear(geometry, here + *w * step))
+            .map_or((here, heading), |way| (here + way * step, way))
+    }
+
+    /// True if a person standing at `c` is clear of every solid of `geometry`: their axis and
+    /// eight points round their body, at their knees, waist and shoulders (a low crate, a car's
+    /// body, a desk's top; the floor and a ceiling are out of reach).
+    fn stands_clear(&self, geometry: &BuildingGeometry, c: Vec2) -> bool {
+        let (h, r) = (self.height_m as f32, self.radius_m as f32);
+        let round = (0..8).map(|k| {
+            let a = k as f32 * std::f32::consts::FRAC_PI_4;
+            c + Vec2::new(a.cos(), a.sin()) * r
+        });
+        std::iter::once(c).chain(round).all(|q| {
             BODY_HEIGHTS
                 .iter()
                 .all(|f| geometry.entity_containing(q.extend(f * h)).is_none())
@@ -269,7 +283,7 @@ mod tests {
     }
 
     #[test]
-    fn a_person_walking_at_a_car_or_a_wall_turns_along_it() {
+    fn a_person_walking_at_a_car_or_a_wall_turns_away_from_it() {
         // garage-495 of seeds 491-495: a person walked 1 m into a car's body, and their streak
         // over its bonnet and under its bumper read as a partial-height wall across the car.
         let g = room_with_a_car();
@@ -312,6 +326,30 @@ mod tests {
             );
         }
         assert!(turned > 0 && straight > 0, "{turned} {straight}");
+    }
+
+    #[test]
+    fn a_person_meeting_a_car_head_on_walks_away_from_it() {
+        // 5 degrees off square to the car's west face (x = 4): mirrored, they leave it as they
+        // came; a quarter turn along the face instead would keep them brushing it (office-493
+        // of seeds 491-495, walkers turning so: a person read along a glass partition by two
+        // scans, the partition lost).
+        let g = room_with_a_car();
+        let people = People::real();
+        let step = 1.3 * 8.0 / 301.0;
+        let a = 5f32.to_radians();
+        let (mut here, mut heading) = (Vec2::new(3.0, 3.0), Vec2::new(a.cos(), a.sin()));
+        let (mut met, mut brushing) = (false, 0);
+        for _ in 0..100 {
+            (here, heading) = people.step_on(&g, here, heading, step);
+            let gap = 4.0 - here.x - 0.25;
+            assert!(gap >= 0.0, "{here} in the car");
+            met |= heading.x < 0.0;
+            brushing += usize::from(gap < 0.05);
+        }
+        assert!(brushing <= 3, "{brushing} steps within 5 cm of the car");
+        assert!(met && heading.y > 0.0, "{heading}");
+        assert!(here.x < 2.0, "{here}");
     }
 
     #[test]

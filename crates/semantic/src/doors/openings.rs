@@ -16,8 +16,9 @@
 //!   could be hidden behind furniture at door level), if the scans saw into it: points inside
 //!   the wall's slab or behind its face, or floor within its footprint, in `min_evidence` of
 //!   its bins. A wall seen from both sides about the run cannot be hidden on both at once, so
-//!   the lintel suffices there; a two-sided wall seen from one side only about the run (see
-//!   [`faces_seen_around`]) needs the view through it too.
+//!   the lintel suffices there, where anything at all was seen in it; a two-sided wall seen
+//!   from one side only about the run (see [`faces_seen_around`]) needs the view through it
+//!   too.
 //!
 //! The opening's edges are the nearest face points at door level either side; its height is
 //! the median lowest face point above it (the lintel's underside), at least a door's height
@@ -222,7 +223,14 @@ fn opening_of(
     let seen_through = |x: &Bin| x.evidence || seen_from.is_some_and(|side| x.seen_from[side]);
     let evidence = inner.iter().filter(|x| seen_through(x)).count() as f64 / k;
     let both_faces = two_sided && seen_from.is_none();
-    if lintel < c.min_lintel_coverage || (!both_faces && evidence < c.min_evidence) {
+    // (seen from both sides about the run, the lintel suffices, but not where no scan saw into
+    // the run at all: a person standing before one face, in the one scan that saw that stretch,
+    // hides it as a doorway's open run is, under a lintel above their head, while the other
+    // face is seen round it; the transients then drop the person. Office-54 of seeds 51-55,
+    // its people turning away from walls instead of walking through them: 0.69 m so, beside a
+    // corner.)
+    let unseen = evidence == 0.0;
+    if lintel < c.min_lintel_coverage || unseen || (!both_faces && evidence < c.min_evidence) {
         return None;
     }
     let mut lows: Vec<f64> = inner

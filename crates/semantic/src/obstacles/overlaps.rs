@@ -20,8 +20,8 @@ pub(super) fn join_overlapping_partitions(
     let c = ps.c;
     // (a joined wall may overlap a third)
     while let Some((a, b)) = overlapping_pair(&found, c) {
-        let other = found.swap_remove(b);
-        let wall = &mut found[a];
+        let other = found.remove(b);
+        let wall = &mut found[if b < a { a - 1 } else { a }];
         let overlap = overlap_along(wall, &other);
         let top = wall.z_range.1.max(other.z_range.1);
         let dir = wall.dir;
@@ -39,8 +39,8 @@ pub(super) fn join_overlapping_partitions(
     found
 }
 
-/// The first pair `(longer, shorter)` of walls in `found` that overlap (see
-/// [`overlaps`]); `shorter > longer` is not implied.
+/// The indices `(longer, shorter)` of the first two walls in `found` that overlap (see
+/// [`overlaps`]), in either order in `found`.
 fn overlapping_pair(found: &[DetectedObstacle], c: &ObstacleConfig) -> Option<(usize, usize)> {
     let is_wall = |o: &DetectedObstacle| o.class == EntityClass::Wall && !o.overhead;
     for a in 0..found.len() {
@@ -100,6 +100,9 @@ mod tests {
         ];
         assert_eq!(overlapping_pair(&found, &c), Some((0, 1)));
         assert!((overlap_along(&found[0], &found[1]) - 0.8).abs() < 1e-9);
+        // (the longer one last in the list: the pair's indices are those of the list)
+        let reversed: Vec<DetectedObstacle> = found.into_iter().rev().collect();
+        assert_eq!(overlapping_pair(&reversed, &c), Some((1, 0)));
     }
 
     #[test]

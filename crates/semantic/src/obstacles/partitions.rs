@@ -184,7 +184,9 @@ pub(super) fn partition_rule(
 /// How `o` divides space (see the module docs), or `None` if it may be a block's face: the
 /// floor seen on both sides of it along `partition_min_floor_both_sides` of its length, or, a
 /// panel seen from one side, the floor seen on that side along as much of it and round its
-/// free end right behind its face, with nothing standing on it there ([`end_bins`]): the
+/// free end right behind its face, with nothing standing on it there nor before the face
+/// ([`end_bins`]; before it, where the laser stood, the floor far off is seen sparsely at a
+/// grazing angle: office-514 of seeds 511-515, a partition seen from 3 m beyond its end): the
 /// foot of a block's end face is seen as low as the floor (`low`: the low band's points by
 /// cell; a face stands on the floor where it comes down to within `partition_max_bottom_m` of
 /// it, while a desk's top over the floor seen between its legs does not).
@@ -212,14 +214,27 @@ fn divides_space(
         ));
     }
     let one = share(beside.iter().map(|[a, b]| *a || *b));
+    // The side it was seen from: the floor seen beside it along more of its length. There the
+    // floor at its end may be seen sparsely or not at all (far off, at a grazing angle: the
+    // laser drops such returns), so nothing standing beyond its foot is enough; behind it, the
+    // floor must be seen with nothing on it.
+    let front = usize::from(
+        beside.iter().filter(|s| s[1]).count() > beside.iter().filter(|s| s[0]).count(),
+    );
     let free = |k: usize, _| (floor_seen[k] && !stands(k)).then_some(true);
+    let clear = |k: usize, j: usize| (j > 1).then(|| !stands(k));
     let round_an_end = o.size[0] > 2.0 * ROUND_END_BINS as f64 * BIN_M
         && [-1.0, 1.0].into_iter().any(|end| {
-            let behind = floor_beside(o, free, frame, BEHIND_M, &end_bins(o, end));
-            behind.iter().all(|[a, b]| *a && *b)
+            let bins = end_bins(o, end);
+            let behind = floor_beside(o, free, frame, BEHIND_M, &bins);
+            let before = floor_beside(o, clear, frame, BEHIND_M, &bins);
+            behind
+                .iter()
+                .zip(&before)
+                .all(|(b, f)| b[1 - front] && (b[front] || f[front]))
         });
     (one >= c.partition_min_floor_both_sides && round_an_end).then(|| format!(
-        "a panel seen from one side: the floor seen beside it along {:.0} % of its length, and on both sides within {BEHIND_M:.2} m of its faces with nothing on it along its last {:.1} m or more at an end, where a block's body would stand",
+        "a panel seen from one side: the floor seen beside it along {:.0} % of its length, and behind it within {BEHIND_M:.2} m of its face with nothing on it (nor before it) along its last {:.1} m or more at an end, where a block's body would stand",
         100.0 * one,
         ROUND_END_BINS as f64 * BIN_M
     ))

@@ -48,3 +48,37 @@ fn the_floor_seen_past_a_blocks_far_face_is_not_behind_its_front() {
     // With nothing standing between, the floor seen 0.45 m behind a panel's face counts.
     assert!(beside(&|_| false).iter().all(|s| *s == [true, true]));
 }
+
+/// Regression (office-514 of seeds 511-515): a partition 1.5 m long seen from one side only,
+/// from 3 m beyond its free end, was no wall: before its end the floor, far off and at a
+/// grazing angle, held too few returns to be seen in every cell. Behind the panel's end the
+/// floor is seen (round its end); before it nothing stands. A cabinet's face seen so stays an
+/// obstacle: behind its end its body hides the floor.
+#[test]
+fn a_panel_whose_floor_before_its_end_is_unseen_is_still_a_wall() {
+    let panel = super::tests::slab(1.0, 3.0, 2.0, 0.09, 1.4);
+    // The floor hidden behind the panel but round its end, and before its end.
+    let unseen = |p: &glam::Vec3, cabinet: bool| {
+        let behind = p.x <= if cabinet { 3.05 } else { 2.75 } && (2.05..=4.0).contains(&p.y);
+        let before = (2.6..=3.1).contains(&p.x) && (1.65..=1.95).contains(&p.y);
+        behind || before
+    };
+    let found = |cabinet: bool| {
+        let mut points = super::tests::floor_points(None);
+        points.retain(|p| !(p.x >= 1.0 && unseen(p, cabinet)));
+        points.extend_from_slice(&panel);
+        super::tests::classes_in(&points, &[])
+    };
+    let panel_found = found(false);
+    assert!(
+        panel_found
+            .iter()
+            .any(|(c, why)| *c == EntityClass::Wall && why.contains("seen from one side")),
+        "{panel_found:?}"
+    );
+    let cabinet_found = found(true);
+    assert!(
+        cabinet_found.iter().all(|(c, _)| *c != EntityClass::Wall),
+        "{cabinet_found:?}"
+    );
+}

@@ -25,7 +25,7 @@ pub(crate) fn slab(x0: f32, x1: f32, y: f32, z0: f32, z1: f32) -> Vec<Vec3> {
 
 /// The floor of the 8 x 8 m test area sampled every 5 cm, but where `hidden` (x0, y0, x1,
 /// y1) covers it.
-fn floor(hidden: Option<[f32; 4]>) -> Vec<Vec3> {
+pub(crate) fn floor_points(hidden: Option<[f32; 4]>) -> Vec<Vec3> {
     let mut out = Vec::new();
     for i in 0..160 {
         for j in 0..160 {
@@ -48,12 +48,12 @@ fn classes_with_walls(
     points: &[Vec3],
     walls: &[crate::walls::WallFit],
 ) -> Vec<(EntityClass, String)> {
-    let mut all = floor(None);
+    let mut all = floor_points(None);
     all.extend_from_slice(points);
     classes_in(&all, walls)
 }
 
-fn classes_in(points: &[Vec3], walls: &[crate::walls::WallFit]) -> Vec<(EntityClass, String)> {
+pub(crate) fn classes_in(points: &[Vec3], walls: &[crate::walls::WallFit]) -> Vec<(EntityClass, String)> {
     found_in(points, walls)
         .into_iter()
         .map(|o| (o.class, o.rules.last().cloned().unwrap_or_default()))
@@ -157,7 +157,7 @@ fn what_hangs_over_a_low_streak_does_not_raise_its_face_to_a_wall() {
 fn the_face_of_a_block_is_no_wall() {
     // A crate 1.5 m high seen from its south side only: the floor behind its face, under
     // the crate, was never seen.
-    let mut points = floor(Some([1.0, 2.0, 3.0, 3.8]));
+    let mut points = floor_points(Some([1.0, 2.0, 3.0, 3.8]));
     points.extend(slab(1.0, 3.0, 2.0, 0.09, 1.5));
     let found = classes_in(&points, &[]);
     assert!(
@@ -172,7 +172,7 @@ fn a_panel_seen_from_one_side_and_round_its_free_end_is_a_wall_and_a_block_is_no
     // scanned from one side only: the floor behind it lies in its shadow, but round its
     // free end the laser sees it right behind the panel's face.
     let panel = slab(1.0, 3.0, 2.0, 0.09, 1.4);
-    let mut points = floor(Some([1.0, 2.05, 2.75, 4.0]));
+    let mut points = floor_points(Some([1.0, 2.05, 2.75, 4.0]));
     points.extend_from_slice(&panel);
     let found = classes_in(&points, &[]);
     assert_eq!(found.len(), 1, "{found:?}");
@@ -199,7 +199,7 @@ fn a_panel_seen_from_one_side_and_round_its_free_end_is_a_wall_and_a_block_is_no
     );
     // A cabinet 0.4 m deep seen from the same side: round its end the floor is seen only
     // beyond its back.
-    let mut points = floor(Some([1.0, 2.05, 3.05, 2.45]));
+    let mut points = floor_points(Some([1.0, 2.05, 3.05, 2.45]));
     points.retain(|p| !(p.x <= 2.75 && p.y >= 2.45 && p.y <= 4.0));
     points.extend_from_slice(&panel);
     let found = classes_in(&points, &[]);
@@ -209,7 +209,7 @@ fn a_panel_seen_from_one_side_and_round_its_free_end_is_a_wall_and_a_block_is_no
     );
     // A car 1.8 m deep seen from the same side and round its end (the walls_clutter car
     // park): the foot of its end face is seen as low as the floor right behind its side.
-    let mut points = floor(Some([1.0, 2.05, 3.04, 3.8]));
+    let mut points = floor_points(Some([1.0, 2.05, 3.04, 3.8]));
     points.extend_from_slice(&panel);
     // (The laser's noise spreads the end face 2-3 cm about its plane, and the side's box
     // reaches as far.)
@@ -255,7 +255,7 @@ fn a_few_returns_over_a_partitions_end_do_not_lift_its_top() {
     }
     let found = found_in(
         &{
-            let mut all = floor(None);
+            let mut all = floor_points(None);
             all.extend_from_slice(&points);
             all
         },
@@ -299,7 +299,7 @@ fn a_tall_crate_seen_from_its_front_and_one_end_is_no_wall() {
         (-0.05..=1.35).contains(&x) && (-0.05..=depth).contains(&y)
     };
     let with = |end_top: f32, depth: f32| -> Vec<(EntityClass, String)> {
-        let mut points: Vec<Vec3> = floor(None)
+        let mut points: Vec<Vec3> = floor_points(None)
             .into_iter()
             .filter(|p| !under(p, depth))
             .collect();

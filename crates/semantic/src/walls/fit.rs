@@ -218,29 +218,43 @@ pub(super) fn fit_wall_noting(
         coverage,
         rules: Vec::new(),
     };
+    let most = on_each.iter().copied().max().unwrap_or(0);
+    let holds_face_points = |k: usize| on_each[k] as f64 >= MIN_FACE_SHARE * most as f64;
     if let [f1, f2] = faces[..] {
         let (s1, s2) = (side(0), side(1));
-        if s1 <= 0.0 && s2 >= 0.0 && s1 != s2 {
+        // Free space outside both faces; or beside neither apart from the other, both holding
+        // face points over its height: a glass wall seen from both sides, the floor and the
+        // ceiling seen through its body as beside it. (Taking one face, its free side towards
+        // the cloud's middle, put office-513's and office-514's 0.15 m glass partitions of
+        // seeds 511-515 a thickness off, on the far side of the face; in office-514 a door leaf
+        // was then read in the glass.)
+        let outside = s1 <= 0.0 && s2 >= 0.0 && s1 != s2;
+        let glass = s1 == 0.0 && s2 == 0.0 && holds_face_points(0) && holds_face_points(1);
+        if outside || glass {
             let mid = (f1 + f2) / 2.0;
             fit.line = fit.line.shifted(mid);
             fit.thickness = f2 - f1;
             fit.measured = true;
             fit.faces = vec![f1 - mid, f2 - mid];
-            rules.push(format!(
-                "two faces {:.3} m apart with free space outside both: thickness measured",
-                f2 - f1
-            ));
+            rules.push(if outside {
+                format!(
+                    "two faces {:.3} m apart with free space outside both: thickness measured",
+                    f2 - f1
+                )
+            } else {
+                format!(
+                    "two faces {:.3} m apart, each holding face points over its height, the floor or ceiling seen beside both alike (a glass wall seen from both sides): thickness measured",
+                    f2 - f1
+                )
+            });
         }
     }
     if !fit.measured {
         // One face: the one with free space in front of it, else the first (across the wall)
         // of those that hold face points over its height (see `MIN_FACE_SHARE`).
-        let most = on_each.iter().copied().max().unwrap_or(0);
         let k = (0..faces.len())
             .find(|&k| side(k) != 0.0)
-            .or_else(|| {
-                (0..faces.len()).find(|&k| on_each[k] as f64 >= MIN_FACE_SHARE * most as f64)
-            })
+            .or_else(|| (0..faces.len()).find(|&k| holds_face_points(k)))
             .unwrap_or(0);
         let mut s = side(k);
         if s == 0.0 && open + bare >= UNBOUNDED_FACE_MAX_THROUGH {
@@ -322,6 +336,43 @@ mod tests {
             let seg = Segment { a_m: a, b_m: b };
             let wall = fit_wall(&seg, &sc, &c).expect("a wall");
             assert!(!wall.measured, "{wall:?}");
+            assert!(wall.line.origin.x.abs() < 0.02, "{:?}", wall.line);
+        }
+    }
+
+    /// Regression: office-514's (seeds 511-515) glass partition, 0.15 m thick, seen from both
+    /// rooms: both panes hold face points, and the floor and ceiling are seen through its body
+    /// as beside it, so neither face bounds free space. It was placed on one pane with its
+    /// free side towards the cloud's middle, a thickness off. It stands between its panes.
+    #[test]
+    fn a_glass_wall_seen_from_both_sides_stands_between_its_two_panes() {
+        let mut points = Vec::new();
+        for i in 0..80 {
+            let y = 0.025 + 0.05 * f64::from(i);
+            // The panes, every 5 cm (the far one every 10 cm of height: seen through glass),
+            // their returns spread 4 mm about them.
+            for k in 1..49 {
+                let noise = 0.004 * f64::from(k % 3) - 0.004;
+                points.push(Vec3::new((noise - 0.075) as f32, y as f32, 0.05 * k as f32));
+                if k % 2 == 0 {
+                    points.push(Vec3::new((noise + 0.075) as f32, y as f32, 0.05 * k as f32));
+                }
+            }
+            // The floor and the ceiling, through the glass too; the room east of it is deeper.
+            for j in -20..50 {
+                let x = 0.0125 + 0.025 * f64::from(j);
+                points.push(Vec3::new(x as f32, y as f32, 0.0));
+                points.push(Vec3::new(x as f32, y as f32, 2.5));
+            }
+        }
+        let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(6.0), 0.25);
+        let sc = Scene::with_one_index(&points, &index, 0.0, 2.5);
+        let c = WallConfig::default();
+        for (a, b) in [([0.0, 0.1], [0.0, 3.9]), ([0.0, 3.9], [0.0, 0.1])] {
+            let seg = Segment { a_m: a, b_m: b };
+            let wall = fit_wall(&seg, &sc, &c).expect("a wall");
+            assert!(wall.measured, "{wall:?}");
+            assert!((wall.thickness - 0.15).abs() < 0.02, "{wall:?}");
             assert!(wall.line.origin.x.abs() < 0.02, "{:?}", wall.line);
         }
     }

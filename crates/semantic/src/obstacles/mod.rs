@@ -56,9 +56,9 @@
 //!    height by construction: the robot passes under it); anything else is an `obstacle`.
 //! 7. A thin, long cluster at least `partition_min_height_m` tall whose face is seen from the
 //!    floor up to its top (where its face ends along most of it, not a few returns over an
-//!    end) along most of its length is a partial-height `wall` ([`partitions`]):
-//!    a partition under the projection band the wall stage looks at. A cluster too thick for
-//!    one may be one with a desk or a chair against it: the thin slab of its returns holding
+//!    end) along most of its length, and divides space ([`divides`]), is a partial-height
+//!    `wall` ([`partitions`]): a partition under the projection band the wall stage looks
+//!    at. A cluster too thick for one may be one with a desk or a chair against it: the thin slab of its returns holding
 //!    the most of them is looked at so ([`slabs`]), and what lies beside the slab is fitted
 //!    again as obstacles. Thin pieces standing on one line across short gaps are looked at as
 //!    one partition seen in pieces ([`pieces`]), a partition found on its own among them; a
@@ -73,6 +73,7 @@ mod classify;
 mod cluster;
 mod config;
 mod continuations;
+mod divides;
 mod faces;
 mod fit;
 mod frames;

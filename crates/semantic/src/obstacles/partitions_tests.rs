@@ -2,6 +2,7 @@
 
 use super::super::{find_obstacles, test_points, test_scene, test_shifted_frame};
 use super::*;
+use crate::image_frame::ImageFrame;
 use glam::Vec3;
 
 /// Both faces of a slab 0.08 m thick along x from `x0` to `x1` at `y`, sampled every 2 cm
@@ -53,7 +54,10 @@ fn classes_with_walls(
     classes_in(&all, walls)
 }
 
-pub(crate) fn classes_in(points: &[Vec3], walls: &[crate::walls::WallFit]) -> Vec<(EntityClass, String)> {
+pub(crate) fn classes_in(
+    points: &[Vec3],
+    walls: &[crate::walls::WallFit],
+) -> Vec<(EntityClass, String)> {
     found_in(points, walls)
         .into_iter()
         .map(|o| (o.class, o.rules.last().cloned().unwrap_or_default()))

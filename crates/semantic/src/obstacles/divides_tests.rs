@@ -1,7 +1,9 @@
-//! A regression of `partitions::floor_first`: whether the floor is seen behind a face, going
-//! out from it cell by cell.
+//! Tests of `divides`: whether the floor is seen beside a face, going out from it cell by cell,
+//! and round a panel's free end.
 
+use super::super::partitions::tests::{classes_in, floor_points, slab};
 use super::*;
+use cloud::EntityClass;
 
 /// Regression (mixed-462 of seeds 461-465, hall-424 of 421-425): a crate's front (0.55 and
 /// 0.78 m deep) read as a partition, the floor seen past the crate's far face counting as seen
@@ -56,7 +58,7 @@ fn the_floor_seen_past_a_blocks_far_face_is_not_behind_its_front() {
 /// obstacle: behind its end its body hides the floor.
 #[test]
 fn a_panel_whose_floor_before_its_end_is_unseen_is_still_a_wall() {
-    let panel = super::tests::slab(1.0, 3.0, 2.0, 0.09, 1.4);
+    let panel = slab(1.0, 3.0, 2.0, 0.09, 1.4);
     // The floor hidden behind the panel but round its end, and before its end.
     let unseen = |p: &glam::Vec3, cabinet: bool| {
         let behind = p.x <= if cabinet { 3.05 } else { 2.75 } && (2.05..=4.0).contains(&p.y);
@@ -64,10 +66,10 @@ fn a_panel_whose_floor_before_its_end_is_unseen_is_still_a_wall() {
         behind || before
     };
     let found = |cabinet: bool| {
-        let mut points = super::tests::floor_points(None);
+        let mut points = floor_points(None);
         points.retain(|p| !(p.x >= 1.0 && unseen(p, cabinet)));
         points.extend_from_slice(&panel);
-        super::tests::classes_in(&points, &[])
+        classes_in(&points, &[])
     };
     let panel_found = found(false);
     assert!(

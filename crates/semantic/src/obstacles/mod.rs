@@ -58,8 +58,8 @@
 //!    floor up to its top (where its face ends along most of it, not a few returns over an
 //!    end) along most of its length, and divides space ([`divides`]), is a partial-height
 //!    `wall` ([`partitions`]): a partition under the projection band the wall stage looks
-//!    at. A cluster too thick for one may be one with a desk or a chair against it: the thin slab of its returns holding
-//!    the most of them is looked at so ([`slabs`]), and what lies beside the slab is fitted
+//!    at. A cluster too thick for one may be one with a desk or a chair against it: the thin
+//!    slab of its returns holding the most of them is looked at so ([`slabs`]), and what lies beside the slab is fitted
 //!    again as obstacles. Thin pieces standing on one line across short gaps are looked at as
 //!    one partition seen in pieces ([`pieces`]), a partition found on its own among them; a
 //!    piece in a partition's line up to a cell thicker (a glass pane's) continues it

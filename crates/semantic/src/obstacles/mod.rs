@@ -54,18 +54,18 @@
 //!    most `column_max_across_m` across is a `column`; a high cluster at least
 //!    `beam_min_length_m` long and twice as long as wide is a `beam` (its bottom is above head
 //!    height by construction: the robot passes under it); anything else is an `obstacle`.
-//! 7. A thin, long cluster at least `partition_min_height_m` tall whose face is seen from the
-//!    floor up to its top (where its face ends along most of it, not a few returns over an
-//!    end) along most of its length, and divides space ([`divides`]), is a partial-height
-//!    `wall` ([`partitions`]): a partition under the projection band the wall stage looks
-//!    at. A cluster too thick for one may be one with a desk or a chair against it: the thin
-//!    slab of its returns holding the most of them is looked at so ([`slabs`]), and what lies beside the slab is fitted
-//!    again as obstacles. Thin pieces standing on one line across short gaps are looked at as
-//!    one partition seen in pieces ([`pieces`]), a partition found on its own among them; a
-//!    piece in a partition's line up to a cell thicker (a glass pane's) continues it
-//!    ([`continuations`]). An end within the margin left round a wall's faces (and a cell), running square into it,
-//!    meets its face ([`wall_ends`]). Thin clusters along a partition found here (a glass
-//!    one's returns above head height) are its residue, dropped ([`residue`]).
+//! 7. A thin, long cluster at least `partition_min_height_m` tall whose face is seen from the floor
+//!    up to its top (where its face ends along most of it, not a few returns over an end) along
+//!    most of its length, and divides space ([`divides`]), is a partial-height `wall`
+//!    ([`partitions`]): a partition under the projection band the wall stage looks at. A cluster
+//!    too thick for one may be one with a desk or a chair against it: the thin slab of its returns
+//!    holding the most of them is looked at so ([`slabs`]), and what lies beside the slab is fitted
+//!    again as obstacles. Thin pieces standing on one line across short gaps are looked at as one
+//!    partition seen in pieces ([`pieces`]), a partition found on its own among them; a piece in a
+//!    partition's line up to a cell thicker (a glass pane's) continues it ([`continuations`]). An
+//!    end within the margin left round a wall's faces (and a cell), running square into it, meets
+//!    its face ([`wall_ends`]). Thin clusters along a partition found here (a glass one's returns
+//!    above head height) are its residue, dropped ([`residue`]).
 
 mod backing;
 mod block_sides;

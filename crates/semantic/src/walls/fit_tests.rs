@@ -31,15 +31,22 @@ fn a_wall_with_no_free_side_stands_on_its_face_not_on_a_veil_of_returns_beside_i
             }
         }
     }
-    let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(6.0), 0.25);
-    let sc = Scene::with_one_index(&points, &index, 0.0, 2.5);
-    let c = WallConfig::default();
-    for (a, b) in [([0.0, 0.1], [0.0, 3.9]), ([0.0, 3.9], [0.0, 0.1])] {
-        let seg = Segment { a_m: a, b_m: b };
-        let wall = fit_wall(&seg, &sc, &c).expect("a wall");
+    for wall in fitted_both_ways(&points) {
         assert!(!wall.measured, "{wall:?}");
         assert!(wall.line.origin.x.abs() < 0.02, "{:?}", wall.line);
     }
+}
+
+/// The walls fitted on `points` (floor at 0, ceiling at 2.5 m) to the segment along x = 0 from
+/// y = 0.1 to 3.9 m, drawn each way.
+fn fitted_both_ways(points: &[Vec3]) -> Vec<crate::walls::WallFit> {
+    let index = XyIndex::new(points, DVec2::splat(-3.0), DVec2::splat(6.0), 0.25);
+    let sc = Scene::with_one_index(points, &index, 0.0, 2.5);
+    let c = WallConfig::default();
+    [([0.0, 0.1], [0.0, 3.9]), ([0.0, 3.9], [0.0, 0.1])]
+        .into_iter()
+        .map(|(a, b)| fit_wall(&Segment { a_m: a, b_m: b }, &sc, &c).expect("a wall"))
+        .collect()
 }
 
 /// Regression: office-514's (seeds 511-515) glass partition, 0.15 m thick, seen from both
@@ -67,12 +74,7 @@ fn a_glass_wall_seen_from_both_sides_stands_between_its_two_panes() {
             points.push(Vec3::new(x as f32, y as f32, 2.5));
         }
     }
-    let index = XyIndex::new(&points, DVec2::splat(-3.0), DVec2::splat(6.0), 0.25);
-    let sc = Scene::with_one_index(&points, &index, 0.0, 2.5);
-    let c = WallConfig::default();
-    for (a, b) in [([0.0, 0.1], [0.0, 3.9]), ([0.0, 3.9], [0.0, 0.1])] {
-        let seg = Segment { a_m: a, b_m: b };
-        let wall = fit_wall(&seg, &sc, &c).expect("a wall");
+    for wall in fitted_both_ways(&points) {
         assert!(wall.measured, "{wall:?}");
         assert!((wall.thickness - 0.15).abs() < 0.02, "{wall:?}");
         assert!(wall.line.origin.x.abs() < 0.02, "{:?}", wall.line);

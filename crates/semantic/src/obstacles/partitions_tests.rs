@@ -366,3 +366,17 @@ fn a_tall_shelf_across_a_partitions_end_leaves_it_a_wall() {
         );
     }
 }
+
+/// Regression (office-524 of seeds 521-525, see `MAX_SPARSE_FOOT_BINS`): runs of up to three
+/// bins whose foot went unseen where the face is seen sparsely stand with their neighbours; a
+/// longer run, one seen densely, or one at an end does not.
+#[test]
+fn a_sparsely_seen_foot_missing_in_a_short_run_still_stands() {
+    let bins = |s: &str| s.chars().map(|c| c == '#').collect::<Vec<bool>>();
+    let filled = |s: &str, sparse: bool| fill_foot_gaps(&bins(s), |_| sparse);
+    assert_eq!(filled("#.#", false), bins("###"));
+    assert_eq!(filled("#...#..#", true), bins("########"));
+    assert_eq!(filled("#...#", false), bins("#...#"));
+    assert_eq!(filled("#....#", true), bins("#....#"));
+    assert_eq!(filled("..##.", true), bins("..##."));
+}

@@ -41,10 +41,13 @@
 //! entered). A stretch no longer than a column is wide that stands free (the floor seen past
 //! both ends; or past one, no wall meeting the other and its back seen: [`free_pier`]) is a
 //! column, not a wall; so is a row of such stretches, cut where the floor is seen deep in the
-//! wall's body with no face in front of it: pillars in a row ([`piers`]).
+//! wall's body with no face in front of it: pillars in a row ([`piers`]). A wall's end short
+//! of the face of a wall it points at moves on to it across a stretch of up to
+//! `max_glimpse_gap_m` nobody saw through ([`corners`]: the corner seen at a grazing angle).
 //! Last, every wall must rest on points of its own, not claimed by a longer wall
 //! ([`own_points`]: a line across the corner of two walls has none).
 
+mod corners;
 mod duplicates;
 mod extent;
 mod faces;
@@ -65,6 +68,7 @@ use crate::merge::Segment;
 use crate::points::{median, undirected_angle_deg, Line2};
 use crate::scene::Scene;
 use cloud::check_range;
+use corners::extend_to_corners;
 use duplicates::merge_duplicates;
 use free_pier::is_free_standing_pier;
 use glam::DVec2;
@@ -106,7 +110,8 @@ pub struct WallConfig {
     /// Collinear walls this far apart are one wall if nothing was seen through the gap.
     pub max_join_gap_m: f64,
     /// A wall's end moves on to its face points glimpsed beyond a gap this wide at most
-    /// through which nothing was seen (e.g. through a doorway of a room not entered).
+    /// through which nothing was seen (e.g. through a doorway of a room not entered), and on to
+    /// the face of the wall it points at across such a gap (a corner seen at a grazing angle).
     pub max_glimpse_gap_m: f64,
     /// Walls whose lines are this near (and directions within `merge.max_angle_deg`) and that
     /// overlap are one wall.
@@ -348,6 +353,8 @@ pub(crate) fn identify_walls(
         .map(|w| w.thickness)
         .collect();
     let assumed = median(&mut measured).unwrap_or(c.default_thickness_m);
+    // A wall ending short of the wall it runs into, the stretch between unseen, meets it.
+    extend_to_corners(&mut kept, sc, c, assumed);
     for w in &mut kept {
         if !w.measured {
             // The line is the face; the centre lies half a thickness behind it.

@@ -15,6 +15,10 @@ use glam::DVec2;
 /// [`joins`](super::joins)' work).
 const MIN_CORNER_ANGLE_DEG: f64 = 45.0;
 
+/// An end this near the face of the wall it points at is the extent's to settle: it snaps to
+/// a wall-high surface crossing its plane this near (the extent's corners).
+const MIN_GAP_M: f64 = 0.15;
+
 /// The face met must reach the wall's line within this of its own ends (the hidden bins beside
 /// a corner keep a face's extent a few centimetres short of the corner; as the extent's
 /// corners).
@@ -41,7 +45,7 @@ pub(crate) fn extend_to_corners(
                 })
                 .filter_map(|(_, o)| face_ahead(o, from, outward, assumed_thickness_m))
                 .min_by(|a, b| a.total_cmp(b))
-                .filter(|&gap| gap > 0.0 && gap <= c.max_glimpse_gap_m)
+                .filter(|&gap| gap > MIN_GAP_M && gap <= c.max_glimpse_gap_m)
         };
         let after =
             hit(w.line.dir, w.end()).filter(|&g| !seen_through(w, w.length, w.length + g, sc));

@@ -24,8 +24,8 @@ const MIN_GAP_M: f64 = 0.15;
 /// corners).
 const REACH_TOLERANCE_M: f64 = 0.15;
 
-/// Moves every wall's ends on to the face of the wall each points at, across a stretch of up
-/// to `max_glimpse_gap_m` that nobody saw through (see the module docs). Runs before one-sided
+/// Moves every wall's ends on to the face of the wall each points at, across a stretch of more
+/// than `MIN_GAP_M` and up to `max_glimpse_gap_m` that nobody saw through (see the module docs). Runs before one-sided
 /// walls are moved back from their face to their centre line (`walls`' lines are faces then);
 /// such a wall's unseen face lies `assumed_thickness_m` behind its seen one.
 pub(crate) fn extend_to_corners(

@@ -41,9 +41,9 @@
 //! entered). A stretch no longer than a column is wide that stands free (the floor seen past
 //! both ends; or past one, no wall meeting the other and its back seen: [`free_pier`]) is a
 //! column, not a wall; so is a row of such stretches, cut where the floor is seen deep in the
-//! wall's body with no face in front of it: pillars in a row ([`piers`]). A wall's end short
-//! of the face of a wall it points at moves on to it across a stretch of up to
-//! `max_glimpse_gap_m` nobody saw through ([`corners`]: the corner seen at a grazing angle).
+//! wall's body with no face in front of it: pillars in a row ([`piers`]). A wall's end more
+//! than 0.15 m short of the face of a wall it points at moves on to it across a stretch of up
+//! to `max_glimpse_gap_m` nobody saw through ([`corners`]: the corner seen at a grazing angle).
 //! Last, every wall must rest on points of its own, not claimed by a longer wall
 //! ([`own_points`]: a line across the corner of two walls has none).
 
